@@ -1,0 +1,44 @@
+#pragma once
+/// \file mesh.h
+/// The one mesh type of EdgeFront: an OpenMesh triangle mesh with double-precision points.
+/// All OpenMesh types reach the rest of the project through this header.
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace edgefront {
+
+/// Traits of the mesh: double-precision points and normals, status attributes on vertices,
+/// edges, halfedges and faces (needed for deletion and garbage collection), face normals, and
+/// explicit previous-halfedge links (O(1) `prev_halfedge_handle`).
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+  FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+};
+
+/// The triangle mesh used everywhere in EdgeFront.
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+using Vec3 = OpenMesh::Vec3d;
+using VertexHandle = OpenMesh::VertexHandle;
+using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+using EdgeHandle = OpenMesh::EdgeHandle;
+using FaceHandle = OpenMesh::FaceHandle;
+
+/// True when `v` names an existing, non-deleted vertex of `mesh`.
+inline bool is_live(const Mesh& mesh, VertexHandle v) {
+  return v.is_valid() && static_cast<size_t>(v.idx()) < mesh.n_vertices() && !mesh.status(v).deleted();
+}
+/// True when `h` names an existing, non-deleted halfedge of `mesh`.
+inline bool is_live(const Mesh& mesh, HalfedgeHandle h) {
+  return h.is_valid() && static_cast<size_t>(h.idx()) < mesh.n_halfedges() && !mesh.status(h).deleted();
+}
+/// True when `f` names an existing, non-deleted face of `mesh`.
+inline bool is_live(const Mesh& mesh, FaceHandle f) {
+  return f.is_valid() && static_cast<size_t>(f.idx()) < mesh.n_faces() && !mesh.status(f).deleted();
+}
+
+}  // namespace edgefront
