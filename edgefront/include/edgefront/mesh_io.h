@@ -1,0 +1,117 @@
+#pragma once
+/// \file mesh_io.h
+/// Reading and writing triangle meshes: OFF, OBJ, PLY and STL in, OFF, OBJ, PLY and STL out.
+///
+/// The readers are EdgeFront's own (not OpenMesh's), so that every problem in a file is reported
+/// with the file, the line or element, and what is wrong, and everything that was changed on the
+/// way in (triangulated polygons, dropped faces) is counted in a MeshReadReport.
+///
+/// \code
+///   edgefront::MeshReadResult r = edgefront::read_mesh("bunny.ply");
+///   for (const std::string& w : r.report.warnings) std::cerr << "warning: " << w << "\n";
+///   edgefront::write_mesh(r.mesh, "bunny.off");
+/// \endcode
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace edgefront {
+
+struct MeshReadOptions {
+  /// Faces that OpenMesh cannot add (a third face on an edge, a face that would make a vertex
+  /// non-manifold in a way the halfedge structure cannot hold, a second copy of an oriented face)
+  /// are dropped and counted when true (default); when false the file is refused with IoError
+  /// naming the face.
+  bool drop_nonmanifold_faces = true;
+};
+
+/// What read_mesh found and changed. Counters refer to the file's face records unless noted.
+struct MeshReadReport {
+  size_t vertices = 0;                   ///< vertices in the file (all kept, in file order)
+  size_t faces_in_file = 0;              ///< face records in the file (facets for STL)
+  size_t triangles_added = 0;            ///< triangles in the mesh
+  size_t polygons_triangulated = 0;      ///< face records with more than 3 vertices (fan-triangulated)
+  size_t faces_dropped_nonmanifold = 0;  ///< triangles OpenMesh refused (dropped; after triangulation)
+  size_t faces_dropped_invalid = 0;      ///< face records with a repeated vertex index (dropped)
+  size_t degenerate_faces = 0;           ///< added triangles with area <= 1e-12 * bbox_diagonal^2 (kept)
+  size_t duplicate_faces =
+      0;  ///< triangles with the vertex set of an earlier one (kept if OpenMesh accepts them)
+  size_t isolated_vertices = 0;  ///< vertices used by no triangle of the mesh (kept)
+  std::vector<std::string>
+      warnings;  ///< human-readable, e.g. "12 polygons were triangulated into 30 triangles"
+};
+
+struct MeshReadResult {
+  Mesh mesh;
+  MeshReadReport report;
+};
+
+/// Reads a mesh; the format comes from the extension (case-insensitive):
+/// - `.off`: OFF, with the optional ST/C/N prefixes (extra per-vertex values are ignored);
+/// - `.obj`: `v` and `f` records (`f 1/2/3 ...` and negative relative indices accepted; other
+///   records ignored, unknown keywords counted in a warning);
+/// - `.ply`: ascii, binary_little_endian and binary_big_endian; vertex `x y z` of any numeric
+///   type; faces from the `vertex_indices` (or `vertex_index`) list of the `face` element, any
+///   count and index type; all other elements and properties are skipped;
+/// - `.stl`: ASCII and binary; exactly coincident corners are merged into shared vertices (in
+///   order of first appearance).
+///
+/// Vertex i of the file is `VertexHandle(i)` of the mesh (STL: i-th distinct corner), isolated
+/// vertices included; a file with vertices and no faces is a valid mesh without faces. Polygons
+/// are fan-triangulated from their first vertex (exact for convex polygons). Face normals of
+/// the result are up to date.
+///
+/// \throw IoError naming the file, the line (text formats) or element index, and the problem,
+///        for: a missing or unreadable file, an unknown extension, an empty file, a truncated
+///        file, malformed numbers, NaN or infinite coordinates, face indices out of range or
+///        negative, faces with fewer than 3 indices, bad PLY headers, element counts that cannot
+///        fit in the file, content that is not a mesh in the expected format, and (with
+///        `drop_nonmanifold_faces == false`) faces OpenMesh refuses.
+/// \note Not safe to call concurrently with code that enables or disables OpenMesh's `omerr()`
+///       stream: its chatter is muted while faces are added.
+MeshReadResult read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
+
+/// `read_mesh(path).mesh`: reads with default options and discards the report.
+/// \throw IoError as read_mesh.
+Mesh load_mesh(const std::filesystem::path& path);
+
+struct MeshWriteOptions {
+  /// PLY only: binary_little_endian when true (default), ascii when false.
+  bool binary = true;
+  /// PLY only: one `double` vertex property per entry (name, one value per vertex). Values are
+  /// indexed by `VertexHandle::idx()`, so each vector's size must equal `mesh.n_vertices()`
+  /// (deleted vertices included; their values are skipped). Non-finite values are written as they
+  /// are (IEEE inf/nan in binary, "inf"/"-inf"/"nan" in ascii): +inf is meaningful, for instance,
+  /// for vertices a distance field did not reach. Names must be non-empty, without whitespace,
+  /// and distinct from x, y, z, red, green, blue and each other.
+  std::vector<std::pair<std::string, std::vector<double>>> vertex_scalars = {};
+  /// PLY (`red green blue` uchar properties) and OFF (written as COFF, alpha 255): empty, or one
+  /// RGB color per vertex indexed by `VertexHandle::idx()` (size `mesh.n_vertices()`).
+  std::vector<std::array<uint8_t, 3>> vertex_colors = {};
+};
+
+/// Writes `mesh` to `path`; the format comes from the extension: `.off`, `.obj`, `.ply`, `.stl`
+/// (binary STL, triangles only). Only non-deleted vertices and faces are written; when the mesh
+/// has deleted vertices the rest are renumbered in index order. Coordinates are written exactly
+/// (shortest round-trip decimal text, or `double` in binary PLY; STL stores `float`). The file is
+/// written atomically (see write_file_atomically).
+/// \throw InvalidInput for an unsupported extension, option arrays whose size is not
+///        `mesh.n_vertices()`, bad scalar property names, options the format cannot store
+///        (scalars outside PLY, colors in OBJ or STL), or non-finite vertex coordinates.
+/// \throw IoError when the file cannot be written.
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
+
+/// Writes a polyline: `.obj` with one `v` record per point and one `l` record through all of
+/// them, or `.ply` (binary little endian) with a `vertex` element and an `edge` element
+/// (`vertex1 vertex2`) per segment. With fewer than 2 points only the vertices are written.
+/// Written atomically.
+/// \throw InvalidInput for another extension or non-finite points; IoError when writing fails.
+void write_polyline(const std::vector<Vec3>& points, const std::filesystem::path& path);
+
+}  // namespace edgefront

@@ -1,0 +1,47 @@
+#pragma once
+/// \file mesh_parsers.h
+/// Private: the format parsers behind read_mesh and read_points. Each parser reads the file's
+/// vertices (in file order) and face records into a RawMesh, validating numbers, counts and
+/// index ranges with messages that name the file and the line or element; building the
+/// OpenMesh mesh from it is done by mesh_io.cpp.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace edgefront::detail {
+
+/// One face record of the file: `count` indices starting at `first` in RawMesh::indices.
+struct RawFace {
+  size_t first = 0;
+  uint32_t count = 0;
+  uint64_t where = 0;  ///< line number (text formats) or face index (binary formats)
+};
+
+struct RawMesh {
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;  ///< per-vertex normals when the file has them (PLY nx ny nz), else empty
+  std::vector<int> indices;   ///< face vertex indices, all in [0, points.size())
+  std::vector<RawFace> faces;
+  bool where_is_line = true;          ///< RawFace::where is a line number (else a face index)
+  std::vector<std::string> warnings;  ///< format-level remarks (ignored elements, trailing data, ...)
+};
+
+/// What to read. Point-cloud readers ask for vertices only: faces are then skipped without
+/// being validated.
+struct ParseOptions {
+  bool faces = true;
+  bool normals = false;  ///< PLY: read nx ny nz when present
+};
+
+RawMesh parse_off(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
+RawMesh parse_obj(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
+RawMesh parse_ply(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
+/// ASCII or binary STL; coincident corners are merged (bitwise-equal coordinates, -0 == 0).
+RawMesh parse_stl(std::string_view data, const std::filesystem::path& file);
+
+}  // namespace edgefront::detail

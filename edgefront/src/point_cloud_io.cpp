@@ -1,0 +1,189 @@
+#include "edgefront/point_cloud_io.h"
+
+#include <cmath>
+
+#include "detail/io_common.h"
+#include "detail/mesh_parsers.h"
+#include "edgefront/atomic_write.h"
+#include "edgefront/error.h"
+
+namespace edgefront {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool finite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+
+/// Normalizes `n` in place; returns an error text or empty.
+std::string normalize_normal(Vec3& n) {
+  if (!finite(n)) return "non-finite normal";
+  const double length = n.norm();
+  if (!(length > 0) || !std::isfinite(length)) return "zero-length normal";
+  n /= length;
+  return {};
+}
+
+PointCloud read_xyz(std::string_view data, const fs::path& file) {
+  if (detail::looks_binary(data)) detail::throw_io(file, "not a text point file: it contains binary data");
+  PointCloud cloud;
+  detail::LineReader lines(data);
+  std::string_view line;
+  std::vector<std::string_view> tokens;
+  size_t per_line = 0, per_line_first = 0;
+  bool have_count = false;
+  uint64_t declared = 0;
+  size_t count_line = 0;
+  while (lines.next(line)) {
+    line = detail::strip_comment(line);
+    if (line.empty()) continue;
+    detail::split_tokens(line, tokens);
+    const size_t ln = lines.line_number();
+    if (per_line == 0 && tokens.size() == 1 && !have_count && cloud.empty()) {
+      if (!detail::parse_uint64(tokens[0], declared)) {
+        detail::throw_io_line(
+            file, ln,
+            "expected 3 or 6 numbers (x y z [nx ny nz]), found 1 value " + detail::quote(tokens[0]));
+      }
+      have_count = true;
+      count_line = ln;
+      continue;
+    }
+    if (per_line == 0) {
+      if (tokens.size() != 3 && tokens.size() != 6) {
+        detail::throw_io_line(
+            file, ln, "expected 3 or 6 numbers (x y z [nx ny nz]), found " + std::to_string(tokens.size()));
+      }
+      per_line = tokens.size();
+      per_line_first = ln;
+    } else if (tokens.size() != per_line) {
+      detail::throw_io_line(file, ln,
+                            "expected " + std::to_string(per_line) + " numbers like line " +
+                                std::to_string(per_line_first) + ", found " + std::to_string(tokens.size()));
+    }
+    double v[6];
+    for (size_t k = 0; k < per_line; ++k) {
+      if (!detail::parse_double(tokens[k], v[k]))
+        detail::throw_io_line(file, ln, "malformed number " + detail::quote(tokens[k]));
+    }
+    const Vec3 p(v[0], v[1], v[2]);
+    if (!finite(p)) detail::throw_io_line(file, ln, "non-finite coordinate");
+    cloud.points.push_back(p);
+    if (per_line == 6) {
+      Vec3 n(v[3], v[4], v[5]);
+      const std::string problem = normalize_normal(n);
+      if (!problem.empty()) detail::throw_io_line(file, ln, problem);
+      cloud.normals.push_back(n);
+    }
+  }
+  if (have_count && declared != cloud.size()) {
+    detail::throw_io_line(
+        file, count_line,
+        "the file declares " + std::to_string(declared) + " points but has " + std::to_string(cloud.size()));
+  }
+  return cloud;
+}
+
+}  // namespace
+
+PointCloud read_points(const fs::path& path) {
+  const std::string ext = detail::lower_extension(path);
+  const bool text = ext == ".xyz" || ext == ".txt" || ext == ".pts";
+  if (!text && ext != ".ply" && ext != ".off" && ext != ".obj") {
+    detail::throw_io(path, "unknown point file extension " + detail::quote(path.extension().string()) +
+                               " (supported: .xyz, .txt, .pts, .ply, .off, .obj)");
+  }
+  const std::string data = detail::read_whole_file(path);
+  PointCloud cloud;
+  if (text) {
+    cloud = read_xyz(data, path);
+  } else {
+    detail::ParseOptions options;
+    options.faces = false;
+    options.normals = ext == ".ply";
+    detail::RawMesh raw;
+    if (ext == ".ply") {
+      raw = detail::parse_ply(data, path, options);
+    } else if (ext == ".off") {
+      raw = detail::parse_off(data, path, options);
+    } else {
+      raw = detail::parse_obj(data, path, options);
+    }
+    for (size_t i = 0; i < raw.normals.size(); ++i) {
+      const std::string problem = normalize_normal(raw.normals[i]);
+      if (!problem.empty()) detail::throw_io(path, "vertex " + std::to_string(i) + ": " + problem);
+    }
+    cloud.points = std::move(raw.points);
+    cloud.normals = std::move(raw.normals);
+  }
+  if (cloud.empty()) detail::throw_io(path, "the file contains no points");
+  return cloud;
+}
+
+void write_points(const PointCloud& cloud, const fs::path& path) {
+  const std::string ext = detail::lower_extension(path);
+  const bool text = ext == ".xyz" || ext == ".txt" || ext == ".pts";
+  const std::string where = "write_points(" + path.string() + "): ";
+  if (!text && ext != ".ply") {
+    throw InvalidInput(where + "unsupported extension " + detail::quote(path.extension().string()) +
+                       " (supported: .xyz, .txt, .pts, .ply)");
+  }
+  if (!cloud.normals.empty() && cloud.normals.size() != cloud.points.size()) {
+    throw InvalidInput(where + "the cloud has " + std::to_string(cloud.points.size()) + " points but " +
+                       std::to_string(cloud.normals.size()) + " normals");
+  }
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    if (!finite(cloud.points[i]))
+      throw InvalidInput(where + "point " + std::to_string(i) + " has a non-finite coordinate");
+  }
+  for (size_t i = 0; i < cloud.normals.size(); ++i) {
+    if (!finite(cloud.normals[i]))
+      throw InvalidInput(where + "normal " + std::to_string(i) + " is not finite");
+  }
+  const bool normals = cloud.has_normals();
+  write_file_atomically(
+      path,
+      [&](std::ostream& os) {
+        std::string b;
+        const auto flush = [&](bool force) {
+          if (force || b.size() >= (1u << 20)) {
+            os.write(b.data(), static_cast<std::streamsize>(b.size()));
+            b.clear();
+          }
+        };
+        if (text) {
+          for (size_t i = 0; i < cloud.size(); ++i) {
+            const Vec3& p = cloud.points[i];
+            for (int k = 0; k < 3; ++k) {
+              if (k > 0) b += ' ';
+              detail::append_double(b, p[k]);
+            }
+            if (normals) {
+              for (int k = 0; k < 3; ++k) {
+                b += ' ';
+                detail::append_double(b, cloud.normals[i][k]);
+              }
+            }
+            b += '\n';
+            flush(false);
+          }
+        } else {
+          b += "ply\nformat binary_little_endian 1.0\ncomment written by EdgeFront\n";
+          b += "element vertex " + std::to_string(cloud.size()) + "\n";
+          b += "property double x\nproperty double y\nproperty double z\n";
+          if (normals) b += "property double nx\nproperty double ny\nproperty double nz\n";
+          b += "end_header\n";
+          for (size_t i = 0; i < cloud.size(); ++i) {
+            for (int k = 0; k < 3; ++k) detail::append_le<double>(b, cloud.points[i][k]);
+            if (normals) {
+              for (int k = 0; k < 3; ++k) detail::append_le<double>(b, cloud.normals[i][k]);
+            }
+            flush(false);
+          }
+        }
+        flush(true);
+      },
+      !text);
+}
+
+}  // namespace edgefront
