@@ -1,0 +1,155 @@
+#pragma once
+/// \file minimal_edge_front.h
+/// The Minimal Edge Front (MEF) of Annuth & Bohn, "Geodesic Mesh Processing with Edge-Front based
+/// Data Structures", §2.2, algorithm 2.
+///
+/// The front is one or more closed loops of mesh halfedges. Each loop has the processed surface on
+/// its right and the unprocessed surface ahead, on its left (OpenMesh's counter-clockwise faces:
+/// `face_handle(h)` is ahead of a front halfedge `h`). A *single edge expansion* takes a front
+/// vertex `v` between two consecutive front halfedges `u->v`, `v->w` and replaces them by the arc
+/// of `v`'s fan that lies ahead; `v` becomes enclosed. *Minimization* redirects the path `u->v->w`
+/// through the third edge of a triangle ahead of it. A *collision* is a vertex of a new arc that is
+/// already on the front: loops split or merge there. A loop that encloses no surface *annihilates*.
+/// Halfedges on the mesh border cannot expand and stay in their loops (inert), so loops are always
+/// closed.
+///
+/// Levels: level k expands every vertex that joined the front in level k-1 (all of its
+/// occurrences, whatever order), so the level at which a vertex joins the front is its
+/// breadth-first hop distance from the source set.
+///
+/// Memory: the working set (loop nodes, the front-vertex table, the level lists) holds O(front)
+/// elements in open-addressing tables; nothing proportional to the mesh is allocated per query.
+/// A `MinimalEdgeFront` object can be `reset` for many queries and keeps its buffers.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+
+namespace edgefront {
+
+/// Something that happened during an expansion, reported to `MinimalEdgeFront::set_event_callback`.
+struct FrontEvent {
+  enum class Kind {
+    Collision,     ///< a new arc touched the front at `vertex`; loops re-paired there
+    Split,         ///< a collision split one loop into two (reported with loop tracking on)
+    Merge,         ///< a collision merged two loops into one (reported with loop tracking on)
+    Annihilation,  ///< a loop enclosed no more surface and vanished; `vertex` was its last vertex
+    BorderReached, ///< an expansion at `vertex` reached the mesh border
+  };
+  Kind kind = Kind::Collision;
+  VertexHandle vertex;
+  int level = 0;  ///< the level being built when it happened
+};
+
+/// One closed loop of the front, in order. `vertices[i]` is the end of `halfedges[i]`.
+struct FrontLoop {
+  std::vector<HalfedgeHandle> halfedges;
+  std::vector<VertexHandle> vertices;
+  bool inert = false;  ///< every halfedge lies on the mesh border: the loop rests there
+};
+
+/// Options of the Minimal Edge Front.
+struct MinimalEdgeFrontOptions {
+  /// Decide for every collision whether it split or merged loops (walks the smaller side; cost
+  /// O(min(loop lengths)) per collision) and report `Split`/`Merge` events and `loop_count()`.
+  bool track_loops = false;
+  /// Keep an O(mesh) record of enclosed vertices so that `validate()` can also check that every
+  /// front halfedge has unprocessed surface ahead and that no vertex is enclosed twice. For tests.
+  bool debug_tracking = false;
+  /// When non-zero, the vertices of each level are expanded in a pseudo-random order drawn from
+  /// this seed instead of the order they joined in. Levels do not depend on it; tests use it to
+  /// show that.
+  uint64_t order_seed = 0;
+};
+
+/// Why a run stopped.
+enum class FrontStop {
+  NotStarted,    ///< no expansion yet
+  LevelReached,  ///< the requested number of levels is complete
+  Exhausted,     ///< nothing left to expand: the front annihilated or rests on borders
+};
+
+/// The Minimal Edge Front, stepwise or by levels. Reusable: `reset` starts a new query and keeps
+/// buffers. The mesh must outlive the front and must not change during a query.
+class MinimalEdgeFront {
+ public:
+  explicit MinimalEdgeFront(const Mesh& mesh, MinimalEdgeFrontOptions options = {});
+  ~MinimalEdgeFront();
+  MinimalEdgeFront(MinimalEdgeFront&&) noexcept;
+  MinimalEdgeFront& operator=(MinimalEdgeFront&&) noexcept;
+
+  /// Starts a new query from `source`. The sources join at level 0.
+  /// \throws InvalidInput for a bad source (see `validate_source`).
+  void reset(const FrontSource& source);
+
+  /// Performs one single edge expansion (the next one of the current level, starting the next
+  /// level when one is complete). Returns false when nothing is left to expand.
+  /// \throws TopologyError when the expansion meets a non-manifold vertex.
+  bool step();
+
+  /// Completes the current level (or performs the next one when the last is complete).
+  /// Returns false when nothing was left to expand.
+  bool advance_level();
+
+  /// Runs `levels` more complete levels, or to exhaustion when `levels < 0`.
+  FrontStop run(int levels = -1);
+
+  /// Number of completed levels: after `advance_level()` from a fresh vertex source it is 1 and
+  /// the front is the link of the vertex.
+  int level() const;
+  /// True when the current level has been completed (no level is half-done).
+  bool at_level_boundary() const;
+  bool exhausted() const;
+
+  /// The loops of the front, in order (O(front)).
+  std::vector<FrontLoop> loops() const;
+  /// Number of loops; O(front) unless loop tracking is on.
+  size_t loop_count() const;
+  /// Halfedges currently in the front (inert ones included).
+  size_t front_size() const;
+  /// Largest `front_size()` seen since `reset`.
+  size_t peak_front_size() const;
+  /// Bytes held by the working containers now (capacity, not size).
+  size_t working_memory_bytes() const;
+  /// Largest `working_memory_bytes()` seen since `reset` (sampled at each level boundary and at
+  /// each step).
+  size_t peak_working_memory_bytes() const;
+  /// Number of single edge expansions, minimizations and collisions since `reset`.
+  size_t expansions() const;
+  size_t minimizations() const;
+  size_t collisions() const;
+
+  /// The level at which `v` joined the front, if `v` is on the front now.
+  std::optional<int> front_level(VertexHandle v) const;
+  /// Vertices on the front now (each once), with their join levels.
+  std::vector<std::pair<VertexHandle, int>> front_vertices() const;
+
+  /// Called once for every vertex when it becomes enclosed, with the level at which it joined
+  /// the front. A vertex resting on the border with no surface ahead counts as enclosed.
+  void set_enclosed_callback(std::function<void(VertexHandle, int)> cb);
+  void set_event_callback(std::function<void(const FrontEvent&)> cb);
+
+  /// Checks every structural property of the front and throws `InternalError` naming the first
+  /// one broken: loops closed and linked, consecutive halfedges share a vertex, every non-border
+  /// front halfedge has a face ahead, each halfedge at most once, the vertex table matches the
+  /// loops, the wedges of a vertex's occurrences are disjoint, no zero-width spikes; at a level
+  /// boundary also that the front is minimal and every front vertex joined in the last level.
+  /// With `debug_tracking` also that nothing ahead of the front is enclosed.
+  void validate() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Per-vertex join level (breadth-first hop distance from the source), or -1 for vertices not
+/// reached within `max_levels` levels (all levels when negative) or in another component.
+/// Vertices of a loop source have level 0; the side behind the loop is not entered.
+std::vector<int> edge_front_levels(const Mesh& mesh, const FrontSource& source, int max_levels = -1);
+
+}  // namespace edgefront
