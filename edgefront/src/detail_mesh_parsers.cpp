@@ -121,15 +121,18 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
   }
   const uint64_t nv = static_cast<uint64_t>(counts[0]);
   const uint64_t nf = static_cast<uint64_t>(counts[1]);
-  // Every vertex line needs at least "0 0 0\n", every face line "3 0 0 0\n".
-  const uint64_t available = lines.remaining() + 1;
-  if (nv > kMaxVertices || nv > available / 6 || (options.faces && nf > (available - nv * 6) / 8)) {
+  // Never trust the counts for allocation: every vertex line needs at least "0 0 0\n" and every
+  // face line "3 0 0 0\n", so reserve no more than the remaining bytes can hold. A count larger
+  // than the file ends in a truncation error below.
+  const uint64_t available = lines.remaining();
+  if (nv > kMaxVertices) {
     throw_io_line(file, counts_line,
-                  "the header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
-                      " faces, more than the " + std::to_string(available - 1) +
-                      " remaining bytes can hold (truncated or corrupt file)");
+                  "the header declares " + std::to_string(nv) + " vertices, more than " +
+                      (nv > available / 6 ? "the " + std::to_string(available) +
+                                                " remaining bytes can hold (truncated or corrupt file)"
+                                          : "the supported maximum of " + std::to_string(kMaxVertices)));
   }
-  raw.points.reserve(nv);
+  raw.points.reserve(std::min<uint64_t>(nv, available / 6 + 1));
   for (uint64_t i = 0; i < nv; ++i) {
     if (!next_content(lines, line)) {
       throw_io(file, "truncated file: the header declares " + std::to_string(nv) +
@@ -140,7 +143,7 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
     raw.points.push_back(parse_point(tokens, 0, file, lines.line_number(), "vertex " + std::to_string(i)));
   }
   if (!options.faces) return raw;
-  raw.faces.reserve(nf);
+  raw.faces.reserve(std::min<uint64_t>(nf, lines.remaining() / 8 + 1));
   for (uint64_t j = 0; j < nf; ++j) {
     if (!next_content(lines, line)) {
       throw_io(file, "truncated file: the header declares " + std::to_string(nf) +
