@@ -595,6 +595,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"not_a_mesh.off", {"line 1", "not an OFF file"}},
         BadFile{"not_a_mesh.obj", {"line 1", "not an OBJ file"}}));
 
+TEST_F(MeshIoTest, ReadFromBufferUsesTheNameForFormatAndMessages) {
+  const MeshReadResult r = read_mesh_from_buffer(slurp(kData / "tetra.off"), "in_memory.OFF");
+  EXPECT_EQ(r.mesh.n_faces(), 4u);
+  try {
+    read_mesh_from_buffer("OFF\n1 0 0\n0 0\n", "memory.off");
+    FAIL() << "accepted";
+  } catch (const IoError& e) {
+    EXPECT_STREQ(e.what(), "memory.off: line 3: vertex 0: expected 3 coordinates, found 2");
+  }
+  EXPECT_THROW(read_mesh_from_buffer("", "memory.off"), IoError);
+  EXPECT_THROW(read_mesh_from_buffer("OFF\n0 0 0\n", "memory.dat"), IoError);
+}
+
 TEST_F(MeshIoTest, DirectoryAndBinaryGarbageAreRefused) {
   EXPECT_THROW(read_mesh(dir_ / ".." / (dir_.filename().string() + ".off")), IoError);
   fs::create_directories(dir_ / "folder.off");
@@ -615,4 +628,53 @@ TEST_F(MeshIoTest, DirectoryAndBinaryGarbageAreRefused) {
   put_le<uint32_t>(d, 4000000000u);
   spit(dir_ / "huge_list.ply", d);
   EXPECT_THROW(read_mesh(dir_ / "huge_list.ply"), IoError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Robustness: damaged copies of valid files (every truncation, and pseudo-random byte changes)
+// are read or refused with IoError; never another exception, a crash or a hang. In memory, as
+// file system writes cost milliseconds each here.
+
+TEST_F(MeshIoTest, DamagedFilesAreReadOrRefusedWithIoErrorOnly) {
+  const Mesh m = sample_mesh();
+  MeshWriteOptions ascii;
+  ascii.binary = false;
+  ascii.vertex_scalars = {{"d", {0, 1, 2, 3, 4, 5}}};
+  write_mesh(m, dir_ / "src.off");
+  write_mesh(m, dir_ / "src.obj");
+  write_mesh(m, dir_ / "src.ply");
+  write_mesh(m, dir_ / "src_ascii.ply", ascii);
+  write_mesh(m, dir_ / "src.stl");
+  fs::copy_file(kData / "tetra_ascii.stl", dir_ / "src_ascii.stl");
+
+  uint64_t state = 12345;
+  const auto next = [&state]() {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<uint32_t>(state >> 33);
+  };
+  const char replacements[] = {'\0', '9', '-', ' ', '\n', 'x', '.', '\xff', 'e', '#'};
+  size_t reads = 0, refused = 0;
+  for (const char* name : {"src.off", "src.obj", "src.ply", "src_ascii.ply", "src.stl", "src_ascii.stl"}) {
+    const std::string original = slurp(dir_ / name);
+    const fs::path damaged = dir_ / ("damaged" + fs::path(name).extension().string());
+    const auto check = [&](const std::string& content, const std::string& what) {
+      ++reads;
+      try {
+        read_mesh_from_buffer(content, damaged);
+      } catch (const IoError&) {
+        ++refused;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << name << " " << what << ": unexpected exception: " << e.what();
+      }
+    };
+    for (size_t cut = 0; cut < original.size(); cut += 3)
+      check(original.substr(0, cut), "cut at " + std::to_string(cut));
+    for (int k = 0; k < 150; ++k) {
+      std::string content = original;
+      const size_t at = next() % content.size();
+      content[at] = replacements[next() % sizeof(replacements)];
+      check(content, "byte " + std::to_string(at) + " changed");
+    }
+  }
+  EXPECT_GT(refused, reads / 4);  // most cuts are refused
 }

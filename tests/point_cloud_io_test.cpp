@@ -108,6 +108,13 @@ TEST_F(PointCloudIoTest, RoundTripsExactlyWithAndWithoutNormals) {
   }
 }
 
+TEST_F(PointCloudIoTest, ReadFromBuffer) {
+  const PointCloud c = read_points_from_buffer("# in memory\n1 2 3\n4 5 6\n", "mem.xyz");
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c.points[1], Vec3(4, 5, 6));
+  EXPECT_THROW(read_points_from_buffer("1 2 3\n", "mem.stl"), IoError);
+}
+
 TEST_F(PointCloudIoTest, PtsCountLine) {
   spit(dir_ / "count.pts", "2\n0 0 0\n1 1 1\n");
   EXPECT_EQ(read_points(dir_ / "count.pts").size(), 2u);
@@ -152,4 +159,22 @@ TEST_F(PointCloudIoTest, WriteErrors) {
   EXPECT_THROW(write_points(n, dir_ / "a.xyz"), InvalidInput);
   EXPECT_FALSE(fs::exists(dir_ / "a.xyz"));
   EXPECT_THROW(write_points(sample_cloud(false), dir_ / "nope" / "a.xyz"), IoError);
+}
+
+TEST_F(PointCloudIoTest, DamagedFilesAreReadOrRefusedWithIoErrorOnly) {
+  write_points(sample_cloud(true), dir_ / "src.xyz");
+  write_points(sample_cloud(true), dir_ / "src.ply");
+  for (const char* name : {"src.xyz", "src.ply"}) {
+    std::ifstream in(dir_ / name, std::ios::binary);
+    const std::string original((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const fs::path damaged = dir_ / ("damaged" + fs::path(name).extension().string());
+    for (size_t cut = 0; cut < original.size(); ++cut) {
+      try {
+        read_points_from_buffer(original.substr(0, cut), damaged);
+      } catch (const IoError&) {
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << name << " cut at " << cut << ": unexpected exception: " << e.what();
+      }
+    }
+  }
 }

@@ -30,6 +30,13 @@ std::string describe_non_finite(const Vec3& p) {
   return out + ")";
 }
 
+/// `v` as text for a message ("7", "-1", "2.5", "inf").
+std::string number_text(double v) {
+  std::string out;
+  append_double(out, v);
+  return out;
+}
+
 /// Reads the next line that has content after comment stripping.
 bool next_content(LineReader& lines, std::string_view& line) {
   while (lines.next(line)) {
@@ -390,11 +397,13 @@ RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOption
         face.count = static_cast<uint32_t>(list.size());
         face.where = raw.where_is_line ? reader.instance_line() : j;
         for (const double v : list) {
-          if (v != std::floor(v)) reader.fail("vertex index " + std::to_string(v) + " is not an integer");
-          if (v < 0) reader.fail("negative vertex index " + std::to_string(static_cast<long long>(v)));
+          if (!std::isfinite(v) || v != std::floor(v)) {
+            reader.fail("vertex index " + number_text(v) + " is not an integer");
+          }
+          if (v < 0) reader.fail("negative vertex index " + number_text(v));
           if (v >= static_cast<double>(nv)) {
-            reader.fail("vertex index " + std::to_string(static_cast<long long>(v)) +
-                        " is out of range (the file has " + std::to_string(nv) + " vertices)");
+            reader.fail("vertex index " + number_text(v) + " is out of range (the file has " +
+                        std::to_string(nv) + " vertices)");
           }
           raw.indices.push_back(static_cast<int>(v));
         }

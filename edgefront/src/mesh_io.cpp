@@ -436,13 +436,18 @@ void write_stl(std::ostream& os, const Mesh& mesh, const Compacted& c) {
 
 }  // namespace
 
-MeshReadResult read_mesh(const fs::path& path, const MeshReadOptions& options) {
-  const std::string ext = detail::lower_extension(path);
+namespace {
+
+void check_mesh_extension(const fs::path& path, const std::string& ext) {
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
     detail::throw_io(path, "unknown mesh file extension " + detail::quote(path.extension().string()) +
                                " (supported: .off, .obj, .ply, .stl)");
   }
-  const std::string data = detail::read_whole_file(path);
+}
+
+MeshReadResult parse_and_build(std::string_view data, const fs::path& path, const std::string& ext,
+                               const MeshReadOptions& options) {
+  if (data.empty()) detail::throw_io(path, "file is empty");
   detail::RawMesh raw;
   const detail::ParseOptions parse_options;
   if (ext == ".off") {
@@ -455,6 +460,22 @@ MeshReadResult read_mesh(const fs::path& path, const MeshReadOptions& options) {
     raw = detail::parse_stl(data, path);
   }
   return build_mesh(raw, options, path);
+}
+
+}  // namespace
+
+MeshReadResult read_mesh(const fs::path& path, const MeshReadOptions& options) {
+  const std::string ext = detail::lower_extension(path);
+  check_mesh_extension(path, ext);
+  const std::string data = detail::read_whole_file(path);
+  return parse_and_build(data, path, ext, options);
+}
+
+MeshReadResult read_mesh_from_buffer(std::string_view data, const fs::path& name,
+                                     const MeshReadOptions& options) {
+  const std::string ext = detail::lower_extension(name);
+  check_mesh_extension(name, ext);
+  return parse_and_build(data, name, ext, options);
 }
 
 Mesh load_mesh(const fs::path& path) { return std::move(read_mesh(path).mesh); }

@@ -86,14 +86,20 @@ PointCloud read_xyz(std::string_view data, const fs::path& file) {
 
 }  // namespace
 
-PointCloud read_points(const fs::path& path) {
-  const std::string ext = detail::lower_extension(path);
-  const bool text = ext == ".xyz" || ext == ".txt" || ext == ".pts";
-  if (!text && ext != ".ply" && ext != ".off" && ext != ".obj") {
+namespace {
+
+bool is_text_points(const std::string& ext) { return ext == ".xyz" || ext == ".txt" || ext == ".pts"; }
+
+void check_points_extension(const fs::path& path, const std::string& ext) {
+  if (!is_text_points(ext) && ext != ".ply" && ext != ".off" && ext != ".obj") {
     detail::throw_io(path, "unknown point file extension " + detail::quote(path.extension().string()) +
                                " (supported: .xyz, .txt, .pts, .ply, .off, .obj)");
   }
-  const std::string data = detail::read_whole_file(path);
+}
+
+PointCloud parse_points(std::string_view data, const fs::path& path, const std::string& ext) {
+  if (data.empty()) detail::throw_io(path, "file is empty");
+  const bool text = is_text_points(ext);
   PointCloud cloud;
   if (text) {
     cloud = read_xyz(data, path);
@@ -118,6 +124,21 @@ PointCloud read_points(const fs::path& path) {
   }
   if (cloud.empty()) detail::throw_io(path, "the file contains no points");
   return cloud;
+}
+
+}  // namespace
+
+PointCloud read_points(const fs::path& path) {
+  const std::string ext = detail::lower_extension(path);
+  check_points_extension(path, ext);
+  const std::string data = detail::read_whole_file(path);
+  return parse_points(data, path, ext);
+}
+
+PointCloud read_points_from_buffer(std::string_view data, const fs::path& name) {
+  const std::string ext = detail::lower_extension(name);
+  check_points_extension(name, ext);
+  return parse_points(data, name, ext);
 }
 
 void write_points(const PointCloud& cloud, const fs::path& path) {

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,13 @@ struct MeshReadResult {
 /// \note Not safe to call concurrently with code that enables or disables OpenMesh's `omerr()`
 ///       stream: its chatter is muted while faces are added.
 MeshReadResult read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
+
+/// Like read_mesh, for file content already in memory (network buffers, embedded resources,
+/// fuzzing). `name` is used only to pick the format by its extension and to name the data in
+/// messages; nothing is read from disk.
+/// \throw IoError as read_mesh.
+MeshReadResult read_mesh_from_buffer(std::string_view data, const std::filesystem::path& name,
+                                     const MeshReadOptions& options = {});
 
 /// `read_mesh(path).mesh`: reads with default options and discards the report.
 /// \throw IoError as read_mesh.

@@ -8,6 +8,7 @@
 /// \endcode
 
 #include <filesystem>
+#include <string_view>
 
 #include "edgefront/point_cloud.h"
 
@@ -27,6 +28,11 @@ namespace edgefront {
 ///        coordinates or normals, zero-length normals, a file without points, and the format
 ///        errors read_mesh reports for PLY/OFF/OBJ headers and vertices.
 PointCloud read_points(const std::filesystem::path& path);
+
+/// Like read_points, for file content already in memory; `name` only picks the format by its
+/// extension and names the data in messages.
+/// \throw IoError as read_points.
+PointCloud read_points_from_buffer(std::string_view data, const std::filesystem::path& name);
 
 /// Writes `cloud` as `.xyz` (also `.txt`, `.pts`: `x y z [nx ny nz]` per line, shortest
 /// round-trip decimals) or `.ply` (binary little endian, `double` properties), atomically.
