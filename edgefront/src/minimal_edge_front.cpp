@@ -129,6 +129,7 @@ struct MinimalEdgeFront::Impl {
     auto [rec, inserted] = vt.insert(static_cast<uint32_t>(v), VRec{});
     bool had_nodes = false;
     if (inserted) {
+      require_manifold(v);
       rec->level = building();
       rec->state = 0;
       next_due.push_back(static_cast<uint32_t>(v));
@@ -220,6 +221,7 @@ struct MinimalEdgeFront::Impl {
 
     if (!source.vertices.empty()) {
       for (VertexHandle v : source.vertices) {
+        require_manifold(v.idx());
         auto [rec, inserted] = vt.insert(static_cast<uint32_t>(v.idx()), VRec{});
         rec->level = 0;
         rec->state = kVertexSeed;
@@ -238,6 +240,7 @@ struct MinimalEdgeFront::Impl {
       loop_count = 2;
       for (size_t i = 0; i < n; ++i) {
         const int v = tov(nodes[act[i]].he);
+        require_manifold(v);
         auto [rec, inserted] = vt.insert(static_cast<uint32_t>(v), VRec{});
         rec->level = 0;
         rec->state = kVertexOnLoop;
