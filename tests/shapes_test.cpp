@@ -5,7 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -13,11 +20,15 @@
 #include <queue>
 #include <set>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
+#include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud.h"
+#include "edgefront/point_cloud_io.h"
 #include "edgefront/shapes.h"
 
 namespace {
@@ -381,7 +392,9 @@ TEST(ShapesMesh, EveryShapeIsManifoldWithTheRightTopology) {
       EXPECT_EQ(t.chi(), e.chi);
       EXPECT_EQ(t.border_loops, e.borders);
       EXPECT_EQ(t.components, e.components);
-      if (e.closed) EXPECT_GT(t.signed_volume, 0.0) << "closed shapes are oriented outward";
+      if (e.closed) {
+        EXPECT_GT(t.signed_volume, 0.0) << "closed shapes are oriented outward";
+      }
     }
   }
 }
@@ -488,7 +501,9 @@ TEST(ShapesMesh, GridVariants) {
   for (const auto v : j1.vertices()) {
     EXPECT_EQ(j1.point(v), j1b.point(v));
     if (j1.point(v) != j2.point(v)) ++moved;
-    if (j1.is_boundary(v)) EXPECT_EQ(j1.point(v), j2.point(v));
+    if (j1.is_boundary(v)) {
+      EXPECT_EQ(j1.point(v), j2.point(v));
+    }
   }
   EXPECT_EQ(moved, 25);  // the 5 x 5 interior vertices
   // Anisotropic: cells 20 times longer in y than in x.
@@ -528,18 +543,20 @@ TEST(ShapesSample, PointsOnTheAnalyticSurfaceWithItsNormals) {
 TEST(ShapesSample, LandscapeAndNeckSamplesLieOnTheirMeshes) {
   // The landscape's closed form is private: compare with a fine mesh (chord error ~1e-5).
   sh::MeshOptions mo;
-  mo.resolution = 200;
+  mo.resolution = 100;
   const Mesh land = sh::make("landscape", mo);
   const PointCloud pc = sample("landscape", 300);
-  const int n = 200;
+  const int n = 100;
   for (std::size_t i = 0; i < pc.size(); ++i) {
     const Vec3 p = pc.points[i];
     // Cell of the regular grid holding (x, y): the mesh vertex (i, j) is index i*(n+1)+j.
-    const int ci = std::min(n - 1, static_cast<int>((p[0] + 1) / 2 * n));
-    const int cj = std::min(n - 1, static_cast<int>((p[1] + 1) / 2 * n));
-    const Vec3 a = land.point(VertexHandle(ci * (n + 1) + cj));
-    const Vec3 b = land.point(VertexHandle((ci + 1) * (n + 1) + cj + 1));
-    EXPECT_NEAR(p[2], 0.5 * (a[2] + b[2]), 1e-3);
+    const double gx = (p[0] + 1) / 2 * n, gy = (p[1] + 1) / 2 * n;
+    const int ci = std::min(n - 1, static_cast<int>(gx)), cj = std::min(n - 1, static_cast<int>(gy));
+    const double fx = gx - ci, fy = gy - cj;
+    auto z = [&](int xi, int yj) { return land.point(VertexHandle(xi * (n + 1) + yj))[2]; };
+    const double bilinear = (1 - fx) * (1 - fy) * z(ci, cj) + fx * (1 - fy) * z(ci + 1, cj) +
+                            (1 - fx) * fy * z(ci, cj + 1) + fx * fy * z(ci + 1, cj + 1);
+    EXPECT_NEAR(p[2], bilinear, 1e-3);
     EXPECT_GT(pc.normals[i][2], 0.0);
   }
   // Neck: every sample inside one of the mesh's triangles, with its normal.
@@ -585,9 +602,9 @@ TEST(ShapesSample, MomentsMatchTheMeshAreaDistribution) {
   // Uniform-by-area samples have the mean and second moments of the surface's area measure.
   for (const auto& name : sh::shape_names()) {
     SCOPED_TRACE(name);
-    const Mesh m = name == "neck" ? sh::neck(12).mesh : make(name, name == "grid-anisotropic" ? 4 : 64);
+    const Mesh m = name == "neck" ? sh::neck(12).mesh : make(name, name == "grid-anisotropic" ? 4 : 48);
     const auto expected = mesh_moments(m);
-    const PointCloud pc = sample(name, 20000, 5);
+    const PointCloud pc = sample(name, 10000, 5);
     std::array<double, 6> got{};
     for (const auto& p : pc.points)
       for (int k = 0; k < 3; ++k) {
@@ -916,6 +933,109 @@ TEST(ShapesMesh, DoubleTorusHalvesMeetOnTheCutPlane) {
   const auto t = topology(m);
   EXPECT_EQ(t.chi(), -2);
   EXPECT_EQ(t.border_loops, 0);
+}
+
+TEST(ShapesData, BundledFilesAreTheDocumentedShapes) {
+  const std::filesystem::path dir = EDGEFRONT_DATA_DIR;
+  const sh::ShapeParams sp;  // the files use the default sizes (vault: R = 1, t = 0.1, length 2)
+  struct Cloud {
+    const char* file;
+    const char* shape;
+    std::size_t points;
+  };
+  for (const Cloud& c : {Cloud{"vault-shell.xyz", "vault-shell", 4000}, Cloud{"vault-sheet.xyz", "vault-sheet", 3000}}) {
+    SCOPED_TRACE(c.file);
+    const PointCloud pc = edgefront::read_points(dir / c.file);
+    ASSERT_EQ(pc.size(), c.points);
+    ASSERT_TRUE(pc.has_normals());
+    const auto pieces = analytic(c.shape, sp);
+    for (std::size_t i = 0; i < pc.size(); ++i) {
+      // Written with 4 decimals: within 1e-4 of the surface, normals within about 1e-3 rad.
+      double best = 1e9;
+      bool normal_ok = false;
+      for (const auto& piece : pieces) {
+        if (!piece.domain(pc.points[i]) && !piece.domain(pc.points[i] * (1 - 1e-4))) continue;
+        const double d = std::abs(piece.F(pc.points[i]));
+        best = std::min(best, d);
+        if (d < 2e-4 && (pc.normals[i] | (piece.sign * gradient(piece.F, pc.points[i]).normalized())) > 0.999)
+          normal_ok = true;
+      }
+      ASSERT_LT(best, 2e-4) << i;
+      ASSERT_TRUE(normal_ok) << i;
+    }
+  }
+  const auto neck = edgefront::read_mesh(dir / "neck.off").mesh;
+  const auto paths = sh::find_minimum_pathways(neck);
+  ASSERT_EQ(paths.size(), 1u);
+  EXPECT_EQ(paths[0][0].idx(), 43);  // as data/README.md says
+  const Topology tn = topology(neck);
+  EXPECT_EQ(tn.chi(), 2);
+  EXPECT_GT(tn.signed_volume, 0);
+  const Topology tt = topology(edgefront::read_mesh(dir / "torus.off").mesh);
+  EXPECT_EQ(tt.chi(), 0);
+  EXPECT_EQ(tt.border_loops, 0);
+  const Topology tb = topology(edgefront::read_mesh(dir / "bumpy-sphere.off").mesh);
+  EXPECT_EQ(tb.chi(), 2);
+  EXPECT_GT(tb.signed_volume, 0);
+}
+
+/// Runs a command through the shell; returns its exit code and its stderr.
+std::pair<int, std::string> run(const std::string& command, const std::filesystem::path& err) {
+  const int status = std::system((command + " 2>" + err.string()).c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+TEST(ShapesCli, WritesPointsAndMeshesWithDocumentedExitCodes) {
+  const std::filesystem::path app = std::filesystem::path(EDGEFRONT_APP_DIR) / "ef-shapes";
+  if (!std::filesystem::exists(app)) GTEST_SKIP() << "ef-shapes not built at " << app;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ef-shapes-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string exe = "'" + app.string() + "'";
+  const auto err = dir / "stderr.txt";
+
+  auto [code, text] = run(exe + " cylinder --points 500 --seed 3 -o '" + (dir / "c.xyz").string() + "' >/dev/null", err);
+  EXPECT_EQ(code, 0) << text;
+  const PointCloud pc = edgefront::read_points(dir / "c.xyz");
+  EXPECT_EQ(pc.size(), 500u);
+  EXPECT_TRUE(pc.has_normals());
+  std::ifstream first(dir / "c.xyz");
+  std::string line;
+  std::getline(first, line);
+  std::istringstream cols(line);
+  int columns = 0;
+  for (double x; cols >> x;) ++columns;
+  EXPECT_EQ(columns, 6);
+  sh::SampleOptions o;
+  o.points = 500;
+  o.seed = 3;
+  const PointCloud direct = sh::sample("cylinder", o);
+  for (std::size_t i = 0; i < pc.size(); ++i) EXPECT_LT((pc.points[i] - direct.points[i]).norm(), 1e-12);
+
+  std::tie(code, text) = run(exe + " torus --mesh --resolution 12 -o '" + (dir / "t.off").string() + "' >/dev/null", err);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_EQ(topology(edgefront::read_mesh(dir / "t.off").mesh).chi(), 0);
+
+  std::tie(code, text) = run(exe + " --list >/dev/null", err);
+  EXPECT_EQ(code, 0);
+  // Errors: exit 1 and exactly one line "ef-shapes: error: ...".
+  std::tie(code, text) = run(exe + " vault-shell --thickness 1.5 -o '" + (dir / "v.xyz").string() + "' >/dev/null", err);
+  EXPECT_EQ(code, 1);
+  EXPECT_EQ(text.rfind("ef-shapes: error: ", 0), 0u) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  EXPECT_FALSE(std::filesystem::exists(dir / "v.xyz"));
+  std::tie(code, text) = run(exe + " teapot -o '" + (dir / "x.xyz").string() + "' >/dev/null", err);
+  EXPECT_EQ(code, 1) << text;
+  // Usage errors: exit 2.
+  std::tie(code, text) = run(exe + " torus --mesh --points 5 -o '" + (dir / "x.off").string() + "' >/dev/null", err);
+  EXPECT_EQ(code, 2) << text;
+  std::tie(code, text) = run(exe + " torus >/dev/null", err);
+  EXPECT_EQ(code, 2) << text;
+  std::tie(code, text) = run(exe + " torus --bogus -o x.xyz >/dev/null", err);
+  EXPECT_EQ(code, 2) << text;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
