@@ -425,7 +425,9 @@ namespace {
 /// Merges bitwise-identical corners into shared vertices, in order of first appearance.
 class CornerMerger {
  public:
-  explicit CornerMerger(RawMesh& raw) : raw_(raw) {}
+  CornerMerger(RawMesh& raw, size_t expected_corners) : raw_(raw) {
+    index_.reserve(expected_corners / 4 + 16);
+  }
   int add(Vec3 p) {
     Key key;
     for (int k = 0; k < 3; ++k) {
@@ -441,9 +443,16 @@ class CornerMerger {
   using Key = std::array<uint64_t, 3>;
   struct KeyHash {
     size_t operator()(const Key& k) const {
-      uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (const uint64_t v : k) h = (h ^ v) * 0x100000001b3ull + (h >> 29);
+      uint64_t h = 0;
+      for (const uint64_t v : k) h = mix(h ^ v);
       return static_cast<size_t>(h);
+    }
+    /// The splitmix64 finalizer: every input bit affects every output bit.
+    static uint64_t mix(uint64_t z) {
+      z += 0x9e3779b97f4a7c15ull;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+      return z ^ (z >> 31);
     }
   };
   RawMesh& raw_;
@@ -495,7 +504,7 @@ bool starts_with_solid(std::string_view data) {
 
 RawMesh parse_stl_ascii(std::string_view data, const fs::path& file) {
   RawMesh raw;
-  CornerMerger merger(raw);
+  CornerMerger merger(raw, data.size() / 128);
   TokenStream in(data);
   std::string_view token;
   const auto expect = [&](const char* keyword) {
@@ -587,7 +596,7 @@ RawMesh parse_stl_binary(std::string_view data, const fs::path& file) {
     raw.warnings.push_back(std::to_string(data.size() - expected) +
                            " bytes after the last triangle were ignored");
   }
-  CornerMerger merger(raw);
+  CornerMerger merger(raw, 3 * n);
   raw.indices.reserve(3 * n);
   raw.faces.reserve(n);
   for (uint64_t t = 0; t < n; ++t) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <unordered_set>
 
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -56,17 +55,13 @@ class OpenMeshErrorsMuted {
   }
 };
 
-struct TriangleKey {
-  std::array<int, 3> v;
-  bool operator==(const TriangleKey&) const = default;
-};
-struct TriangleKeyHash {
-  size_t operator()(const TriangleKey& k) const {
-    uint64_t h = 1469598103934665603ull;
-    for (const int i : k.v) h = (h ^ static_cast<uint32_t>(i)) * 1099511628211ull;
-    return static_cast<size_t>(h ^ (h >> 32));
-  }
-};
+/// Number of entries equal to an earlier entry (sorts `keys`).
+size_t count_repeats(std::vector<std::array<int, 3>>& keys) {
+  std::sort(keys.begin(), keys.end());
+  size_t repeats = 0;
+  for (size_t i = 1; i < keys.size(); ++i) repeats += keys[i] == keys[i - 1] ? 1 : 0;
+  return repeats;
+}
 
 std::string where_text(const detail::RawMesh& raw, uint64_t where) {
   return (raw.where_is_line ? "line " : "face ") + std::to_string(where);
@@ -110,8 +105,8 @@ MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, 
 
   const double diagonal = bbox_diagonal(raw.points);
   const double degenerate_area = kDegenerateAreaFactor * diagonal * diagonal;
-  std::unordered_set<TriangleKey, TriangleKeyHash> seen;
-  seen.reserve(triangles);
+  std::vector<std::array<int, 3>> keys;  // sorted vertex triples, for counting duplicates
+  keys.reserve(triangles);
   size_t triangles_from_polygons = 0;
   uint64_t first_invalid = 0, first_refused = 0;
 
@@ -128,9 +123,9 @@ MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, 
     }
     for (uint32_t k = 1; k + 1 < face.count; ++k) {
       const int a = idx[0], b = idx[k], c = idx[k + 1];
-      TriangleKey key{{a, b, c}};
-      std::sort(key.v.begin(), key.v.end());
-      if (!seen.insert(key).second) ++report.duplicate_faces;
+      std::array<int, 3> key{a, b, c};
+      std::sort(key.begin(), key.end());
+      keys.push_back(key);
       const FaceHandle fh = mesh.add_face(VertexHandle(a), VertexHandle(b), VertexHandle(c));
       if (!fh.is_valid()) {
         if (!options.drop_nonmanifold_faces) {
@@ -148,6 +143,7 @@ MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, 
       if (area <= degenerate_area) ++report.degenerate_faces;
     }
   }
+  report.duplicate_faces = count_repeats(keys);
   for (size_t i = 0; i < nv; ++i) {
     if (mesh.is_isolated(VertexHandle(static_cast<int>(i)))) ++report.isolated_vertices;
   }

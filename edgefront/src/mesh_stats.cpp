@@ -6,7 +6,6 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
-#include <unordered_set>
 
 #include "edgefront/error.h"
 
@@ -37,18 +36,6 @@ class DisjointSets {
  private:
   std::vector<size_t> parent_;
   std::vector<size_t> size_;
-};
-
-struct FaceKey {
-  std::array<int, 3> v;
-  bool operator==(const FaceKey&) const = default;
-};
-struct FaceKeyHash {
-  size_t operator()(const FaceKey& k) const {
-    uint64_t h = 1469598103934665603ull;
-    for (const int i : k.v) h = (h ^ static_cast<uint32_t>(i)) * 1099511628211ull;
-    return static_cast<size_t>(h ^ (h >> 32));
-  }
 };
 
 }  // namespace
@@ -134,29 +121,32 @@ MeshStats compute_stats(const Mesh& mesh) {
 
   // Faces: degenerate and duplicate faces, per-component counts.
   const double degenerate_area = kDegenerateAreaFactor * s.bbox_diagonal * s.bbox_diagonal;
-  std::unordered_set<FaceKey, FaceKeyHash> seen;
-  seen.reserve(mesh.n_faces());
+  std::vector<std::array<int, 3>> keys;  // sorted vertex triples, for counting duplicates
+  keys.reserve(mesh.n_faces());
   for (size_t i = 0; i < mesh.n_faces(); ++i) {
     const FaceHandle f(static_cast<int>(i));
     if (mesh.status(f).deleted()) continue;
     ++s.faces;
-    FaceKey key{};
+    std::array<int, 3> key{};
     Vec3 corner[3];
     HalfedgeHandle h = mesh.halfedge_handle(f);
     for (int k = 0; k < 3; ++k) {
       const VertexHandle v = mesh.to_vertex_handle(h);
-      key.v[k] = v.idx();
+      key[k] = v.idx();
       corner[k] = mesh.point(v);
       h = mesh.next_halfedge_handle(h);
     }
-    const int c = labels.vertex_component[key.v[0]];
+    const int c = labels.vertex_component[key[0]];
     EF_CHECK(c >= 0, "a live face has a deleted vertex");
     ++s.per_component[c].faces;
     const double area = 0.5 * cross(corner[1] - corner[0], corner[2] - corner[0]).norm();
     if (area <= degenerate_area) ++s.degenerate_faces;
-    std::sort(key.v.begin(), key.v.end());
-    if (!seen.insert(key).second) ++s.duplicate_faces;
+    std::sort(key.begin(), key.end());
+    keys.push_back(key);
   }
+
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 1; i < keys.size(); ++i) s.duplicate_faces += keys[i] == keys[i - 1] ? 1 : 0;
 
   // Border loops: cycles of boundary halfedges.
   std::vector<char> visited(mesh.n_halfedges(), 0);
