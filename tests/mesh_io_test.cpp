@@ -343,6 +343,45 @@ TEST_F(MeshIoTest, ExtensionIsCaseInsensitiveAndCrlfIsAccepted) {
   EXPECT_TRUE(r.report.warnings.empty());
 }
 
+TEST_F(MeshIoTest, OffVariants) {
+  const std::string body = "0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n3 0 1 2 200 10 10\n";
+  EXPECT_EQ(read_mesh_from_buffer("COFF\n3 1 0\n" + body, "c.off").mesh.n_faces(), 1u);
+  EXPECT_EQ(read_mesh_from_buffer("NOFF\n3 1\n" + body, "n.off").mesh.n_faces(), 1u);
+  EXPECT_EQ(read_mesh_from_buffer("OFF 3 1 0\n" + body, "same_line.off").mesh.n_faces(), 1u);
+  EXPECT_EQ(read_mesh_from_buffer("# lead\nOFF # keyword\n\n3 1 0\n" + body, "comments.off").mesh.n_faces(),
+            1u);
+  const MeshReadResult trailing = read_mesh_from_buffer("OFF\n3 1 0\n" + body + "junk\n", "trailing.off");
+  ASSERT_EQ(trailing.report.warnings.size(), 1u);
+  EXPECT_NE(trailing.report.warnings[0].find("line 7"), std::string::npos) << trailing.report.warnings[0];
+  EXPECT_THROW(read_mesh_from_buffer("4OFF\n3 1 0\n" + body, "four.off"), IoError);
+  EXPECT_THROW(read_mesh_from_buffer("OFF BINARY\n", "binary.off"), IoError);
+  EXPECT_THROW(read_mesh_from_buffer("OFF\n3 x 0\n" + body, "count.off"), IoError);
+  EXPECT_THROW(read_mesh_from_buffer("OFF\n-3 1 0\n" + body, "negative.off"), IoError);
+  EXPECT_THROW(read_mesh_from_buffer("OFF\n3\n" + body, "one_count.off"), IoError);
+}
+
+TEST_F(MeshIoTest, StlWithSeveralSolidsAndOddCase) {
+  const std::string facet =
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  const std::string facet2 =
+      "FACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 1 0 0\nVERTEX 1 1 0\nVERTEX 0 1 0\nENDLOOP\nENDFACET\n";
+  const MeshReadResult r = read_mesh_from_buffer(
+      "solid a\n" + facet + "endsolid a\nsolid b\n" + facet2 + "endsolid b\n", "two.stl");
+  EXPECT_EQ(r.mesh.n_vertices(), 4u);
+  EXPECT_EQ(r.mesh.n_faces(), 2u);
+  EXPECT_TRUE(r.report.warnings.empty());
+  const MeshReadResult open = read_mesh_from_buffer("solid a\n" + facet, "open.stl");
+  EXPECT_EQ(open.mesh.n_faces(), 1u);
+  ASSERT_EQ(open.report.warnings.size(), 1u);
+  EXPECT_NE(open.report.warnings[0].find("endsolid"), std::string::npos);
+  EXPECT_THROW(
+      read_mesh_from_buffer("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendloop\nendfacet\n",
+                            "one_corner.stl"),
+      IoError);
+  EXPECT_THROW(read_mesh_from_buffer("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\n", "nan.stl"),
+               IoError);
+}
+
 TEST_F(MeshIoTest, VerticesOnlyFileIsAMeshWithoutFaces) {
   const MeshReadResult r = read_mesh(kData / "vertices_only.off");
   EXPECT_EQ(r.mesh.n_vertices(), 5u);

@@ -54,12 +54,14 @@ struct MeshReadResult {
 };
 
 /// Reads a mesh; the format comes from the extension (case-insensitive):
-/// - `.off`: OFF, with the optional ST/C/N prefixes (extra per-vertex values are ignored);
+/// - `.off`: OFF, with the optional ST/C/N prefixes (extra per-vertex values are ignored), `#`
+///   comments; one vertex or face per line;
 /// - `.obj`: `v` and `f` records (`f 1/2/3 ...` and negative relative indices accepted; other
 ///   records ignored, unknown keywords counted in a warning);
 /// - `.ply`: ascii, binary_little_endian and binary_big_endian; vertex `x y z` of any numeric
 ///   type; faces from the `vertex_indices` (or `vertex_index`) list of the `face` element, any
-///   count and index type; all other elements and properties are skipped;
+///   count and index type; all other elements and properties are skipped (and named in a
+///   warning); ascii bodies hold one element instance per line;
 /// - `.stl`: ASCII and binary; exactly coincident corners are merged into shared vertices (in
 ///   order of first appearance).
 ///
