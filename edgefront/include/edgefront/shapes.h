@@ -270,9 +270,9 @@ std::string describe(const std::string& shape);
 Mesh make(const std::string& shape, const MeshOptions& options = {});
 
 /// Area-uniform oriented samples of a shape by name, with exact analytic unit normals.
-/// Outliers (`round(outlier_fraction · points)` of them) are uniform in the shape's bounding box
-/// grown by 10% of its diagonal on each side, with uniformly random unit normals, and are spread
-/// over the output at random positions. The "neck" shape has no analytic form: it is sampled from
+/// Noise is added first. Then `round(outlier_fraction · points)` of the points, at random
+/// positions in the output, are replaced by outliers: uniform in the bounding box of all the
+/// (noisy) samples grown by 10% of its diagonal on each side, with uniformly random unit normals. The "neck" shape has no analytic form: it is sampled from
 /// `neck(12)` with face normals. \throws InvalidInput for an unknown name or invalid options.
 PointCloud sample(const std::string& shape, const SampleOptions& options = {});
 
