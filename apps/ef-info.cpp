@@ -5,6 +5,7 @@
 /// Exit codes: 0 ok, 1 error (one line "ef-info: error: ..." on stderr), 2 usage error.
 
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
     for (const std::string& warning : r.warnings) std::cout << "warning: " << warning << "\n";
     std::cout << edgefront::format_stats(edgefront::compute_stats(result.mesh));
     std::cout.flush();
-    return std::cout ? 0 : 1;
+    if (!std::cout) throw std::runtime_error("cannot write to standard output");
+    return 0;
   });
 }

@@ -47,20 +47,22 @@ bool next_content(LineReader& lines, std::string_view& line) {
 }
 
 /// Parses three coordinates from tokens[first..first+2]; throws naming the line.
+/// (The message prefix is built only on error: this runs once per vertex.)
 Vec3 parse_point(const std::vector<std::string_view>& tokens, size_t first, const fs::path& file, size_t line,
-                 const std::string& what) {
+                 size_t vertex) {
+  const auto what = [vertex] { return "vertex " + std::to_string(vertex); };
   if (tokens.size() < first + 3) {
     throw_io_line(file, line,
-                  what + ": expected 3 coordinates, found " +
+                  what() + ": expected 3 coordinates, found " +
                       std::to_string(tokens.size() - std::min(first, tokens.size())));
   }
   Vec3 p;
   for (int k = 0; k < 3; ++k) {
     if (!parse_double(tokens[first + k], p[k])) {
-      throw_io_line(file, line, what + ": malformed number " + quote(tokens[first + k]));
+      throw_io_line(file, line, what() + ": malformed number " + quote(tokens[first + k]));
     }
   }
-  if (!finite(p)) throw_io_line(file, line, what + ": " + describe_non_finite(p));
+  if (!finite(p)) throw_io_line(file, line, what() + ": " + describe_non_finite(p));
   return p;
 }
 
@@ -147,7 +149,7 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
                          std::to_string(lines.line_number()) + ")");
     }
     split_tokens(line, tokens);
-    raw.points.push_back(parse_point(tokens, 0, file, lines.line_number(), "vertex " + std::to_string(i)));
+    raw.points.push_back(parse_point(tokens, 0, file, lines.line_number(), i));
   }
   if (!options.faces) return raw;
   raw.faces.reserve(std::min<uint64_t>(nf, lines.remaining() / 8 + 1));
@@ -159,16 +161,16 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
     }
     split_tokens(line, tokens);
     const size_t ln = lines.line_number();
-    const std::string what = "face " + std::to_string(j);
+    const auto what = [j] { return "face " + std::to_string(j); };
     int64_t k = 0;
     if (!parse_int64(tokens[0], k))
-      throw_io_line(file, ln, what + ": malformed vertex count " + quote(tokens[0]));
+      throw_io_line(file, ln, what() + ": malformed vertex count " + quote(tokens[0]));
     if (k < 3) {
-      throw_io_line(file, ln, what + " has " + std::to_string(k) + " vertices; a face needs at least 3");
+      throw_io_line(file, ln, what() + " has " + std::to_string(k) + " vertices; a face needs at least 3");
     }
     if (static_cast<uint64_t>(k) > tokens.size() - 1) {
       throw_io_line(file, ln,
-                    what + " declares " + std::to_string(k) + " vertices but the line has only " +
+                    what() + " declares " + std::to_string(k) + " vertices but the line has only " +
                         std::to_string(tokens.size() - 1) + " indices");
     }
     RawFace face;
@@ -178,11 +180,11 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
     for (int64_t m = 1; m <= k; ++m) {
       int64_t index = 0;
       if (!parse_int64(tokens[m], index))
-        throw_io_line(file, ln, what + ": malformed vertex index " + quote(tokens[m]));
-      if (index < 0) throw_io_line(file, ln, what + ": negative vertex index " + std::to_string(index));
+        throw_io_line(file, ln, what() + ": malformed vertex index " + quote(tokens[m]));
+      if (index < 0) throw_io_line(file, ln, what() + ": negative vertex index " + std::to_string(index));
       if (static_cast<uint64_t>(index) >= nv) {
         throw_io_line(file, ln,
-                      what + ": vertex index " + std::to_string(index) + " is out of range (the file has " +
+                      what() + ": vertex index " + std::to_string(index) + " is out of range (the file has " +
                           std::to_string(nv) + " vertices)");
       }
       raw.indices.push_back(static_cast<int>(index));
@@ -213,14 +215,15 @@ RawMesh parse_obj(std::string_view data, const fs::path& file, const ParseOption
     const size_t ln = lines.line_number();
     if (kw == "v") {
       if (raw.points.size() >= kMaxVertices) throw_io_line(file, ln, "too many vertices");
-      raw.points.push_back(parse_point(tokens, 1, file, ln, "vertex " + std::to_string(raw.points.size())));
+      raw.points.push_back(parse_point(tokens, 1, file, ln, raw.points.size()));
     } else if (kw == "f") {
       if (!options.faces) continue;
-      const std::string what = "face " + std::to_string(raw.faces.size());
+      const size_t face_index = raw.faces.size();
+      const auto what = [face_index] { return "face " + std::to_string(face_index); };
       if (tokens.size() < 4) {
         throw_io_line(
             file, ln,
-            what + " has " + std::to_string(tokens.size() - 1) + " vertices; a face needs at least 3");
+            what() + " has " + std::to_string(tokens.size() - 1) + " vertices; a face needs at least 3");
       }
       RawFace face;
       face.first = raw.indices.size();
@@ -231,22 +234,22 @@ RawMesh parse_obj(std::string_view data, const fs::path& file, const ParseOption
         t = t.substr(0, t.find('/'));
         int64_t index = 0;
         if (!parse_int64(t, index))
-          throw_io_line(file, ln, what + ": malformed vertex index " + quote(tokens[m]));
+          throw_io_line(file, ln, what() + ": malformed vertex index " + quote(tokens[m]));
         if (index == 0)
-          throw_io_line(file, ln, what + ": vertex index 0 is invalid (OBJ indices start at 1)");
+          throw_io_line(file, ln, what() + ": vertex index 0 is invalid (OBJ indices start at 1)");
         if (index < 0) {
           // Relative index: -1 is the last vertex defined so far.
           const int64_t resolved = static_cast<int64_t>(raw.points.size()) + index;
           if (resolved < 0) {
             throw_io_line(file, ln,
-                          what + ": relative vertex index " + std::to_string(index) +
+                          what() + ": relative vertex index " + std::to_string(index) +
                               " is out of range (only " + std::to_string(raw.points.size()) +
                               " vertices are defined before this line)");
           }
           raw.indices.push_back(static_cast<int>(resolved));
         } else {
           if (static_cast<uint64_t>(index) > kMaxVertices) {
-            throw_io_line(file, ln, what + ": vertex index " + std::to_string(index) + " is out of range");
+            throw_io_line(file, ln, what() + ": vertex index " + std::to_string(index) + " is out of range");
           }
           raw.indices.push_back(static_cast<int>(index - 1));  // range checked once all vertices are known
         }
@@ -544,25 +547,26 @@ RawMesh parse_stl_ascii(std::string_view data, const fs::path& file) {
       throw_io_line(file, in.line(), "expected 'facet' or 'endsolid', found " + quote(token));
     }
     const size_t facet_line = in.line();
-    const std::string what = "facet " + std::to_string(raw.faces.size());
+    const size_t facet_index = raw.faces.size();
+    const auto what = [facet_index] { return "facet " + std::to_string(facet_index); };
     expect("normal");
     for (int k = 0; k < 3; ++k) number("the facet normal");
     expect("outer");
     expect("loop");
     corners.clear();
     for (;;) {
-      if (!in.next(token)) throw_io_line(file, in.line(), "truncated file: the file ends inside " + what);
+      if (!in.next(token)) throw_io_line(file, in.line(), "truncated file: the file ends inside " + what());
       if (iequals(token, "endloop")) break;
       if (!iequals(token, "vertex"))
         throw_io_line(file, in.line(), "expected 'vertex' or 'endloop', found " + quote(token));
       Vec3 p;
       for (int k = 0; k < 3; ++k) p[k] = number("a vertex");
-      if (!finite(p)) throw_io_line(file, in.line(), what + ": " + describe_non_finite(p));
+      if (!finite(p)) throw_io_line(file, in.line(), what() + ": " + describe_non_finite(p));
       corners.push_back(merger.add(p));
     }
     if (corners.size() < 3) {
       throw_io_line(file, facet_line,
-                    what + " has " + std::to_string(corners.size()) + " vertices; a face needs at least 3");
+                    what() + " has " + std::to_string(corners.size()) + " vertices; a face needs at least 3");
     }
     expect("endfacet");
     RawFace face;
