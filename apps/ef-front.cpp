@@ -1,0 +1,272 @@
+/// ef-front: run a Vertex Front or a Minimal Edge Front over a mesh and write each vertex's level
+/// (its breadth-first hop distance from the source).
+///
+///   ef-front MESH (--source V[,V...] | --loop V,V,V...) [--side left|right] [--levels K]
+///            [--method vf|mef] [-o FILE.txt | -o FILE.ply]
+///
+/// Output: one line per vertex in input order with the level at which it joined the front (-1
+/// when not reached), on stdout or into FILE.txt; FILE.ply gets the mesh with a per-vertex scalar
+/// "level" and colors (a colormap over the levels, alternate levels slightly darker, grey for
+/// unreached vertices). A summary (levels, reached vertices, loops, events, peak front, peak
+/// working memory, time) goes to stderr.
+///
+/// Exit codes: 0 ok, 1 error (one line "ef-front: error: ..." on stderr), 2 usage error.
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app_util.h"
+#include "edgefront/atomic_write.h"
+#include "edgefront/error.h"
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+#include "edgefront/mesh_io.h"
+#include "edgefront/minimal_edge_front.h"
+#include "edgefront/vertex_front.h"
+
+namespace {
+
+using edgefront::VertexHandle;
+
+constexpr const char* kAppName = "ef-front";
+
+/// Lower-case extension of `path` (".txt", ".ply", ...).
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// Parses a comma-separated list of vertex indices of a mesh with `n_vertices` vertices.
+/// \throws edgefront::InvalidInput naming `option` and the offending entry.
+std::vector<VertexHandle> parse_vertex_list(const std::string& text, size_t n_vertices, const std::string& option) {
+  std::vector<VertexHandle> out;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = text.find(',', start);
+    std::string token = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const size_t first = token.find_first_not_of(" \t");
+    const size_t last = token.find_last_not_of(" \t");
+    token = first == std::string::npos ? std::string() : token.substr(first, last - first + 1);
+    unsigned long long value = 0;
+    const char* begin = token.data();
+    const char* end = token.data() + token.size();
+    const auto [ptr, ec] = std::from_chars(begin, end, value);
+    if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
+      throw edgefront::InvalidInput(option + ": '" + token + "' is not a vertex index (a non-negative integer)");
+    }
+    if (ec == std::errc::result_out_of_range || value >= n_vertices) {
+      throw edgefront::InvalidInput(option + ": vertex " + token + " is out of range (the mesh has " +
+                                    std::to_string(n_vertices) + " vertices)");
+    }
+    out.emplace_back(static_cast<int>(value));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+/// A color for t in [0, 1]: piecewise-linear through five stops from dark violet over blue and
+/// teal to green and yellow (perceptually ordered, readable on a grey background).
+std::array<uint8_t, 3> colormap(double t) {
+  static constexpr std::array<std::array<double, 3>, 5> kStops = {{
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
+  t = std::clamp(t, 0.0, 1.0);
+  const double x = t * static_cast<double>(kStops.size() - 1);
+  const size_t i = std::min(static_cast<size_t>(x), kStops.size() - 2);
+  const double f = x - static_cast<double>(i);
+  std::array<uint8_t, 3> c{};
+  for (size_t k = 0; k < 3; ++k) {
+    c[k] = static_cast<uint8_t>(std::lround((1.0 - f) * kStops[i][k] + f * kStops[i + 1][k]));
+  }
+  return c;
+}
+
+/// Counts of the Minimal Edge Front's events.
+struct EventCounts {
+  size_t collisions = 0, splits = 0, merges = 0, annihilations = 0, border_reached = 0;
+};
+
+/// What a front run left behind, for the summary.
+struct RunSummary {
+  int levels = 0;
+  size_t peak_front = 0;
+  size_t peak_bytes = 0;
+  std::optional<size_t> loops_left;  // MEF only
+  size_t inert_loops = 0;
+  std::optional<EventCounts> events;  // MEF only
+  std::string front_unit;
+};
+
+std::string plural(size_t n, const std::string& word) { return std::to_string(n) + " " + word + (n == 1 ? "" : "s"); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Run a Vertex Front or Minimal Edge Front from vertices or a closed vertex loop and write every "
+               "vertex's level (hop distance; -1 when not reached).",
+               kAppName};
+  std::string input;
+  std::string source_text;
+  std::string loop_text;
+  std::string side = "left";
+  int levels = -1;
+  std::string method = "mef";
+  std::string output;
+  app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* loop_opt =
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+  source_opt->excludes(loop_opt);
+  loop_opt->excludes(source_opt);
+  app.add_option("--side", side, "side of the loop the front expands to: left (default) or right")
+      ->check(CLI::IsMember({"left", "right"}));
+  app.add_option("--levels", levels, "number of levels to run (default: to exhaustion)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--method", method, "vf (Vertex Front) or mef (Minimal Edge Front, default)")
+      ->check(CLI::IsMember({"vf", "mef"}));
+  app.add_option("-o,--output", output, "write the levels to FILE.txt, or a PLY with level and colors to FILE.ply");
+
+  return edgefront::apps::run_app(app, argc, argv, [&] {
+    if (source_text.empty() && loop_text.empty()) {
+      throw edgefront::apps::AppUsageError("one of --source or --loop is required");
+    }
+    const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
+    if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {
+      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + out_ext + "' (use .txt or .ply)");
+    }
+    if (loop_opt->count() == 0 && app.get_option("--side")->count() > 0) {
+      throw edgefront::apps::AppUsageError("--side applies only to --loop");
+    }
+
+    const edgefront::MeshReadResult read = edgefront::read_mesh(input);
+    for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
+    const edgefront::Mesh& mesh = read.mesh;
+    const size_t n = mesh.n_vertices();
+
+    edgefront::FrontSource source;
+    if (!source_text.empty()) {
+      source = edgefront::FrontSource::from_vertices(parse_vertex_list(source_text, n, "--source"));
+    } else {
+      std::vector<VertexHandle> path = parse_vertex_list(loop_text, n, "--loop");
+      // Accept the closing vertex written out again ("1,2,3,1").
+      if (path.size() > 3 && path.front() == path.back()) path.pop_back();
+      source = edgefront::loop_from_vertices(
+          mesh, path, side == "right" ? edgefront::LoopSide::Right : edgefront::LoopSide::Left);
+    }
+    edgefront::validate_source(mesh, source);
+
+    std::vector<int> level(n, -1);
+    const auto record = [&level](VertexHandle v, int l) {
+      int& slot = level[static_cast<size_t>(v.idx())];
+      if (slot < 0) slot = l;
+    };
+    RunSummary summary;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (method == "vf") {
+      edgefront::VertexFront front(mesh);
+      front.set_enclosed_callback(record);
+      front.reset(source);
+      front.run(levels);
+      for (const auto& [v, l] : front.front_vertices()) record(v, l);
+      summary.levels = front.level();
+      summary.peak_front = front.peak_front_size();
+      summary.peak_bytes = front.peak_working_memory_bytes();
+      summary.front_unit = "vertices";
+    } else {
+      edgefront::MinimalEdgeFront front(mesh, edgefront::MinimalEdgeFrontOptions{.track_loops = true});
+      EventCounts events;
+      front.set_enclosed_callback(record);
+      front.set_event_callback([&events](const edgefront::FrontEvent& e) {
+        using Kind = edgefront::FrontEvent::Kind;
+        switch (e.kind) {
+          case Kind::Collision: ++events.collisions; break;
+          case Kind::Split: ++events.splits; break;
+          case Kind::Merge: ++events.merges; break;
+          case Kind::Annihilation: ++events.annihilations; break;
+          case Kind::BorderReached: ++events.border_reached; break;
+        }
+      });
+      front.reset(source);
+      front.run(levels);
+      for (const auto& [v, l] : front.front_vertices()) record(v, l);
+      const std::vector<edgefront::FrontLoop> loops = front.loops();
+      summary.levels = front.level();
+      summary.peak_front = front.peak_front_size();
+      summary.peak_bytes = front.peak_working_memory_bytes();
+      summary.loops_left = loops.size();
+      summary.inert_loops =
+          static_cast<size_t>(std::count_if(loops.begin(), loops.end(), [](const auto& l) { return l.inert; }));
+      summary.events = events;
+      summary.front_unit = "edges";
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    // Output.
+    if (out_ext == ".ply") {
+      const int max_level = *std::max_element(level.begin(), level.end());
+      edgefront::MeshWriteOptions wo;
+      std::vector<double> values(n);
+      wo.vertex_colors.resize(n);
+      for (size_t i = 0; i < n; ++i) {
+        values[i] = level[i];
+        if (level[i] < 0) {
+          wo.vertex_colors[i] = {128, 128, 128};
+          continue;
+        }
+        std::array<uint8_t, 3> c = colormap(max_level > 0 ? static_cast<double>(level[i]) / max_level : 0.0);
+        if (level[i] % 2 == 1) {
+          for (uint8_t& channel : c) channel = static_cast<uint8_t>(channel * 0.8);
+        }
+        wo.vertex_colors[i] = c;
+      }
+      wo.vertex_scalars.emplace_back("level", std::move(values));
+      edgefront::write_mesh(mesh, output, wo);
+    } else {
+      std::string text;
+      text.reserve(n * 4);
+      for (const int l : level) text.append(std::to_string(l)).push_back('\n');
+      if (output.empty()) {
+        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
+        std::cout.flush();
+        if (!std::cout) throw edgefront::IoError("cannot write to standard output");
+      } else {
+        edgefront::write_file_atomically(output, [&text](std::ostream& os) { os << text; }, false);
+      }
+    }
+
+    // Summary.
+    const size_t reached = static_cast<size_t>(std::count_if(level.begin(), level.end(), [](int l) { return l >= 0; }));
+    std::ostringstream s;
+    s << kAppName << ": " << method << ", " << plural(static_cast<size_t>(summary.levels), "level") << " run, "
+      << reached << " of " << n << " vertices reached";
+    if (summary.loops_left) {
+      s << ", " << plural(*summary.loops_left, "loop") << " left (" << summary.inert_loops << " inert)";
+    }
+    s << "\n";
+    if (summary.events) {
+      const EventCounts& e = *summary.events;
+      s << kAppName << ": events: " << plural(e.collisions, "collision") << ", " << plural(e.splits, "split") << ", "
+        << plural(e.merges, "merge") << ", " << plural(e.annihilations, "annihilation") << ", " << e.border_reached
+        << " border reached\n";
+    }
+    s << kAppName << ": peak front " << summary.peak_front << " " << summary.front_unit << ", peak working memory "
+      << summary.peak_bytes << " bytes, time " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms\n";
+    std::cerr << s.str();
+    return 0;
+  });
+}

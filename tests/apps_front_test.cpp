@@ -1,0 +1,263 @@
+// Tests of the ef-front and ef-distance command-line tools: real runs of the built executables
+// (EDGEFRONT_APP_DIR) on the bundled meshes (EDGEFRONT_DATA_DIR), with the output compared to the
+// library's own answers, PLY output read back, and the documented exit codes (0 ok, 1 error with
+// one line "<app>: error: ..." on stderr, 2 usage error).
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+#include "edgefront/mesh_io.h"
+#include "edgefront/minimal_edge_front.h"
+#include "edgefront/vertex_front.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using edgefront::FrontSource;
+using edgefront::Mesh;
+using edgefront::VertexHandle;
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// 'text' for the shell (appended piecewise: GCC 12 warns -Wrestrict on "..." + std::string&&).
+std::string quoted(const std::string& text) {
+  std::string q(1, '\'');
+  q.append(text);
+  q.push_back('\'');
+  return q;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::string data_file(const std::string& name) { return (fs::path(EDGEFRONT_DATA_DIR) / name).string(); }
+
+/// Runs one of the apps in a private temporary directory.
+class AppsFrontTest : public ::testing::Test {
+ protected:
+  void use_app(const std::string& name) {
+    app_ = fs::path(EDGEFRONT_APP_DIR) / name;
+    if (!fs::exists(app_)) GTEST_SKIP() << name << " is not built at " << app_;
+  }
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("edgefront_apps_front_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!dir_.empty()) fs::remove_all(dir_, ec);
+  }
+  CommandResult run(const std::string& args) const {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::string command = quoted(app_.string());
+    command.append(" ").append(args).append(" >").append(quoted(out.string()));
+    command.append(" 2>").append(quoted(err.string()));
+    const int status = std::system(command.c_str());
+    CommandResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+  /// Expects exit code 1 and exactly one line "<app>: error: ..." on stderr, mentioning `hint`.
+  void expect_error(const std::string& args, const std::string& hint) const {
+    const CommandResult r = run(args);
+    const std::string prefix = app_.filename().string() + ": error: ";
+    EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind(prefix, 0), 0u) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(hint), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << args;
+  }
+  void expect_usage_error(const std::string& args) const {
+    const CommandResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(app_.filename().string() + ": error: "), std::string::npos) << args << "\n" << r.err;
+  }
+  fs::path path(const std::string& name) const { return dir_ / name; }
+
+  fs::path app_, dir_;
+};
+
+/// Parses one integer per line.
+std::vector<int> parse_levels(const std::string& text) {
+  std::vector<int> out;
+  for (const std::string& line : lines_of(text)) {
+    size_t used = 0;
+    out.push_back(std::stoi(line, &used));
+    EXPECT_EQ(used, line.size()) << "'" << line << "'";
+  }
+  return out;
+}
+
+/// The number in front of `word` in a summary such as "3 collisions, 2 splits" (-1 if absent).
+int summary_count(const std::string& summary, const std::string& word) {
+  const std::regex pattern("(\\d+) " + word);
+  std::smatch m;
+  return std::regex_search(summary, m, pattern) ? std::stoi(m[1].str()) : -1;
+}
+
+// ---- ef-front -----------------------------------------------------------------------------
+
+TEST_F(AppsFrontTest, EfFrontLevelsOnTorusMatchTheLibrary) {
+  use_app("ef-front");
+  const Mesh mesh = edgefront::read_mesh(data_file("torus.off")).mesh;
+  const CommandResult r = run(quoted(data_file("torus.off")) + " --source 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<int> levels = parse_levels(r.out);
+  ASSERT_EQ(levels.size(), mesh.n_vertices());
+  EXPECT_EQ(levels, edgefront::edge_front_levels(mesh, FrontSource::vertex(VertexHandle(0))));
+  EXPECT_EQ(levels[0], 0);
+  EXPECT_TRUE(std::all_of(levels.begin(), levels.end(), [](int l) { return l >= 0; }));
+  // The summary: a closed torus ends with no loop; the front split and merged on the way.
+  EXPECT_NE(r.err.find("192 of 192 vertices reached"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("0 loops left (0 inert)"), std::string::npos) << r.err;
+  EXPECT_GE(summary_count(r.err, "split"), 1) << r.err;
+  EXPECT_GE(summary_count(r.err, "merge"), 1) << r.err;
+  EXPECT_GE(summary_count(r.err, "annihilation"), 1) << r.err;
+  EXPECT_EQ(summary_count(r.err, "border reached"), 0) << r.err;
+  EXPECT_NE(r.err.find("peak front"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+}
+
+TEST_F(AppsFrontTest, EfFrontVertexFrontSeveralSourcesAndLevelLimit) {
+  use_app("ef-front");
+  const Mesh mesh = edgefront::read_mesh(data_file("neck.off")).mesh;
+  const FrontSource source = FrontSource::from_vertices({VertexHandle(5), VertexHandle(70)});
+  for (const std::string method : {"vf", "mef"}) {
+    const CommandResult r = run(quoted(data_file("neck.off")) + " --source 5,70 --levels 2 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    const std::vector<int> levels = parse_levels(r.out);
+    ASSERT_EQ(levels.size(), mesh.n_vertices()) << method;
+    EXPECT_EQ(levels, edgefront::edge_front_levels(mesh, source, 2)) << method;
+    EXPECT_EQ(levels, edgefront::vertex_front_levels(mesh, source, 2)) << method;
+    EXPECT_EQ(*std::max_element(levels.begin(), levels.end()), 2) << method;
+    EXPECT_GT(std::count(levels.begin(), levels.end(), -1), 0) << method;
+    EXPECT_NE(r.err.find(method + ", 2 levels run"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(AppsFrontTest, EfFrontLoopSourceOnBothSides) {
+  use_app("ef-front");
+  // The neck's minimum pathway 43-44-45 (data/README.md): a 3-cycle without a face that
+  // separates the two blobs. Each side of the loop reaches only its own blob.
+  const Mesh mesh = edgefront::read_mesh(data_file("neck.off")).mesh;
+  const std::vector<VertexHandle> path = {VertexHandle(43), VertexHandle(44), VertexHandle(45)};
+  std::vector<int> left, right;
+  for (const auto& [side, out] : {std::pair{std::string("left"), &left}, std::pair{std::string("right"), &right}}) {
+    const CommandResult r = run(quoted(data_file("neck.off")) + " --loop 43,44,45 --side " + side);
+    ASSERT_EQ(r.exit_code, 0) << side << ": " << r.err;
+    *out = parse_levels(r.out);
+    const auto loop = edgefront::loop_from_vertices(
+        mesh, path, side == "left" ? edgefront::LoopSide::Left : edgefront::LoopSide::Right);
+    EXPECT_EQ(*out, edgefront::edge_front_levels(mesh, loop)) << side;
+  }
+  ASSERT_EQ(left.size(), mesh.n_vertices());
+  ASSERT_EQ(right.size(), mesh.n_vertices());
+  for (size_t i = 0; i < left.size(); ++i) {
+    if (i == 43 || i == 44 || i == 45) {
+      EXPECT_EQ(left[i], 0);
+      EXPECT_EQ(right[i], 0);
+    } else {
+      EXPECT_NE(left[i] >= 0, right[i] >= 0) << "vertex " << i << " on both or neither side";
+    }
+  }
+  // The closing vertex may be written again; the result is the same.
+  const CommandResult again = run(quoted(data_file("neck.off")) + " --loop 43,44,45,43");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(parse_levels(again.out), left);
+}
+
+TEST_F(AppsFrontTest, EfFrontWritesTextAndPlyFiles) {
+  use_app("ef-front");
+  const Mesh mesh = edgefront::read_mesh(data_file("torus.off")).mesh;
+  const CommandResult on_stdout = run(quoted(data_file("torus.off")) + " --source 3 --levels 4");
+  ASSERT_EQ(on_stdout.exit_code, 0) << on_stdout.err;
+
+  const CommandResult txt =
+      run(quoted(data_file("torus.off")) + " --source 3 --levels 4 -o " + quoted(path("levels.txt").string()));
+  ASSERT_EQ(txt.exit_code, 0) << txt.err;
+  EXPECT_EQ(txt.out, "");
+  EXPECT_EQ(slurp(path("levels.txt")), on_stdout.out);
+
+  const CommandResult ply =
+      run(quoted(data_file("torus.off")) + " --source 3 --levels 4 -o " + quoted(path("levels.ply").string()));
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  EXPECT_EQ(ply.out, "");
+  const edgefront::MeshReadResult back = edgefront::read_mesh(path("levels.ply"));
+  EXPECT_EQ(back.mesh.n_vertices(), mesh.n_vertices());
+  EXPECT_EQ(back.mesh.n_faces(), mesh.n_faces());
+  const std::string text = slurp(path("levels.ply"));
+  const std::string header = text.substr(0, text.find("end_header"));
+  EXPECT_NE(header.find("property double level"), std::string::npos) << header;
+  EXPECT_NE(header.find("property uchar red"), std::string::npos) << header;
+}
+
+TEST_F(AppsFrontTest, EfFrontBadInputIsOneErrorLineAndExitOne) {
+  use_app("ef-front");
+  const std::string torus = quoted(data_file("torus.off"));
+  expect_error(quoted(path("missing.off").string()) + " --source 0", "missing.off");
+  expect_error(torus + " --source 192", "out of range");
+  expect_error(torus + " --source 0,-1", "not a vertex index");
+  expect_error(torus + " --source 1x", "not a vertex index");
+  expect_error(torus + " --source 0,,2", "not a vertex index");
+  expect_error(torus + " --source 99999999999999999999999", "out of range");
+  expect_error(torus + " --source 4,4", "given twice");
+  // 0 and 100 are far apart on the torus: the loop does not close along edges.
+  expect_error(torus + " --loop 0,1,100", "edge");
+  expect_error(torus + " --loop 0,1", "3");
+  EXPECT_FALSE(fs::exists(path("never.txt")));
+  expect_error(torus + " --source 500 -o " + quoted(path("never.txt").string()), "out of range");
+  EXPECT_FALSE(fs::exists(path("never.txt")));
+}
+
+TEST_F(AppsFrontTest, EfFrontUsageErrorsExitTwo) {
+  use_app("ef-front");
+  const std::string torus = quoted(data_file("torus.off"));
+  expect_usage_error(torus);                                   // no source
+  expect_usage_error(torus + " --source 0 --loop 0,1,2");      // both
+  expect_usage_error(torus + " --source 0 --method bfs");      // unknown method
+  expect_usage_error(torus + " --source 0 --levels -2");       // negative levels
+  expect_usage_error(torus + " --source 0 --levels two");      // not a number
+  expect_usage_error(torus + " --loop 0,1,2 --side up");       // unknown side
+  expect_usage_error(torus + " --source 0 --side left");       // side without a loop
+  expect_usage_error(torus + " --source 0 -o out.obj");        // unsupported output
+  expect_usage_error(torus + " --source 0 --bogus");           // unknown flag
+  expect_usage_error("--source 0");                            // no mesh
+  const CommandResult help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--method"), std::string::npos);
+}
+
+}  // namespace
