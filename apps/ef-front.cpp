@@ -135,8 +135,7 @@ int main(int argc, char** argv) {
   loop_opt->excludes(source_opt);
   app.add_option("--side", side, "side of the loop the front expands to: left (default) or right")
       ->check(CLI::IsMember({"left", "right"}));
-  app.add_option("--levels", levels, "number of levels to run (default: to exhaustion)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* levels_opt = app.add_option("--levels", levels, "number of levels to run, >= 0 (default: to exhaustion)");
   app.add_option("--method", method, "vf (Vertex Front) or mef (Minimal Edge Front, default)")
       ->check(CLI::IsMember({"vf", "mef"}));
   app.add_option("-o,--output", output, "write the levels to FILE.txt, or a PLY with level and colors to FILE.ply");
@@ -144,6 +143,9 @@ int main(int argc, char** argv) {
   return edgefront::apps::run_app(app, argc, argv, [&] {
     if (source_text.empty() && loop_text.empty()) {
       throw edgefront::apps::AppUsageError("one of --source or --loop is required");
+    }
+    if (levels_opt->count() > 0 && levels < 0) {
+      throw edgefront::apps::AppUsageError("--levels must be a non-negative integer");
     }
     const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
     if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {

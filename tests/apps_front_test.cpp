@@ -22,7 +22,9 @@
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
+#include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
+#include "edgefront/shapes.h"
 #include "edgefront/vertex_front.h"
 
 namespace {
@@ -258,6 +260,166 @@ TEST_F(AppsFrontTest, EfFrontUsageErrorsExitTwo) {
   const CommandResult help = run("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--method"), std::string::npos);
+}
+
+// ---- ef-distance --------------------------------------------------------------------------
+
+/// Parses one distance per line ("inf" for unreached).
+std::vector<double> parse_distances(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& line : lines_of(text)) {
+    size_t used = 0;
+    out.push_back(std::stod(line, &used));
+    EXPECT_EQ(used, line.size()) << "'" << line << "'";
+  }
+  return out;
+}
+
+TEST_F(AppsFrontTest, EfDistanceFromAVertexMatchesTheLibraryExactly) {
+  use_app("ef-distance");
+  const Mesh mesh = edgefront::read_mesh(data_file("torus.off")).mesh;
+  const FrontSource source = FrontSource::vertex(VertexHandle(7));
+  const CommandResult mdf = run(quoted(data_file("torus.off")) + " --source 7");
+  ASSERT_EQ(mdf.exit_code, 0) << mdf.err;
+  const std::vector<double> d = parse_distances(mdf.out);
+  ASSERT_EQ(d.size(), mesh.n_vertices());
+  EXPECT_EQ(d[7], 0.0);
+  for (size_t i = 0; i < d.size(); ++i) {
+    if (i != 7) {
+      EXPECT_TRUE(std::isfinite(d[i]) && d[i] > 0) << i << ": " << d[i];
+    }
+  }
+  // Written with round-trip precision: the very same doubles as the library's.
+  EXPECT_EQ(d, edgefront::geodesic_distance(mesh, source).distance);
+  EXPECT_NE(mdf.err.find("mdf, "), std::string::npos) << mdf.err;
+  EXPECT_NE(mdf.err.find("192 of 192 vertices reached"), std::string::npos) << mdf.err;
+  EXPECT_NE(mdf.err.find("stop: exhausted"), std::string::npos) << mdf.err;
+  EXPECT_EQ(std::count(mdf.err.begin(), mdf.err.end(), '\n'), 1) << mdf.err;
+
+  const CommandResult dij = run(quoted(data_file("torus.off")) + " --source 7 --method dijkstra");
+  ASSERT_EQ(dij.exit_code, 0) << dij.err;
+  const std::vector<double> e = parse_distances(dij.out);
+  EXPECT_EQ(e, edgefront::dijkstra_distance(mesh, source).distance);
+  ASSERT_EQ(e.size(), d.size());
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_LE(d[i], e[i] * (1 + 1e-12)) << i;  // MDF below the edge paths
+}
+
+TEST_F(AppsFrontTest, EfDistanceMaxDistanceBoundsEveryFiniteOutput) {
+  use_app("ef-distance");
+  for (const std::string method : {"mdf", "dijkstra"}) {
+    const CommandResult r = run(quoted(data_file("bumpy-sphere.off")) + " --source 0 --max-distance 0.6 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<double> d = parse_distances(r.out);
+    ASSERT_EQ(d.size(), 642u);
+    size_t finite = 0;
+    for (const double x : d) {
+      if (std::isfinite(x)) {
+        ++finite;
+        EXPECT_LE(x, 0.6) << method;
+      } else {
+        EXPECT_EQ(x, std::numeric_limits<double>::infinity()) << method;
+      }
+    }
+    EXPECT_GT(finite, 5u) << method;
+    EXPECT_LT(finite, 642u) << method;
+    EXPECT_NE(r.err.find("stop: max distance"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(AppsFrontTest, EfDistanceIsInfiniteOnAnotherComponent) {
+  use_app("ef-distance");
+  // Two concentric spheres: the outer one's vertices come first.
+  const Mesh mesh = edgefront::shapes::nested_spheres(1);
+  const fs::path file = path("nested.off");
+  edgefront::write_mesh(mesh, file);
+  const std::vector<int> component = [&] {
+    std::vector<int> levels = edgefront::edge_front_levels(mesh, FrontSource::vertex(VertexHandle(0)));
+    for (int& l : levels) l = l >= 0 ? 0 : 1;
+    return levels;
+  }();
+  ASSERT_GT(std::count(component.begin(), component.end(), 1), 0);
+  const CommandResult r = run(quoted(file.string()) + " --source 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<double> d = parse_distances(r.out);
+  ASSERT_EQ(d.size(), mesh.n_vertices());
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_EQ(std::isfinite(d[i]), component[i] == 0) << i << ": " << d[i];
+  EXPECT_NE(r.out.find("inf\n"), std::string::npos);
+}
+
+TEST_F(AppsFrontTest, EfDistanceFromALoopAndFromSurfacePoints) {
+  use_app("ef-distance");
+  const Mesh neck = edgefront::read_mesh(data_file("neck.off")).mesh;
+  const std::vector<VertexHandle> path_vertices = {VertexHandle(43), VertexHandle(44), VertexHandle(45)};
+  const CommandResult loop = run(quoted(data_file("neck.off")) + " --loop 43,44,45 --side right");
+  ASSERT_EQ(loop.exit_code, 0) << loop.err;
+  const std::vector<double> d = parse_distances(loop.out);
+  ASSERT_EQ(d.size(), neck.n_vertices());
+  EXPECT_EQ(d, edgefront::geodesic_distance(
+                   neck, edgefront::loop_from_vertices(neck, path_vertices, edgefront::LoopSide::Right))
+                   .distance);
+  for (const VertexHandle v : path_vertices) EXPECT_EQ(d[static_cast<size_t>(v.idx())], 0.0);
+  // Only the right side's blob is reached: the same vertices as ef-front's levels.
+  const std::vector<int> levels = edgefront::edge_front_levels(
+      neck, edgefront::loop_from_vertices(neck, path_vertices, edgefront::LoopSide::Right));
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_EQ(std::isfinite(d[i]), levels[i] >= 0) << i;
+
+  const Mesh torus = edgefront::read_mesh(data_file("torus.off")).mesh;
+  const CommandResult points = run(quoted(data_file("torus.off")) + " --point 10:0.2,0.3,0.5 --point 200:1,0,0");
+  ASSERT_EQ(points.exit_code, 0) << points.err;
+  const std::vector<double> p = parse_distances(points.out);
+  edgefront::SurfacePoint a, b;
+  a.face = edgefront::FaceHandle(10);
+  a.bary = {0.2, 0.3, 0.5};
+  b.face = edgefront::FaceHandle(200);
+  b.bary = {1, 0, 0};
+  EXPECT_EQ(p, edgefront::geodesic_distance(torus, std::vector<edgefront::SurfacePoint>{a, b}).distance);
+  EXPECT_EQ(p[static_cast<size_t>((*torus.cfv_begin(edgefront::FaceHandle(200))).idx())], 0.0);
+}
+
+TEST_F(AppsFrontTest, EfDistanceWritesTextAndPlyFiles) {
+  use_app("ef-distance");
+  const std::string torus = quoted(data_file("torus.off"));
+  const CommandResult on_stdout = run(torus + " --source 3 --max-distance 1");
+  ASSERT_EQ(on_stdout.exit_code, 0) << on_stdout.err;
+  const CommandResult txt = run(torus + " --source 3 --max-distance 1 -o " + quoted(path("d.txt").string()));
+  ASSERT_EQ(txt.exit_code, 0) << txt.err;
+  EXPECT_EQ(txt.out, "");
+  EXPECT_EQ(slurp(path("d.txt")), on_stdout.out);
+  const CommandResult ply = run(torus + " --source 3 --max-distance 1 -o " + quoted(path("d.PLY").string()));
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  const edgefront::MeshReadResult back = edgefront::read_mesh(path("d.PLY"));
+  EXPECT_EQ(back.mesh.n_vertices(), 192u);
+  EXPECT_EQ(back.mesh.n_faces(), 384u);
+  const std::string text = slurp(path("d.PLY"));
+  const std::string header = text.substr(0, text.find("end_header"));
+  EXPECT_NE(header.find("property double distance"), std::string::npos) << header;
+  EXPECT_NE(header.find("property uchar blue"), std::string::npos) << header;
+}
+
+TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
+  use_app("ef-distance");
+  const std::string torus = quoted(data_file("torus.off"));
+  expect_error(quoted(path("missing.off").string()) + " --source 0", "missing.off");
+  expect_error(torus + " --source 192", "out of range");
+  expect_error(torus + " --source zero", "not a vertex index");
+  expect_error(torus + " --loop 0,1,100", "edge");
+  expect_error(torus + " --point 384:1,0,0", "out of range");
+  expect_error(torus + " --point 0:0.5,0.5", "3 barycentric");
+  expect_error(torus + " --point 0:0.5,x,0.5", "not a number");
+  expect_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
+  expect_error(torus + " --point 0:0.5,0.6,0.5", "sum");
+  expect_error(torus + " --point 0:-0.5,1,0.5", "non-negative");
+  expect_error(torus + " --source 0 -o " + quoted(path("no-such-dir/d.txt").string()), "no-such-dir");
+
+  expect_usage_error(torus);
+  expect_usage_error(torus + " --source 0 --loop 0,1,2");
+  expect_usage_error(torus + " --source 0 --point 0:1,0,0");
+  expect_usage_error(torus + " --point 0:1,0,0 --method dijkstra");
+  expect_usage_error(torus + " --source 0 --method heat");
+  expect_usage_error(torus + " --source 0 --max-distance -1");
+  expect_usage_error(torus + " --source 0 --max-distance nan");
+  expect_usage_error(torus + " --source 0 --side right");
+  expect_usage_error(torus + " --source 0 -o d.xyz");
 }
 
 }  // namespace

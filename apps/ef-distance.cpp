@@ -1,0 +1,299 @@
+/// ef-distance: approximate geodesic distances on a mesh with the Minimal Distance Front (or, as
+/// the baseline, Dijkstra over the mesh edges), from vertices, a closed vertex loop or points on
+/// faces.
+///
+///   ef-distance MESH (--source V[,V...] | --loop V,V,V... | --point F:b0,b1,b2 ...)
+///               [--side left|right] [--max-distance D] [--method mdf|dijkstra]
+///               [-o FILE.txt | -o FILE.ply]
+///
+/// Output: one distance per line in input vertex order ("inf" where not reached: another
+/// component, behind a loop, beyond --max-distance), written with the fewest digits that read
+/// back to the same double, on stdout or into FILE.txt. FILE.ply gets the mesh with a per-vertex
+/// scalar "distance" and colors: a colormap over [0, largest finite distance] with dark isoline
+/// bands every 1/20 of that range, grey where not reached (for MeshLab and similar viewers). A
+/// one-line summary (method, time, reached vertices, peak front, stop reason) goes to stderr.
+///
+/// Exit codes: 0 ok, 1 error (one line "ef-distance: error: ..." on stderr), 2 usage error.
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app_util.h"
+#include "edgefront/atomic_write.h"
+#include "edgefront/error.h"
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+#include "edgefront/mesh_io.h"
+#include "edgefront/minimal_distance_front.h"
+
+namespace {
+
+using edgefront::VertexHandle;
+
+constexpr const char* kAppName = "ef-distance";
+
+/// Lower-case extension of `path` (".txt", ".ply", ...).
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// Splits at `sep`, trimming blanks around each piece.
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    const size_t at = text.find(sep, start);
+    std::string token = text.substr(start, at == std::string::npos ? std::string::npos : at - start);
+    const size_t first = token.find_first_not_of(" \t");
+    const size_t last = token.find_last_not_of(" \t");
+    out.push_back(first == std::string::npos ? std::string() : token.substr(first, last - first + 1));
+    if (at == std::string::npos) break;
+    start = at + 1;
+  }
+  return out;
+}
+
+/// Parses a non-negative index below `count`; `what` names the kind of element in messages.
+/// \throws edgefront::InvalidInput naming `option` and the token.
+size_t parse_index(const std::string& token, size_t count, const std::string& option, const std::string& what) {
+  unsigned long long value = 0;
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
+    throw edgefront::InvalidInput(option + ": '" + token + "' is not a " + what + " index (a non-negative integer)");
+  }
+  if (ec == std::errc::result_out_of_range || value >= count) {
+    throw edgefront::InvalidInput(option + ": " + what + " " + token + " is out of range (the mesh has " +
+                                  std::to_string(count) + " " + what + (count == 1 ? "" : "s") + ")");
+  }
+  return static_cast<size_t>(value);
+}
+
+std::vector<VertexHandle> parse_vertex_list(const std::string& text, size_t n_vertices, const std::string& option) {
+  std::vector<VertexHandle> out;
+  for (const std::string& token : split(text, ',')) {
+    out.emplace_back(static_cast<int>(parse_index(token, n_vertices, option, "vertex")));
+  }
+  return out;
+}
+
+/// Parses "F:b0,b1,b2". The library checks the barycentric coordinates themselves.
+edgefront::SurfacePoint parse_point(const std::string& text, size_t n_faces) {
+  const std::string option = "--point '" + text + "'";
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) throw edgefront::InvalidInput(option + ": expected F:b0,b1,b2");
+  const std::vector<std::string> face_part = split(text.substr(0, colon), ',');
+  edgefront::SurfacePoint p;
+  p.face = edgefront::FaceHandle(static_cast<int>(parse_index(face_part.front(), n_faces, option, "face")));
+  const std::vector<std::string> coords = split(text.substr(colon + 1), ',');
+  if (coords.size() != 3) {
+    throw edgefront::InvalidInput(option + ": expected 3 barycentric coordinates after ':', got " +
+                                  std::to_string(coords.size()));
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    const std::string& c = coords[i];
+    const char* end = c.data() + c.size();
+    const auto [ptr, ec] = std::from_chars(c.data(), end, p.bary[i]);
+    if (c.empty() || ec != std::errc() || ptr != end) {
+      throw edgefront::InvalidInput(option + ": '" + c + "' is not a number");
+    }
+  }
+  return p;
+}
+
+/// A color for t in [0, 1]: piecewise-linear through five stops from dark violet over blue and
+/// teal to green and yellow (perceptually ordered, readable on a grey background).
+std::array<uint8_t, 3> colormap(double t) {
+  static constexpr std::array<std::array<double, 3>, 5> kStops = {{
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
+  t = std::clamp(t, 0.0, 1.0);
+  const double x = t * static_cast<double>(kStops.size() - 1);
+  const size_t i = std::min(static_cast<size_t>(x), kStops.size() - 2);
+  const double f = x - static_cast<double>(i);
+  std::array<uint8_t, 3> c{};
+  for (size_t k = 0; k < 3; ++k) {
+    c[k] = static_cast<uint8_t>(std::lround((1.0 - f) * kStops[i][k] + f * kStops[i + 1][k]));
+  }
+  return c;
+}
+
+/// Colors with isolines: the colormap over [0, max_finite], darkened in a thin band at every
+/// 1/20 of the range; grey where the distance is infinite.
+std::vector<std::array<uint8_t, 3>> isoline_colors(const std::vector<double>& distance, double max_finite) {
+  constexpr int kBands = 20;
+  constexpr double kLineWidth = 0.15;  // share of a band drawn dark
+  std::vector<std::array<uint8_t, 3>> colors(distance.size(), std::array<uint8_t, 3>{128, 128, 128});
+  for (size_t i = 0; i < distance.size(); ++i) {
+    if (!std::isfinite(distance[i])) continue;
+    const double t = max_finite > 0 ? distance[i] / max_finite : 0.0;
+    std::array<uint8_t, 3> c = colormap(t);
+    const double band = t * kBands;
+    if (max_finite > 0 && band - std::floor(band) < kLineWidth) {
+      for (uint8_t& channel : c) channel = static_cast<uint8_t>(channel * 0.3);
+    }
+    colors[i] = c;
+  }
+  return colors;
+}
+
+/// Shortest text that reads back to the same double; "inf" for +infinity.
+void append_number(std::string& text, double x) {
+  if (std::isinf(x)) {
+    text.append(x > 0 ? "inf" : "-inf");
+    return;
+  }
+  char buf[64];
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof(buf), x);
+  EF_CHECK(ec == std::errc(), "formatting a distance failed");
+  text.append(buf, ptr);
+}
+
+std::string stop_name(edgefront::DistanceStop stop) {
+  switch (stop) {
+    case edgefront::DistanceStop::NotStarted: return "not started";
+    case edgefront::DistanceStop::Exhausted: return "exhausted";
+    case edgefront::DistanceStop::MaxDistance: return "max distance";
+    case edgefront::DistanceStop::TargetReached: return "target reached";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Approximate geodesic distances (Minimal Distance Front, or Dijkstra over edges) from vertices, a "
+               "closed vertex loop or surface points; one distance per vertex (inf when not reached).",
+               kAppName};
+  std::string input;
+  std::string source_text;
+  std::string loop_text;
+  std::vector<std::string> point_texts;
+  std::string side = "left";
+  double max_distance = std::numeric_limits<double>::infinity();
+  std::string method = "mdf";
+  std::string output;
+  app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* loop_opt =
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+  CLI::Option* point_opt = app.add_option(
+      "--point", point_texts, "source point F:b0,b1,b2 (face index, barycentric coordinates in the face's vertex "
+                              "order); may be repeated (mdf only)");
+  source_opt->excludes(loop_opt)->excludes(point_opt);
+  loop_opt->excludes(source_opt)->excludes(point_opt);
+  point_opt->excludes(source_opt)->excludes(loop_opt);
+  CLI::Option* side_opt = app.add_option("--side", side, "side of the loop to measure on: left (default) or right")
+                              ->check(CLI::IsMember({"left", "right"}));
+  app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: no limit)");
+  app.add_option("--method", method, "mdf (Minimal Distance Front, default) or dijkstra (over edges)")
+      ->check(CLI::IsMember({"mdf", "dijkstra"}));
+  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply");
+
+  return edgefront::apps::run_app(app, argc, argv, [&] {
+    if (source_text.empty() && loop_text.empty() && point_texts.empty()) {
+      throw edgefront::apps::AppUsageError("one of --source, --loop or --point is required");
+    }
+    if (!(max_distance >= 0)) {  // also NaN
+      throw edgefront::apps::AppUsageError("--max-distance must be a non-negative number");
+    }
+    if (!point_texts.empty() && method == "dijkstra") {
+      throw edgefront::apps::AppUsageError("--point needs --method mdf (Dijkstra runs from vertices and loops)");
+    }
+    if (loop_opt->count() == 0 && side_opt->count() > 0) {
+      throw edgefront::apps::AppUsageError("--side applies only to --loop");
+    }
+    const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
+    if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {
+      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + out_ext + "' (use .txt or .ply)");
+    }
+
+    const edgefront::MeshReadResult read = edgefront::read_mesh(input);
+    for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
+    const edgefront::Mesh& mesh = read.mesh;
+    const size_t n = mesh.n_vertices();
+
+    edgefront::DistanceOptions options;
+    options.max_distance = max_distance;
+    options.directions = false;
+    edgefront::FrontSource source;
+    std::vector<edgefront::SurfacePoint> points;
+    if (!source_text.empty()) {
+      source = edgefront::FrontSource::from_vertices(parse_vertex_list(source_text, n, "--source"));
+    } else if (!loop_text.empty()) {
+      std::vector<VertexHandle> path = parse_vertex_list(loop_text, n, "--loop");
+      // Accept the closing vertex written out again ("1,2,3,1").
+      if (path.size() > 3 && path.front() == path.back()) path.pop_back();
+      source = edgefront::loop_from_vertices(
+          mesh, path, side == "right" ? edgefront::LoopSide::Right : edgefront::LoopSide::Left);
+    } else {
+      for (const std::string& text : point_texts) points.push_back(parse_point(text, mesh.n_faces()));
+    }
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const edgefront::DistanceField field =
+        method == "dijkstra"  ? edgefront::dijkstra_distance(mesh, source, options)
+        : points.empty()      ? edgefront::geodesic_distance(mesh, source, options)
+                              : edgefront::geodesic_distance(mesh, points, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EF_CHECK(field.distance.size() == n, "the distance field does not have one value per vertex");
+
+    size_t reached = 0;
+    double max_finite = 0.0;
+    for (const double d : field.distance) {
+      if (std::isfinite(d)) {
+        ++reached;
+        max_finite = std::max(max_finite, d);
+      }
+    }
+
+    if (out_ext == ".ply") {
+      edgefront::MeshWriteOptions wo;
+      wo.vertex_colors = isoline_colors(field.distance, max_finite);
+      wo.vertex_scalars.emplace_back("distance", field.distance);
+      edgefront::write_mesh(mesh, output, wo);
+    } else {
+      std::string text;
+      text.reserve(n * 20);
+      for (const double d : field.distance) {
+        append_number(text, d);
+        text.push_back('\n');
+      }
+      if (output.empty()) {
+        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
+        std::cout.flush();
+        if (!std::cout) throw edgefront::IoError("cannot write to standard output");
+      } else {
+        edgefront::write_file_atomically(output, [&text](std::ostream& os) { os << text; }, false);
+      }
+    }
+
+    std::ostringstream s;
+    s << kAppName << ": " << method << ", " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms, "
+      << reached << " of " << n << " vertices reached, largest distance " << std::defaultfloat << std::setprecision(6) << max_finite;
+    if (method == "dijkstra") {
+      s << ", no front (per-mesh arrays)";
+    } else {
+      s << ", peak front " << field.peak_front << " edges";
+    }
+    s << ", peak working memory " << field.peak_working_memory_bytes << " bytes, stop: " << stop_name(field.stop)
+      << "\n";
+    std::cerr << s.str();
+    return 0;
+  });
+}
