@@ -2,6 +2,11 @@
 //
 //   cgal_geodesic_reference MESH --sources v1,v2,... -o OUT_PREFIX [--heat] [--no-exact]
 //                           [--skip-existing]
+//   cgal_geodesic_reference MESH --random K [--seed S] (-o OUT_PREFIX ... | --print-sources)
+//
+// `--random K` picks K distinct non-isolated vertices with std::mt19937_64(S) (default S = 1),
+// appended to `--sources`; `--print-sources` prints the list (comma-separated) and exits, so a
+// script can hand the same sources to bench/geodesic_accuracy.
 //
 // The mesh is read with edgefront::read_mesh (the reader every EdgeFront tool uses) and copied
 // into a CGAL::Surface_mesh with the same vertex indices and the same triangles, so index i here
@@ -35,6 +40,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <exception>
 #include <filesystem>
@@ -42,6 +48,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -75,11 +82,14 @@ struct Args {
   bool heat = false;
   bool exact = true;
   bool skip_existing = false;
+  int random = 0;
+  std::uint64_t seed = 1;
+  bool print_sources = false;
 };
 
 void print_usage(std::ostream& os) {
   os << "usage: cgal_geodesic_reference MESH --sources v1,v2,... -o OUT_PREFIX [--heat] [--no-exact]\n"
-        "                               [--skip-existing]\n"
+        "                               [--skip-existing] [--random K [--seed S]] [--print-sources]\n"
         "Writes OUT_PREFIX.exact.<v>.bin (Surface_mesh_shortest_path) and, with --heat,\n"
         "OUT_PREFIX.heat.<v>.bin (Heat_method_3, intrinsic Delaunay): one double per vertex in the\n"
         "mesh's vertex order (+inf: unreachable). Timings are appended to OUT_PREFIX.log.\n";
@@ -126,6 +136,23 @@ Args parse_args(int argc, char** argv) {
       a.exact = false;
     } else if (arg == "--skip-existing") {
       a.skip_existing = true;
+    } else if (arg == "--random") {
+      const std::string v = value("--random");
+      try {
+        a.random = std::stoi(v);
+      } catch (const std::exception&) {
+        a.random = -1;
+      }
+      if (a.random < 1) throw UsageError("--random needs a positive count, got '" + v + "'");
+    } else if (arg == "--seed") {
+      const std::string v = value("--seed");
+      try {
+        a.seed = std::stoull(v);
+      } catch (const std::exception&) {
+        throw UsageError("--seed needs a non-negative integer, got '" + v + "'");
+      }
+    } else if (arg == "--print-sources") {
+      a.print_sources = true;
     } else if (arg == "-h" || arg == "--help") {
       print_usage(std::cout);
       std::exit(0);
@@ -138,8 +165,8 @@ Args parse_args(int argc, char** argv) {
     }
   }
   if (a.mesh.empty()) throw UsageError("no mesh given");
-  if (!have_sources) throw UsageError("--sources is required");
-  if (a.prefix.empty()) throw UsageError("-o OUT_PREFIX is required");
+  if (!have_sources && a.random == 0) throw UsageError("--sources or --random is required");
+  if (a.prefix.empty() && !a.print_sources) throw UsageError("-o OUT_PREFIX is required");
   if (!a.exact && !a.heat) throw UsageError("--no-exact without --heat computes nothing");
   return a;
 }
@@ -286,10 +313,39 @@ void write_doubles(const std::filesystem::path& path, const std::vector<double>&
       true);
 }
 
-int run(const Args& args) {
+/// `count` distinct non-isolated vertices drawn with std::mt19937_64(seed), not already in `taken`.
+std::vector<int> pick_sources(const edgefront::Mesh& mesh, int count, std::uint64_t seed, const std::vector<int>& taken) {
+  std::vector<int> candidates;
+  for (const auto v : mesh.vertices())
+    if (!mesh.is_isolated(v) && std::find(taken.begin(), taken.end(), v.idx()) == taken.end())
+      candidates.push_back(v.idx());
+  if (static_cast<size_t>(count) > candidates.size())
+    throw edgefront::InvalidInput("--random " + std::to_string(count) + ": the mesh has only " +
+                                  std::to_string(candidates.size()) + " usable vertices");
+  std::mt19937_64 rng(seed);
+  std::vector<int> out;
+  for (int k = 0; k < count; ++k) {
+    const size_t remaining = candidates.size() - static_cast<size_t>(k);
+    const size_t j = static_cast<size_t>(k) + static_cast<size_t>(rng() % remaining);  // partial Fisher-Yates
+    std::swap(candidates[static_cast<size_t>(k)], candidates[j]);
+    out.push_back(candidates[static_cast<size_t>(k)]);
+  }
+  return out;
+}
+
+int run(Args args) {
   const edgefront::MeshReadResult read = edgefront::read_mesh(args.mesh);
   const edgefront::Mesh& mesh = read.mesh;
   const size_t n = mesh.n_vertices();
+  if (args.random > 0) {
+    const std::vector<int> picked = pick_sources(mesh, args.random, args.seed, args.sources);
+    args.sources.insert(args.sources.end(), picked.begin(), picked.end());
+  }
+  if (args.print_sources) {
+    for (size_t i = 0; i < args.sources.size(); ++i) std::cout << (i ? "," : "") << args.sources[i];
+    std::cout << "\n";
+    return 0;
+  }
   for (const int s : args.sources) {
     if (static_cast<size_t>(s) >= n)
       throw edgefront::InvalidInput("source " + std::to_string(s) + " is not a vertex (the mesh has " +
