@@ -15,12 +15,18 @@ using detail::VRec;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Normals closer than this count as one plane (unfolding is then the identity).
+constexpr double kSmoothDot = 0.985;
+// Two corners see the same virtual source when the unfolded sources lie this close (relative).
+constexpr double kConsistency = 0.05;
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
 struct DRec {
   double d = kInf;
   Vec3 source{0, 0, 0};  // virtual source: where the source lies, unfolded into the plane of `face`
+  double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
+                         // shortest path bends around, such as a saddle or a border corner)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   int unsettled = 0;     // neighbours not settled yet
@@ -106,11 +112,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return *r;
   }
 
-  void offer(int v, double d, const Vec3& s, int face) {
+  void offer(int v, double d, const Vec3& s, double offset, int face) {
     DRec& r = record(v);
     if (r.settled || !(d < r.d)) return;
     r.d = d;
     r.source = s;
+    r.offset = offset;
     r.face = face;
     heap.emplace(d, v);
     peak_heap = std::max(peak_heap, heap.size());
@@ -121,11 +128,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     reset_structure(source);
     line_source = source.is_loop();
     if (!line_source) {
-      for (uint32_t v : sources) offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), -1);
+      for (uint32_t v : sources) offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
     } else {
       for (HalfedgeHandle h : source.loop) {
         const int v = mesh.to_vertex_handle(h).idx();
-        offer(v, 0.0, mesh.point(VertexHandle(v)), -1);
+        offer(v, 0.0, mesh.point(VertexHandle(v)), 0.0, -1);
         record(v).loop_in = h.idx();
       }
     }
@@ -162,88 +169,123 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       Vec3 x(0, 0, 0);
       int k = 0;
       for (VertexHandle v : mesh.fv_range(p.face)) x += mesh.point(v) * p.bary[k++];
-      for (VertexHandle v : mesh.fv_range(p.face)) offer(v.idx(), (mesh.point(v) - x).norm(), x, p.face.idx());
+      for (VertexHandle v : mesh.fv_range(p.face)) offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
     }
     note_memory();
   }
 
-  // The candidate distance of `c` from its settled neighbour `x` (record `rx`), offered to `c`.
-  void propagate(int x, const DRec& rx, int c) {
+  // Is the straight line from `s` to `c` (all in the plane with normal n) arriving through the
+  // segment a-b of the face (a, b, c)? `interior_ab` says whether a face lies beyond a-b.
+  static bool arrives_through(const Vec3& s, const Vec3& pc, const Vec3& pa, const Vec3& pb, const Vec3& n,
+                              bool interior_ab) {
+    const Vec3 ca = pa - pc, cb = pb - pc, cs = s - pc;
+    const double scale = ca.sqrnorm() + cb.sqrnorm() + cs.sqrnorm();
+    const double tol = 1e-12 * scale;
+    const double sab = OpenMesh::dot(n, OpenMesh::cross(ca, cb));
+    const double sas = OpenMesh::dot(n, OpenMesh::cross(ca, cs)) * (sab < 0 ? -1 : 1);
+    const double ssb = OpenMesh::dot(n, OpenMesh::cross(cs, cb)) * (sab < 0 ? -1 : 1);
+    if (sas < -tol || ssb < -tol) return false;  // outside the corner at c
+    // Beyond the line a-b (seen from c): then the path crosses a-b and needs a face there.
+    const double side_c = OpenMesh::dot(n, OpenMesh::cross(pb - pa, pc - pa));
+    const double side_s = OpenMesh::dot(n, OpenMesh::cross(pb - pa, s - pa));
+    const bool beyond = side_c * side_s < -tol * std::abs(side_c);
+    return !beyond || interior_ab;
+  }
+
+  // The candidate distances of `c` from its settled neighbour `x` (record `rx`), offered to `c`.
+  // `hxc` is the halfedge x -> c.
+  void propagate(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
     const Vec3& px = mesh.point(VertexHandle(x));
     const Vec3& pc = mesh.point(VertexHandle(c));
     const Vec3 xc = px - pc;
     const double e = xc.norm();
-    const HalfedgeHandle hxc = mesh.find_halfedge(VertexHandle(x), VertexHandle(c));
-    if (!hxc.is_valid()) return;
-    int faces[2] = {mesh.face_handle(hxc).idx(), mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx()};
+    const HalfedgeHandle hcx = mesh.opposite_halfedge_handle(hxc);
+    const int f_left = mesh.face_handle(hxc).idx(), f_right = mesh.face_handle(hcx).idx();
 
-    // Through x as a vertex: the Dijkstra bound, and x becomes the pseudo source.
-    {
-      const int f = faces[0] >= 0 ? faces[0] : faces[1];
-      const Vec3 s = e > 0 ? px + xc * (rx.d / e) : px;
-      offer(c, rx.d + e, s, f);
-    }
-    if (rx.d == 0 && rx.face < 0 && !line_source) return;  // x is the source itself: done exactly
+    // (1) Through x as a vertex: the Dijkstra bound; x becomes the pseudo source.
+    offer(c, rx.d + e, px, rx.d, f_left >= 0 ? f_left : f_right);
+    if (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0) return;  // x is the (pseudo) source: done
 
-    Vec3 best_s;
-    int best_f = -1;
     double best = kInf;
-    for (int t0 : faces) {
+    Vec3 best_s;
+    double best_offset = 0;
+    int best_f = -1;
+    // Causality: a path through x (or through the edge x-y) is not shorter at c than at its
+    // corners; a shorter one means the line does not really come that way.
+    auto consider = [&](const Vec3& s, double offset, int f, double at_least) {
+      const double d = offset + (s - pc).norm();
+      if (d >= at_least * (1 - 1e-12) && d < best) {
+        best = d;
+        best_s = s;
+        best_offset = offset;
+        best_f = f;
+      }
+    };
+    const Vec3 n_x = rx.face >= 0 ? face_normal(mesh, rx.face) : Vec3(0, 0, 0);
+    for (int side = 0; side < 2; ++side) {
+      const int t0 = side == 0 ? f_left : f_right;
       if (t0 < 0) continue;
-      Vec3 n0 = face_normal(mesh, t0);
-      Vec3 s = rx.source;
-      if (rx.face >= 0 && rx.face != t0) s = unfold(s, px, face_normal(mesh, rx.face), n0);
-      // Walk the fan of c from t0 toward the direction of s until the face that contains it.
-      int a = x;  // the edge we entered through (shared with the previous face)
-      int f = t0;
-      double walked = 0;
-      for (int step = 0; step < 64; ++step) {
-        // Third vertex b of face f (f = c, a, b in some order).
-        int b = -1;
-        for (VertexHandle v : mesh.fv_range(FaceHandle(f))) {
-          if (v.idx() != c && v.idx() != a) b = v.idx();
+      // The halfedge x -> y of t0 (y its third vertex) and the face beyond x-y.
+      const HalfedgeHandle hxy = side == 0 ? mesh.opposite_halfedge_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(hxc)))
+                                           : mesh.next_halfedge_handle(hcx);
+      // side 0: face(x->c) = (x, c, y): its halfedge y->x is next(next(x->c)); x->y is its opposite.
+      // side 1: face(c->x) = (c, x, y): next(c->x) = x->y.
+      const int y = mesh.to_vertex_handle(hxy).idx();
+      const Vec3& py = mesh.point(VertexHandle(y));
+      const HalfedgeHandle in_t0 = side == 0 ? mesh.opposite_halfedge_handle(hxy) : hxy;
+      const int t_back = mesh.face_handle(mesh.opposite_halfedge_handle(in_t0)).idx();
+      const bool interior_xy = t_back >= 0;
+      const Vec3 n0 = face_normal(mesh, t0);
+
+      // (2) x's own virtual source, unfolded exactly into t0: it lies in t0's plane already, in
+      // the face across x-y (an unfolding about that edge), or in a plane parallel to t0's.
+      // On a smooth stretch (normals within kSmoothDot) the rotation about x that takes x's plane
+      // onto t0's is a close stand-in for unfolding along the faces between them.
+      Vec3 sx_in_t0 = pc;
+      bool sx_known = false;
+      if (rx.face >= 0) {
+        const double nd = OpenMesh::dot(n_x, n0);
+        if (rx.face == t0 || rx.face == t_back || nd > kSmoothDot) {
+          sx_in_t0 = rx.face == t0 ? rx.source : unfold(rx.source, px, n_x, n0);
+          sx_known = true;
+          if (arrives_through(sx_in_t0, pc, px, py, n0, interior_xy)) consider(sx_in_t0, rx.offset, t0, rx.d);
         }
-        const Vec3 pa = mesh.point(VertexHandle(a)) - pc, pb = mesh.point(VertexHandle(b)) - pc, dv = s - pc;
-        const double sab = OpenMesh::dot(n0, OpenMesh::cross(pa, pb));
-        const double sav = OpenMesh::dot(n0, OpenMesh::cross(pa, dv));
-        const double svb = OpenMesh::dot(n0, OpenMesh::cross(dv, pb));
-        const double tol = -1e-12 * (pa.sqrnorm() + dv.sqrnorm());
-        if (sab * sav < tol * std::abs(sab) && step == 0) break;  // behind the edge c-x: the other face's job
-        if (sav * sab >= tol * std::abs(sab) && svb * sab >= tol * std::abs(sab)) {
-          // Inside the corner of f at c. The straight line must not come in across the border.
-          const Vec3 qa = mesh.point(VertexHandle(a)), qb = mesh.point(VertexHandle(b));
-          const double side_s = OpenMesh::dot(n0, OpenMesh::cross(qb - qa, s - qa));
-          const double side_c = OpenMesh::dot(n0, OpenMesh::cross(qb - qa, pc - qa));
-          bool ok = true;
-          if (side_s * side_c < 0) {
-            const HalfedgeHandle ab = mesh.find_halfedge(VertexHandle(a), VertexHandle(b));
-            ok = ab.is_valid() && !mesh.is_boundary(mesh.edge_handle(ab));
-          }
-          if (ok) {
-            const double d = (s - pc).norm();
-            if (d < best) {
-              best = d;
-              best_s = s;
-              best_f = f;
+      }
+      // (3) Both corners settled: the source where the two distances meet in t0's plane
+      // (fast-marching unfolding), if the line from there arrives through x-y.
+      const DRec* ry = dt.find(static_cast<uint32_t>(y));
+      if (ry && ry->settled && std::isfinite(ry->d) && rx.offset == 0 && ry->offset == 0) {
+        const Vec3 xy = py - px;
+        const double len = xy.norm();
+        if (len > 0) {
+          const Vec3 u = xy / len;
+          const Vec3 v = OpenMesh::cross(n0, u);
+          const double sc = OpenMesh::dot(pc - px, v);
+          const double sx = (rx.d * rx.d - ry->d * ry->d + len * len) / (2 * len);
+          double sy2 = rx.d * rx.d - sx * sx;
+          if (sy2 > -1e-12 * (rx.d * rx.d + 1e-300)) {
+            sy2 = std::max(sy2, 0.0);
+            const double sy = (sc > 0 ? -1 : 1) * std::sqrt(sy2);
+            const Vec3 s = px + u * sx + v * sy;
+            // Only where x and y see the same source: two different sources (or two sides of a
+            // cut locus) would meet at a point that is no source at all.
+            bool consistent = sx_known && (s - sx_in_t0).norm() <= kConsistency * (rx.d + len);
+            if (consistent) {
+              consistent = false;
+              if (ry->face >= 0) {
+                const Vec3 ny = face_normal(mesh, ry->face);
+                if (OpenMesh::dot(ny, n0) > kSmoothDot || ry->face == t0 || ry->face == t_back) {
+                  const Vec3 sy_in_t0 = ry->face == t0 ? ry->source : unfold(ry->source, py, ny, n0);
+                  consistent = (s - sy_in_t0).norm() <= kConsistency * (ry->d + len);
+                }
+              }
             }
+            if (consistent && arrives_through(s, pc, px, py, n0, interior_xy)) consider(s, 0.0, t0, std::max(rx.d, ry->d));
           }
-          break;
         }
-        // Beyond the edge c-b: unfold into the next face around c.
-        walked += std::acos(std::clamp(OpenMesh::dot(pa, pb) / std::sqrt(pa.sqrnorm() * pb.sqrnorm()), -1.0, 1.0));
-        if (walked > M_PI) break;
-        const HalfedgeHandle cb = mesh.find_halfedge(VertexHandle(c), VertexHandle(b));
-        int g = mesh.face_handle(cb).idx();
-        if (g == f) g = mesh.face_handle(mesh.opposite_halfedge_handle(cb)).idx();
-        if (g < 0) break;  // border
-        const Vec3 n1 = face_normal(mesh, g);
-        s = unfold(s, pc, n0, n1);
-        n0 = n1;
-        a = b;
-        f = g;
       }
     }
-    if (best_f >= 0) offer(c, best, best_s, best_f);
+    if (best_f >= 0) offer(c, best, best_s, best_offset, best_f);
   }
 
   // The line source: a loop vertex x gives its wedge neighbours their distance to the loop's two
@@ -274,12 +316,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
     }
     const HalfedgeHandle hxc = mesh.find_halfedge(VertexHandle(x), VertexHandle(c));
-    offer(c, best, foot, hxc.is_valid() ? mesh.face_handle(hxc).idx() : -1);
+    offer(c, best, foot, 0.0, hxc.is_valid() ? mesh.face_handle(hxc).idx() : -1);
   }
 
   void settle_neighbours(int x) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
-    auto visit = [&](int c) {
+    auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
       if (rc) {
         --rc->unsettled;
@@ -291,7 +333,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (rx.loop_in >= 0 && line_source && rx.d == 0) {
         propagate_from_line(x, rx, c);
       } else {
-        propagate(x, rx, c);
+        propagate(x, rx, c, hxc);
       }
     };
     if (rx.loop_in >= 0) {
@@ -309,16 +351,17 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         if (rn && rn->loop_in == g.idx()) break;
         g = nxt;
       }
-      for (VertexHandle y : mesh.vv_range(VertexHandle(x))) {
+      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(x))) {
+        const VertexHandle y = mesh.to_vertex_handle(h);
         if (std::find(wedge.begin(), wedge.end(), y.idx()) != wedge.end()) {
-          visit(y.idx());
+          visit(y.idx(), h);
         } else if (DRec* ry = dt.find(static_cast<uint32_t>(y.idx()))) {
           --ry->unsettled;
           if (ry->settled && ry->unsettled <= 0) dt.erase(static_cast<uint32_t>(y.idx()));
         }
       }
     } else {
-      for (VertexHandle y : mesh.vv_range(VertexHandle(x))) visit(y.idx());
+      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(x))) visit(mesh.to_vertex_handle(h).idx(), h);
     }
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));

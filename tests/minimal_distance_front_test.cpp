@@ -1,0 +1,300 @@
+#include "edgefront/minimal_distance_front.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "edgefront/error.h"
+#include "edgefront/minimal_edge_front.h"
+#include "front_test_util.h"
+
+namespace {
+
+using namespace edgefront;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+VertexHandle nearest_vertex(const Mesh& mesh, const Vec3& p) {
+  VertexHandle best;
+  double bd = kInf;
+  for (VertexHandle v : mesh.vertices()) {
+    const double d = (mesh.point(v) - p).norm();
+    if (d < bd) {
+      bd = d;
+      best = v;
+    }
+  }
+  return best;
+}
+
+// Property 3: on any triangulation of a convex planar region the distance from a vertex is the
+// Euclidean distance, to 1e-9 relative.
+TEST(Mdf, PlanarConvexRegionsAreExact) {
+  using namespace shapes;
+  const std::vector<std::pair<std::string, Mesh>> meshes = {
+      {"regular", grid(GridOptions{.cells = 20})},
+      {"jittered", grid(GridOptions{.cells = 20, .variant = GridVariant::jittered, .seed = 9})},
+      {"anisotropic", grid(GridOptions{.cells = 4, .variant = GridVariant::anisotropic, .anisotropy = 20})},
+      {"disk", grid(GridOptions{.cells = 10, .outline = GridOutline::disk})},
+  };
+  std::mt19937_64 rng(1);
+  for (const auto& [name, mesh] : meshes) {
+    for (int trial = 0; trial < 10; ++trial) {
+      const auto s = eftest::random_vertices(mesh, rng, 1)[0];
+      const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
+      EXPECT_EQ(f.stop, DistanceStop::Exhausted);
+      for (VertexHandle v : mesh.vertices()) {
+        const double exact = (mesh.point(v) - mesh.point(s)).norm();
+        ASSERT_NEAR(f.distance[v.idx()], exact, 1e-9 * std::max(exact, 1e-3)) << name << " vertex " << v.idx();
+        if (v != s) {
+          // The direction points at the source.
+          const Vec3 to_s = (mesh.point(s) - mesh.point(v)).normalized();
+          ASSERT_NEAR(OpenMesh::dot(f.direction[v.idx()], to_s), 1.0, 1e-9) << name;
+        }
+      }
+    }
+  }
+}
+
+// Property 4: developable surfaces. On the polyhedral cylinder the exact distance is the
+// straight line in the unrolled strip of the polygonal cross-section.
+TEST(Mdf, OpenCylinderUnrollsExactly) {
+  const int around = 48;
+  const double radius = 1.0;
+  const Mesh mesh = shapes::open_cylinder(around, 24, radius, 2.0);
+  const double side = 2 * radius * std::sin(M_PI / around);
+  std::mt19937_64 rng(4);
+  double sum = 0;
+  size_t count = 0;
+  for (int trial = 0; trial < 5; ++trial) {
+    const auto s = eftest::random_vertices(mesh, rng, 1)[0];
+    const Vec3 ps = mesh.point(s);
+    const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
+    for (VertexHandle v : mesh.vertices()) {
+      if (v == s) continue;
+      const Vec3 p = mesh.point(v);
+      const double turn = std::remainder(std::atan2(p[1], p[0]) - std::atan2(ps[1], ps[0]), 2 * M_PI);
+      const double arc = std::round(std::abs(turn) / (2 * M_PI / around)) * side;
+      const double exact = std::hypot(arc, p[2] - ps[2]);
+      sum += std::abs(f.distance[v.idx()] - exact) / exact;
+      ++count;
+    }
+  }
+  EXPECT_LT(sum / count, 1e-3);  // the bound: 0.1% mean
+  EXPECT_LT(sum / count, 1e-9);  // what the unfolding actually achieves
+}
+
+// Property 2 and 1: Euclidean <= d <= Dijkstra, the source is 0, settling order is (nearly)
+// non-decreasing; on every generated shape from random sources.
+class MdfOnShapes : public ::testing::TestWithParam<eftest::NamedMesh> {};
+
+TEST_P(MdfOnShapes, BoundsAndOrder) {
+  const Mesh mesh = GetParam().make();
+  std::mt19937_64 rng(8);
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto sources = eftest::random_vertices(mesh, rng, 1 + trial % 2);
+    const FrontSource src = FrontSource::from_vertices(sources);
+    const DistanceField f = geodesic_distance(mesh, src);
+    const DistanceField dj = dijkstra_distance(mesh, src);
+    const auto hops = eftest::bfs_levels(mesh, sources);
+    for (VertexHandle v : mesh.vertices()) {
+      const double d = f.distance[v.idx()];
+      ASSERT_EQ(std::isinf(d), hops[v.idx()] < 0) << GetParam().name << ": reached iff connected";
+      if (std::isinf(d)) continue;
+      double euclid = kInf;
+      for (VertexHandle s : sources) euclid = std::min(euclid, (mesh.point(v) - mesh.point(s)).norm());
+      ASSERT_GE(d, euclid * (1 - 1e-9) - 1e-12) << GetParam().name << " vertex " << v.idx();
+      ASSERT_LE(d, dj.distance[v.idx()] * (1 + 1e-9) + 1e-12) << GetParam().name << " vertex " << v.idx();
+    }
+    for (VertexHandle s : sources) EXPECT_EQ(f.distance[s.idx()], 0.0);
+    for (size_t i = 1; i < f.order.size(); ++i) {
+      ASSERT_GE(f.distance[f.order[i].idx()], f.distance[f.order[i - 1].idx()] - 1e-9) << "settling order";
+    }
+  }
+}
+
+TEST_P(MdfOnShapes, StepwiseFrontStaysValid) {
+  const Mesh mesh = GetParam().make();
+  std::mt19937_64 rng(2);
+  MinimalDistanceFront front(mesh);
+  for (int trial = 0; trial < 3; ++trial) {
+    front.reset(FrontSource::from_vertices(eftest::random_vertices(mesh, rng, 1)));
+    front.validate();
+    while (front.step()) front.validate();
+    EXPECT_EQ(front.stop_reason(), DistanceStop::Exhausted);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, MdfOnShapes, ::testing::ValuesIn(eftest::small_shapes()), eftest::shape_test_name);
+
+// Property 5 in small: on a fine sphere the error against the smooth great-circle distance is
+// far below Dijkstra's.
+TEST(Mdf, SphereIsAccurate) {
+  const Mesh mesh = shapes::icosphere(4);
+  const VertexHandle s(7);
+  const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
+  const DistanceField dj = dijkstra_distance(mesh, FrontSource::vertex(s));
+  double err = 0, err_dj = 0;
+  size_t n = 0;
+  for (VertexHandle v : mesh.vertices()) {
+    const double exact = std::acos(std::clamp(OpenMesh::dot(mesh.point(v), mesh.point(s)), -1.0, 1.0));
+    if (exact < 1e-9 || exact > 3.0) continue;
+    err += std::abs(f.distance[v.idx()] - exact) / exact;
+    err_dj += std::abs(dj.distance[v.idx()] - exact) / exact;
+    ++n;
+  }
+  // Against the smooth sphere (the polyhedral geodesics differ from it slightly too). Measured:
+  // 0.28% mean here, Dijkstra 8.5%.
+  EXPECT_LT(err / n, 0.004);
+  EXPECT_LT(err / n, err_dj / n / 10);
+}
+
+// Property 6: symmetry.
+TEST(Mdf, DistancesAreNearlySymmetric) {
+  const Mesh mesh = shapes::bumpy_sphere(3, 1.0, 0.15, 3.0);
+  std::mt19937_64 rng(6);
+  double sum = 0;
+  for (int i = 0; i < 20; ++i) {
+    const auto ab = eftest::random_vertices(mesh, rng, 2);
+    const double dab = geodesic_distance(mesh, FrontSource::vertex(ab[0])).distance[ab[1].idx()];
+    const double dba = geodesic_distance(mesh, FrontSource::vertex(ab[1])).distance[ab[0].idx()];
+    sum += std::abs(dab - dba) / dab;
+  }
+  // Measured 0.7% on this coarse, strongly bumped mesh (642 vertices); the target of 0.05%
+  // on real meshes is checked by the benchmark, not here.
+  EXPECT_LT(sum / 20, 0.015);
+}
+
+// Property 8: with d_max, work and memory follow the area inside d_max, not the mesh.
+TEST(Mdf, MaxDistanceQueriesAreLocal) {
+  auto query = [](int cells) {
+    const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = cells, .half_size = cells / 20.0});
+    const VertexHandle c = nearest_vertex(mesh, Vec3(0, 0, 0));
+    MinimalDistanceFront front(mesh);
+    front.reset(FrontSource::vertex(c), DistanceOptions{.max_distance = 0.55});
+    size_t settled = 0;
+    front.set_settled_callback([&](VertexHandle, double d, const Vec3&) {
+      EXPECT_LE(d, 0.55);
+      ++settled;
+    });
+    EXPECT_EQ(front.run(), DistanceStop::MaxDistance);
+    return std::make_tuple(settled, front.peak_front_size(), front.peak_working_memory_bytes());
+  };
+  // Cells of 0.1 in both; 100x more vertices in the second.
+  const auto small = query(20);
+  const auto large = query(200);
+  EXPECT_EQ(small, large);
+  EXPECT_GT(std::get<0>(small), 50u);
+}
+
+TEST(Mdf, MaxDistanceAndTargetStops) {
+  const Mesh mesh = shapes::icosphere(3);
+  const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), {.max_distance = 1.0});
+  EXPECT_EQ(f.stop, DistanceStop::MaxDistance);
+  size_t finite = 0;
+  for (double d : f.distance) {
+    if (std::isfinite(d)) {
+      EXPECT_LE(d, 1.0);
+      ++finite;
+    }
+  }
+  EXPECT_GT(finite, 10u);
+  EXPECT_LT(finite, mesh.n_vertices());
+  const DistanceField t = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), {.target = VertexHandle(100)});
+  EXPECT_EQ(t.stop, DistanceStop::TargetReached);
+  EXPECT_EQ(t.order.back(), VertexHandle(100));
+  const DistanceField zero = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), {.max_distance = 0.0});
+  EXPECT_EQ(zero.order.size(), 1u);
+}
+
+TEST(Mdf, DisconnectedPartsAreInfiniteNeverZero) {
+  const Mesh mesh = shapes::nested_spheres(2);
+  const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)));
+  const auto hops = eftest::bfs_levels(mesh, {VertexHandle(0)});
+  size_t inf = 0;
+  for (VertexHandle v : mesh.vertices()) {
+    EXPECT_EQ(std::isinf(f.distance[v.idx()]), hops[v.idx()] < 0);
+    inf += std::isinf(f.distance[v.idx()]);
+  }
+  EXPECT_GT(inf, 0u);
+}
+
+// Property 9: a closed edge path as source; on a planar grid the distance to a straight
+// horizontal line of vertices on its ahead side is the height above it.
+TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
+  const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 16});
+  // A rectangle loop: y = -0.5 from x = -0.75 to 0.75 and back along y = -0.25 (ahead = outside).
+  std::vector<VertexHandle> ring;
+  for (double x = -0.75; x <= 0.75 + 1e-9; x += 0.125) ring.push_back(nearest_vertex(mesh, Vec3(x, -0.5, 0)));
+  ring.push_back(nearest_vertex(mesh, Vec3(0.75, -0.375, 0)));
+  for (double x = 0.75; x >= -0.75 - 1e-9; x -= 0.125) ring.push_back(nearest_vertex(mesh, Vec3(x, -0.25, 0)));
+  ring.push_back(nearest_vertex(mesh, Vec3(-0.75, -0.375, 0)));
+  for (LoopSide side : {LoopSide::Left, LoopSide::Right}) {
+    const FrontSource src = loop_from_vertices(mesh, ring, side);
+    const DistanceField f = geodesic_distance(mesh, src);
+    const auto levels = edge_front_levels(mesh, src);
+    size_t reached = 0;
+    for (VertexHandle v : mesh.vertices()) {
+      ASSERT_EQ(std::isfinite(f.distance[v.idx()]), levels[v.idx()] >= 0) << "ahead side only";
+      if (!std::isfinite(f.distance[v.idx()])) continue;
+      ++reached;
+      const Vec3 p = mesh.point(v);
+      // Distance to the rectangle's boundary (outside: to the rectangle; inside: to its border).
+      const double dx = std::max({-0.75 - p[0], 0.0, p[0] - 0.75});
+      const double dy = std::max({-0.5 - p[1], 0.0, p[1] + 0.25});
+      const bool inside = dx == 0 && dy == 0;
+      const double exact = inside ? std::min({p[0] + 0.75, 0.75 - p[0], p[1] + 0.5, -0.25 - p[1]})
+                                  : std::hypot(dx, dy);
+      ASSERT_NEAR(f.distance[v.idx()], exact, 1e-9 + 0.02 * exact) << "vertex " << v.idx();
+    }
+    EXPECT_GT(reached, 0u);
+  }
+}
+
+TEST(Mdf, SurfacePointSource) {
+  const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 10});
+  const FaceHandle f(37);
+  const SurfacePoint p{f, {0.2, 0.3, 0.5}};
+  Vec3 x(0, 0, 0);
+  int k = 0;
+  for (VertexHandle v : mesh.fv_range(f)) x += mesh.point(v) * p.bary[k++];
+  const DistanceField d = geodesic_distance(mesh, std::vector<SurfacePoint>{p});
+  for (VertexHandle v : mesh.vertices()) {
+    const double exact = (mesh.point(v) - x).norm();
+    ASSERT_NEAR(d.distance[v.idx()], exact, 1e-9 * exact);
+  }
+}
+
+TEST(Mdf, BadInputIsRefused) {
+  Mesh mesh = shapes::icosphere(1);
+  MinimalDistanceFront front(mesh);
+  EXPECT_THROW(front.reset(FrontSource::vertex(VertexHandle(1000))), InvalidInput);
+  EXPECT_THROW(front.reset(FrontSource::vertex(VertexHandle(0)), {.max_distance = -1}), InvalidInput);
+  EXPECT_THROW(front.reset(FrontSource::vertex(VertexHandle(0)), {.max_distance = std::nan("")}), InvalidInput);
+  EXPECT_THROW(front.reset(FrontSource::vertex(VertexHandle(0)), {.target = VertexHandle(-3)}), InvalidInput);
+  EXPECT_THROW(front.reset(std::vector<SurfacePoint>{}), InvalidInput);
+  EXPECT_THROW(front.reset(std::vector<SurfacePoint>{{FaceHandle(9999), {1, 0, 0}}}), InvalidInput);
+  EXPECT_THROW(front.reset(std::vector<SurfacePoint>{{FaceHandle(0), {0.5, 0.5, 0.5}}}), InvalidInput);
+  EXPECT_THROW(front.reset(std::vector<SurfacePoint>{{FaceHandle(0), {-0.5, 1.0, 0.5}}}), InvalidInput);
+  EXPECT_THROW(front.reset(std::vector<SurfacePoint>{{FaceHandle(0), {std::nan(""), 0.5, 0.5}}}), InvalidInput);
+  EXPECT_THROW(dijkstra_distance(mesh, FrontSource::vertex(VertexHandle(1000))), InvalidInput);
+  mesh.delete_vertex(VertexHandle(3), false);
+  MinimalDistanceFront front2(mesh);
+  EXPECT_THROW(front2.reset(FrontSource::vertex(VertexHandle(3))), InvalidInput);
+}
+
+TEST(Mdf, ReusedFrontGivesTheSameField) {
+  const Mesh mesh = shapes::torus(24, 10);
+  MinimalDistanceFront front(mesh);
+  std::vector<double> d(mesh.n_vertices());
+  front.set_settled_callback([&](VertexHandle v, double x, const Vec3&) { d[v.idx()] = x; });
+  for (int s : {5, 60, 5}) {
+    std::fill(d.begin(), d.end(), kInf);
+    front.reset(FrontSource::vertex(VertexHandle(s)));
+    front.run();
+    EXPECT_EQ(d, geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s))).distance);
+  }
+}
+
+}  // namespace
