@@ -25,7 +25,10 @@ run() {
 # THE MAIN JOB: its one line below is what later work replaces. Planned:
 #   run "$BUILD_DIR/apps/gcs-reconstruct" data/vault-shell.xyz -o out/vault.ply
 run_main_job() {
-  run "$BUILD_DIR/apps/ef-info" data/torus.off
+  # Until the reconstructor exists: a geodesic distance field and the edge-front levels from
+  # vertex 0 of the bundled bumpy sphere, as colored PLY files.
+  run "$BUILD_DIR/apps/ef-distance" data/bumpy-sphere.off --source 0 -o out/bumpy-sphere-distance.ply
+  run "$BUILD_DIR/apps/ef-front" data/bumpy-sphere.off --source 0 -o out/bumpy-sphere-levels.ply
 }
 # ---------------------------------------------------------------------------------------------
 
