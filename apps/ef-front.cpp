@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
 
     // Output.
     if (out_ext == ".ply") {
-      const int max_level = *std::max_element(level.begin(), level.end());
+      const int max_level = level.empty() ? 0 : *std::max_element(level.begin(), level.end());
       edgefront::MeshWriteOptions wo;
       std::vector<double> values(n);
       wo.vertex_colors.resize(n);
