@@ -40,7 +40,8 @@ RunRecord run_checked(const Mesh& mesh, const FrontSource& source, MinimalEdgeFr
   front.validate();
   EXPECT_TRUE(front.exhausted());
   for (const FrontLoop& loop : front.loops()) {
-    EXPECT_TRUE(loop.inert || source.is_loop()) << "a non-inert loop is left after exhaustion";
+    EXPECT_TRUE(loop.inert || loop.barrier) << "a loop that could still expand is left after exhaustion";
+    EXPECT_TRUE(!loop.barrier || source.is_loop());
   }
   return r;
 }

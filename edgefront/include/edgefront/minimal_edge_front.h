@@ -50,7 +50,8 @@ struct FrontEvent {
 struct FrontLoop {
   std::vector<HalfedgeHandle> halfedges;
   std::vector<VertexHandle> vertices;
-  bool inert = false;  ///< every halfedge lies on the mesh border: the loop rests there
+  bool inert = false;    ///< every halfedge lies on the mesh border: the loop rests there
+  bool barrier = false;  ///< the back side of a loop source, never expanded (see `FrontSource`)
 };
 
 /// Options of the Minimal Edge Front.

@@ -601,12 +601,14 @@ class EdgeFrontCore {
       if (!(nodes[i].flags & kNodeLive) || seen[i]) continue;
       FrontLoop loop;
       loop.inert = true;
+      loop.barrier = true;
       int id = static_cast<int>(i);
       do {
         seen[id] = 1;
         loop.halfedges.push_back(HalfedgeHandle(nodes[id].he));
         loop.vertices.push_back(VertexHandle(tov(nodes[id].he)));
         loop.inert = loop.inert && !has_face(nodes[id].he);
+        loop.barrier = loop.barrier && (nodes[id].flags & kNodeBarrier);
         id = nodes[id].next;
       } while (id != static_cast<int>(i));
       out.push_back(std::move(loop));

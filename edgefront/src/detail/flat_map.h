@@ -26,6 +26,12 @@ class FlatMap {
   /// Removes every entry; keeps the capacity unless it is far above `keep`.
   void clear(size_t keep = 1024) {
     if (keys_.size() > 4 * keep && keys_.size() > 64) {
+      // Shrink: a reused front that once held a large query must not pay for it in every small one.
+      keys_.clear();
+      vals_.clear();
+      keys_.shrink_to_fit();
+      vals_.shrink_to_fit();
+      size_ = 0;
       rehash(16);
     } else {
       std::fill(keys_.begin(), keys_.end(), kEmpty);
