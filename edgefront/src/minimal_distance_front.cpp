@@ -29,6 +29,7 @@ struct DRec {
                          // shortest path bends around, such as a saddle or a border corner)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
+  Vec3 normal{0, 0, 0};  // unit normal of `face`, filled in when the vertex settles
   int unsettled = 0;     // neighbours not settled yet
   bool settled = false;
 };
@@ -205,6 +206,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // (1) Through x as a vertex: the Dijkstra bound; x becomes the pseudo source.
     offer(c, rx.d + e, px, rx.d, f_left >= 0 ? f_left : f_right);
     if (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0) return;  // x is the (pseudo) source: done
+    // Every other candidate is at least rx.d (causality): nothing to gain if c is already there.
+    if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && rc->d <= rx.d) return;
 
     double best = kInf;
     Vec3 best_s;
@@ -221,7 +224,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         best_f = f;
       }
     };
-    const Vec3 n_x = rx.face >= 0 ? face_normal(mesh, rx.face) : Vec3(0, 0, 0);
+    const Vec3& n_x = rx.normal;
     for (int side = 0; side < 2; ++side) {
       const int t0 = side == 0 ? f_left : f_right;
       if (t0 < 0) continue;
@@ -273,7 +276,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
             if (consistent) {
               consistent = false;
               if (ry->face >= 0) {
-                const Vec3 ny = face_normal(mesh, ry->face);
+                const Vec3& ny = ry->normal;
                 if (OpenMesh::dot(ny, n0) > kSmoothDot || ry->face == t0 || ry->face == t_back) {
                   const Vec3 sy_in_t0 = ry->face == t0 ? ry->source : unfold(ry->source, py, ny, n0);
                   consistent = (s - sy_in_t0).norm() <= kConsistency * (ry->d + len);
@@ -381,6 +384,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
       heap.pop();
       r->settled = true;
+      if (r->face >= 0) r->normal = face_normal(mesh, r->face);
       ++n_settled;
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);

@@ -297,8 +297,7 @@ class EdgeFrontCore {
   void expand(int n1) {
     const int n2 = nodes[n1].next;
     const int h1 = nodes[n1].he, h2 = nodes[n2].he;
-    const int v = tov(h1);
-    require_manifold(v);
+    const int v = tov(h1);  // checked for manifoldness when it joined
     const int faces = build_wedge(h1, h2);
     EF_CHECK(faces > 0, "expanding an occurrence with nothing ahead at " + vname(v));
     const bool border = seg.size() > static_cast<size_t>(faces);
