@@ -213,7 +213,14 @@ std::string format_stats(const MeshStats& s) {
   for (size_t c = 0; c < s.per_component.size() && c < kMaxListed; ++c) {
     const MeshStats::Component& comp = s.per_component[c];
     out << "  component " << c << ": " << comp.vertices << " vertices, " << comp.faces << " faces, "
-        << comp.border_loops << " border loops, euler " << comp.euler << ", genus " << comp.genus << "\n";
+        << comp.border_loops << " border loops, euler " << comp.euler;
+    // Genus is a surface property: an isolated vertex (a point of a cloud) has none.
+    if (comp.faces > 0) {
+      out << ", genus " << comp.genus;
+    } else {
+      out << ", no faces";
+    }
+    out << "\n";
   }
   if (s.per_component.size() > kMaxListed) {
     out << "  ... and " << (s.per_component.size() - kMaxListed) << " more components\n";
