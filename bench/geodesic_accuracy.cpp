@@ -398,6 +398,11 @@ int run_mesh(const MeshArgs& a) {
   // Hard bounds every geodesic distance obeys: Euclidean <= d <= Dijkstra; and the MDF settles in
   // non-decreasing distance order.
   size_t below_euclid = 0, above_dijkstra = 0, inversions = 0, settled = 0;
+  struct BelowEuclid {
+    int source, vertex;
+    double euclid, exact, ours;
+  };
+  std::vector<BelowEuclid> below_list;
 
   for (const int s : sources) {
     const std::vector<double> exact = read_doubles(a.prefix + ".exact." + std::to_string(s) + ".bin", n);
@@ -438,7 +443,11 @@ int run_mesh(const MeshArgs& a) {
     for (const auto v : mesh.vertices()) {
       const double dm = m.field.distance[static_cast<size_t>(v.idx())];
       if (!std::isfinite(dm)) continue;
-      if (dm < (mesh.point(v) - ps).norm() * (1 - 1e-9)) ++below_euclid;
+      const double e = (mesh.point(v) - ps).norm();
+      if (dm < e * (1 - 1e-9)) {
+        ++below_euclid;
+        below_list.push_back({s, v.idx(), e, exact[static_cast<size_t>(v.idx())], dm});
+      }
       if (dm > d.field.distance[static_cast<size_t>(v.idx())] * (1 + 1e-9)) ++above_dijkstra;
     }
     double last = 0;
@@ -467,6 +476,18 @@ int run_mesh(const MeshArgs& a) {
   std::cout << "\nMDF bounds over all sources: " << below_euclid << " values below the Euclidean distance, "
             << above_dijkstra << " above Dijkstra (both must be 0); " << inversions << " of " << settled
             << " vertices settled below the largest distance settled before them.\n";
+  if (!below_list.empty()) {
+    std::sort(below_list.begin(), below_list.end(), [](const BelowEuclid& x, const BelowEuclid& y) {
+      return (x.euclid - x.ours) / x.euclid > (y.euclid - y.ours) / y.euclid;
+    });
+    std::cout << "\nLargest MDF values below the Euclidean distance:\n\n| source | vertex | Euclidean | exact | MDF | "
+                 "(Euclidean - MDF) / Euclidean |\n|---|---|---|---|---|---|\n";
+    for (size_t i = 0; i < std::min<size_t>(5, below_list.size()); ++i) {
+      const BelowEuclid& b = below_list[i];
+      std::cout << "| " << b.source << " | " << b.vertex << " | " << std::setprecision(10) << b.euclid << " | "
+                << b.exact << " | " << b.ours << " | " << pct((b.euclid - b.ours) / b.euclid, 4) << " |\n";
+    }
+  }
 
   std::cout << "\nMean relative error per source:\n\n| source | MDF | Dijkstra | heat (iDT) |\n|---|---|---|---|\n";
   for (const PerSource& p : per_source)
