@@ -20,14 +20,8 @@ namespace eftest {
 
 using namespace edgefront;
 
-/// Breadth-first hop distance from a vertex set (-1 where unreachable).
-inline std::vector<int> bfs_levels(const Mesh& mesh, const std::vector<VertexHandle>& sources) {
-  std::vector<int> d(mesh.n_vertices(), -1);
-  std::queue<VertexHandle> q;
-  for (VertexHandle s : sources) {
-    d[s.idx()] = 0;
-    q.push(s);
-  }
+/// Continues a breadth-first search: every vertex in `q` has its level in `d`; unreached are -1.
+inline void spread_levels(const Mesh& mesh, std::vector<int>& d, std::queue<VertexHandle>& q) {
   while (!q.empty()) {
     const VertexHandle x = q.front();
     q.pop();
@@ -38,6 +32,17 @@ inline std::vector<int> bfs_levels(const Mesh& mesh, const std::vector<VertexHan
       }
     }
   }
+}
+
+/// Breadth-first hop distance from a vertex set (-1 where unreachable).
+inline std::vector<int> bfs_levels(const Mesh& mesh, const std::vector<VertexHandle>& sources) {
+  std::vector<int> d(mesh.n_vertices(), -1);
+  std::queue<VertexHandle> q;
+  for (VertexHandle s : sources) {
+    d[s.idx()] = 0;
+    q.push(s);
+  }
+  spread_levels(mesh, d, q);
   return d;
 }
 
@@ -60,16 +65,7 @@ inline std::vector<int> loop_bfs_levels(const Mesh& mesh, const std::vector<Half
       g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
     }
   }
-  while (!q.empty()) {
-    const VertexHandle x = q.front();
-    q.pop();
-    for (VertexHandle y : mesh.vv_range(x)) {
-      if (d[y.idx()] < 0) {
-        d[y.idx()] = d[x.idx()] + 1;
-        q.push(y);
-      }
-    }
-  }
+  spread_levels(mesh, d, q);
   return d;
 }
 
