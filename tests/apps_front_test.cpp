@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "app_test_util.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,25 +36,9 @@ using edgefront::FrontSource;
 using edgefront::Mesh;
 using edgefront::VertexHandle;
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-/// 'text' for the shell (appended piecewise: GCC 12 warns -Wrestrict on "..." + std::string&&).
-std::string quoted(const std::string& text) {
-  std::string q(1, '\'');
-  q.append(text);
-  q.push_back('\'');
-  return q;
-}
+using eftest::CommandResult;
+using eftest::slurp;
+std::string quoted(const std::string& text) { return eftest::shell_quoted(text); }
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -80,18 +66,7 @@ class AppsFrontTest : public ::testing::Test {
     std::error_code ec;
     if (!dir_.empty()) fs::remove_all(dir_, ec);
   }
-  CommandResult run(const std::string& args) const {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string command = quoted(app_.string());
-    command.append(" ").append(args).append(" >").append(quoted(out.string()));
-    command.append(" 2>").append(quoted(err.string()));
-    const int status = std::system(command.c_str());
-    CommandResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
+  CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
   /// Expects exit code 1 and exactly one line "<app>: error: ..." on stderr, mentioning `hint`.
   void expect_error(const std::string& args, const std::string& hint) const {
     const CommandResult r = run(args);

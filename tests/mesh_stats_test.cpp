@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "app_test_util.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -191,17 +193,7 @@ TEST(MeshStats, EmptyMeshAndFormatting) {
 
 namespace {
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using eftest::CommandResult;
 
 class MeshStatsEfInfo : public ::testing::Test {
  protected:
@@ -215,25 +207,8 @@ class MeshStatsEfInfo : public ::testing::Test {
     std::error_code ec;
     if (!dir_.empty()) fs::remove_all(dir_, ec);
   }
-  /// 'text' for the shell. (Built with append: GCC 12 warns -Wrestrict on "..." + std::string&&.)
-  static std::string quoted(const std::string& text) {
-    std::string q(1, '\'');
-    q.append(text);
-    q.push_back('\'');
-    return q;
-  }
-  CommandResult run(const std::string& args) {
-    const fs::path out = dir_ / "out.txt", err = dir_ / "err.txt";
-    std::string command = quoted(app_.string());
-    command.append(" ").append(args).append(" >").append(quoted(out.string()));
-    command.append(" 2>").append(quoted(err.string()));
-    const int status = std::system(command.c_str());
-    CommandResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
+  static std::string quoted(const std::string& text) { return eftest::shell_quoted(text); }
+  CommandResult run(const std::string& args) { return eftest::run_command(app_, args, dir_); }
   static std::string data(const std::string& name) {
     return quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / name).string());
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 
+#include "detail/front_levels.h"
 #include "detail/edge_front_core.h"
 
 namespace edgefront {
@@ -189,17 +190,7 @@ void MinimalEdgeFront::validate() const {
 }
 
 std::vector<int> edge_front_levels(const Mesh& mesh, const FrontSource& source, int max_levels) {
-  std::vector<int> level(mesh.n_vertices(), -1);
-  MinimalEdgeFront front(mesh);
-  front.set_enclosed_callback([&](VertexHandle v, int l) {
-    if (level[v.idx()] < 0) level[v.idx()] = l;
-  });
-  front.reset(source);
-  front.run(max_levels);
-  for (auto [v, l] : front.front_vertices()) {
-    if (level[v.idx()] < 0) level[v.idx()] = l;
-  }
-  return level;
+  return detail::join_levels<MinimalEdgeFront>(mesh, source, max_levels);
 }
 
 }  // namespace edgefront

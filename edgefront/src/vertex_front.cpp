@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "detail/front_levels.h"
 #include "detail/flat_map.h"
 #include "edgefront/error.h"
 
@@ -213,17 +214,7 @@ void VertexFront::validate() const {
 }
 
 std::vector<int> vertex_front_levels(const Mesh& mesh, const FrontSource& source, int max_levels) {
-  std::vector<int> level(mesh.n_vertices(), -1);
-  VertexFront front(mesh);
-  front.set_enclosed_callback([&](VertexHandle v, int l) {
-    if (level[v.idx()] < 0) level[v.idx()] = l;
-  });
-  front.reset(source);
-  front.run(max_levels);
-  for (auto [v, l] : front.front_vertices()) {
-    if (level[v.idx()] < 0) level[v.idx()] = l;
-  }
-  return level;
+  return detail::join_levels<VertexFront>(mesh, source, max_levels);
 }
 
 }  // namespace edgefront
