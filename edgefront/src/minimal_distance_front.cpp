@@ -1,6 +1,9 @@
 #include "edgefront/minimal_distance_front.h"
 
 #include <algorithm>
+#include <array>
+#include <numbers>
+#include <optional>
 #include <cmath>
 #include <queue>
 #include <string>
@@ -15,10 +18,8 @@ using detail::VRec;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Normals closer than this count as one plane (unfolding is then the identity).
-constexpr double kSmoothDot = 0.985;
-// Two corners see the same virtual source when the unfolded sources lie this close (relative).
-constexpr double kConsistency = 0.05;
+// Face normals closer than this count as one plane.
+constexpr double kFlatDot = 1 - 1e-9;
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
@@ -29,9 +30,25 @@ struct DRec {
                          // shortest path bends around, such as a saddle or a border corner)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
-  Vec3 normal{0, 0, 0};  // unit normal of `face`, filled in when the vertex settles
+  Vec3 origin{0, 0, 0};  // where `source` really lies (the source point or the pseudo-source vertex)
   int unsettled = 0;     // neighbours not settled yet
   bool settled = false;
+};
+
+// A point of a 2D frame (see MinimalDistanceFront::Impl::lay_out).
+struct P2 {
+  double x, y;
+};
+double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
+double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
+
+// A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
+struct Candidate {
+  double d = kInf;
+  Vec3 source{0, 0, 0};
+  double offset = 0;
+  int face = -1;
+  Vec3 origin{0, 0, 0};
 };
 
 Vec3 face_normal(const Mesh& mesh, int f) {
@@ -43,19 +60,6 @@ Vec3 face_normal(const Mesh& mesh, int f) {
   Vec3 n = OpenMesh::cross(b - a, c - a);
   const double l = n.norm();
   return l > 0 ? n / l : n;
-}
-
-// Rotates p about the line through `o` so that the plane with normal n1 maps onto the plane with
-// normal n2 (the unfolding across the line where the two planes meet).
-Vec3 unfold(const Vec3& p, const Vec3& o, const Vec3& n1, const Vec3& n2) {
-  Vec3 k = OpenMesh::cross(n1, n2);
-  const double s = k.norm();
-  const double c = OpenMesh::dot(n1, n2);
-  if (s < 1e-15) return p;  // coplanar (or folded flat: nothing sensible to rotate)
-  k /= s;
-  const Vec3 v = p - o;
-  // Rodrigues: v cos + (k x v) sin + k (k.v)(1 - cos), with sin = s, cos = c.
-  return o + v * c + OpenMesh::cross(k, v) * s + k * (OpenMesh::dot(k, v) * (1 - c));
 }
 
 std::string dname(double d) { return std::to_string(d); }
@@ -72,6 +76,19 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   size_t peak_heap = 0;
   bool line_source = false;
   std::function<void(VertexHandle, double, const Vec3&)> on_settled;
+
+  // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
+  // vertex, unit direction and length, the face after it (-1 in a border gap) and that face's
+  // corner angle at the vertex. Rebuilt for every settled vertex; reused storage.
+  struct Ray {
+    int v;
+    Vec3 u;
+    double len;
+    int face_after;
+    double angle;
+  };
+  std::vector<Ray> ring;
+  bool ring_closed = false;
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
 
@@ -113,15 +130,33 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return *r;
   }
 
-  void offer(int v, double d, const Vec3& s, double offset, int face) {
+  void offer(int v, const Candidate& k) {
     DRec& r = record(v);
-    if (r.settled || !(d < r.d)) return;
-    r.d = d;
-    r.source = s;
-    r.offset = offset;
-    r.face = face;
-    heap.emplace(d, v);
+    if (r.settled) return;
+    // Better: shorter, or as short (to rounding) from a source nearer the true one (a smaller
+    // offset). A pseudo source at a vertex that lies exactly on the straight path ties with the
+    // true source; keeping the pseudo source would bend every path continued from it.
+    const bool shorter = k.d < r.d * (1 - 1e-12);
+    const bool tie_but_straighter = !(k.d > r.d * (1 + 1e-12)) && k.offset < r.offset;
+    if (!shorter && !tie_but_straighter) return;
+    r.d = k.d;
+    r.source = k.source;
+    r.offset = k.offset;
+    r.face = k.face;
+    r.origin = k.origin;
+    heap.emplace(k.d, v);
     peak_heap = std::max(peak_heap, heap.size());
+  }
+
+  // A source point `s` (a real one, not unfolded) in the plane of `face` (-1: s is the vertex itself).
+  void offer(int v, double d, const Vec3& s, double offset, int face) {
+    Candidate k;
+    k.d = d;
+    k.source = s;
+    k.origin = s;
+    k.offset = offset;
+    k.face = face;
+    offer(v, k);
   }
 
   void reset(const FrontSource& source, const DistanceOptions& o) {
@@ -175,22 +210,134 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     note_memory();
   }
 
-  // Is the straight line from `s` to `c` (all in the plane with normal n) arriving through the
-  // segment a-b of the face (a, b, c)? `interior_ab` says whether a face lies beyond a-b.
-  static bool arrives_through(const Vec3& s, const Vec3& pc, const Vec3& pa, const Vec3& pb, const Vec3& n,
-                              bool interior_ab) {
-    const Vec3 ca = pa - pc, cb = pb - pc, cs = s - pc;
-    const double scale = ca.sqrnorm() + cb.sqrnorm() + cs.sqrnorm();
-    const double tol = 1e-12 * scale;
-    const double sab = OpenMesh::dot(n, OpenMesh::cross(ca, cb));
-    const double sas = OpenMesh::dot(n, OpenMesh::cross(ca, cs)) * (sab < 0 ? -1 : 1);
-    const double ssb = OpenMesh::dot(n, OpenMesh::cross(cs, cb)) * (sab < 0 ? -1 : 1);
-    if (sas < -tol || ssb < -tol) return false;  // outside the corner at c
-    // Beyond the line a-b (seen from c): then the path crosses a-b and needs a face there.
-    const double side_c = OpenMesh::dot(n, OpenMesh::cross(pb - pa, pc - pa));
-    const double side_s = OpenMesh::dot(n, OpenMesh::cross(pb - pa, s - pa));
-    const bool beyond = side_c * side_s < -tol * std::abs(side_c);
-    return !beyond || interior_ab;
+  // ---- Candidates from a settled vertex x for its neighbour c ---------------------------------
+  //
+  // They are worked out in a 2D frame of a face t0 at the edge x-c: x at the origin, c at (e, 0),
+  // t0's third vertex y at a positive angle. x's virtual source is laid out in that frame by
+  // unfolding the faces around x from x's face to t0 (rotations about x's edges: exact). The
+  // straight line from the source to c is taken when it crosses every edge of x in between inside
+  // the edge and passes x on c's side (a line that leaves x's faces is taken only where they are
+  // one plane). This is one source per vertex, not a window per edge: a line may stray from the
+  // faces the source was unfolded along before x, so a value can come out slightly short of the
+  // geodesic; it is never below the straight line from the real source (checked).
+
+
+  static constexpr int kMaxCross = 64;
+  struct Layout {
+    P2 s{0, 0};  // the virtual source
+    P2 y{0, 0};  // t0's third vertex
+    double e = 0;  // |xc|
+  };
+
+  // Lays out rx's source for the edge x-c in the face after (after = true) or before the edge.
+  bool lay_out(const DRec& rx, int x, int c, bool after, Layout& L) const {
+    const int m = static_cast<int>(ring.size());
+    int ic = -1, jf = -1;
+    for (int i = 0; i < m; ++i) {
+      if (ring[i].v == c && ic < 0) ic = i;
+      if (ring[i].face_after == rx.face) jf = i;
+    }
+    if (ic < 0 || jf < 0) return false;
+    auto wrap = [&](int i) { return ((i % m) + m) % m; };
+    if (!ring_closed && !after && ic == 0) return false;
+    const int t0_ray = after ? ic : wrap(ic - 1);  // the ray whose face_after is t0
+    if (ring[t0_ray].face_after < 0) return false;
+    const int y_ray = after ? wrap(ic + 1) : wrap(ic - 1);
+    if (!ring_closed && after && ic + 1 >= m) return false;
+    L.e = ring[ic].len;
+    const double a0 = ring[t0_ray].angle;
+    L.y = {ring[y_ray].len * std::cos(a0), ring[y_ray].len * std::sin(a0)};
+    const P2 c2{L.e, 0};
+    const Vec3& px = mesh.point(VertexHandle(x));
+
+    if (jf == t0_ray) {
+      // The source lies in t0's plane: project.
+      const Vec3& uc = ring[ic].u;
+      Vec3 v = ring[y_ray].u - uc * OpenMesh::dot(ring[y_ray].u, uc);
+      const double vl = v.norm();
+      if (!(vl > 0)) return false;
+      v /= vl;
+      auto place = [&](const Vec3& p) {
+        const Vec3 w = p - px;
+        return P2{OpenMesh::dot(w, uc), OpenMesh::dot(w, v)};
+      };
+      L.s = place(rx.source);
+      // The line must reach c from inside t0's corner at c...
+      const P2 cx{-L.e, 0}, cy{L.y.x - L.e, L.y.y}, cs{L.s.x - L.e, L.s.y};
+      const double tol = 1e-12 * (L.e * L.e + dot2(cy, cy) + dot2(cs, cs));
+      if (cross2(cy, cs) > tol || cross2(cs, cx) > tol) return false;
+      // ...and, when the source lies beyond x-y, cross x-y into the face behind it.
+      if (cross2(L.y, L.s) < -tol) {
+        const int back = after ? ring[y_ray].face_after : ring[wrap(y_ray - 1)].face_after;
+        if (back < 0 || (!ring_closed && !after && y_ray == 0)) return false;
+      }
+      return true;
+    }
+
+    // Walk from t0 away from c around x to x's face, collecting the crossed edges.
+    std::array<std::pair<double, double>, kMaxCross> rays;  // (angle from c, length)
+    int n_rays = 0;
+    const int dir = after ? 1 : -1;
+    double beta = a0;
+    int near_ray = after ? ic + 1 : ic - 1;  // unwrapped indices
+    int face_ray = after ? ic + 1 : ic - 2;
+    for (int steps = 0;; ++steps) {
+      if (steps >= m - 1 || n_rays >= kMaxCross) return false;
+      if (!ring_closed && (near_ray < 0 || near_ray >= m || face_ray < 0 || face_ray >= m)) return false;
+      const Ray& r = ring[wrap(near_ray)];
+      if (r.v == c) return false;  // went all the way round
+      rays[n_rays++] = {beta, r.len};
+      const Ray& fr = ring[wrap(face_ray)];
+      if (fr.face_after < 0) return false;  // a border gap before reaching x's face
+      if (fr.face_after == rx.face) break;
+      beta += fr.angle;
+      if (beta >= std::numbers::pi) return false;
+      near_ray += dir;
+      face_ray += dir;
+    }
+    // x's face: its edge at x that was crossed (near) and its other edge (far). A point of its
+    // plane at angle psi from the near edge (toward the far one) goes to angle beta + psi.
+    const Vec3& u_near = ring[wrap(near_ray)].u;
+    const Vec3& u_far = ring[wrap(near_ray + dir)].u;
+    const Vec3 n_side = OpenMesh::cross(u_near, u_far);
+    auto polar = [&](const Vec3& p, double& r, double& psi) {
+      const Vec3 w = p - px;
+      const Vec3 cw = OpenMesh::cross(u_near, w);
+      r = w.norm();
+      psi = std::atan2(OpenMesh::dot(cw, n_side) >= 0 ? cw.norm() : -cw.norm(), OpenMesh::dot(u_near, w));
+    };
+    double rs = 0, psi = 0;
+    polar(rx.source, rs, psi);
+    if (psi < -1e-9) return false;  // the source lies on the near side: the line does not come that way
+    const double theta = beta + std::max(psi, 0.0);
+    if (theta >= std::numbers::pi - 1e-12) return false;  // it would pass x on the other side
+    L.s = {rs * std::cos(theta), rs * std::sin(theta)};
+    bool leaves_fan = false;
+    for (int k = 0; k < n_rays; ++k) {
+      const P2 d{std::cos(rays[k].first), std::sin(rays[k].first)};
+      const double denom = d.x * L.s.y - d.y * (L.s.x - c2.x);
+      if (denom == 0) return false;
+      const double t = d.y * c2.x / denom;
+      if (t < -1e-12 || t > 1 + 1e-12) return false;
+      const double rho = d.x * (c2.x + t * (L.s.x - c2.x)) + d.y * t * L.s.y;
+      if (rho > rays[k].second * (1 + 1e-9)) leaves_fan = true;  // passes beyond the edge's far end
+    }
+    // A line that leaves x's faces crosses faces this unfolding did not see: only where those
+    // around x are one plane is it still sound (this keeps planar regions exact).
+    return !leaves_fan || fan_is_flat(t0_ray, n_rays + 1, dir);
+  }
+
+  // Whether the `count` faces around x, starting with the face after ray `first` and going in
+  // direction `dir`, lie in one plane.
+  bool fan_is_flat(int first, int count, int dir) const {
+    const int m = static_cast<int>(ring.size());
+    auto face_at = [&](int i) { return ring[((i % m) + m) % m].face_after; };
+    const Vec3 n0 = face_normal(mesh, face_at(first));
+    for (int k = 1; k < count; ++k) {
+      const int f = face_at(first + dir * k);
+      if (f < 0 || OpenMesh::dot(face_normal(mesh, f), n0) <= kFlatDot) return false;
+    }
+    return true;
   }
 
   // The candidate distances of `c` from its settled neighbour `x` (record `rx`), offered to `c`.
@@ -198,97 +345,81 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void propagate(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
     const Vec3& px = mesh.point(VertexHandle(x));
     const Vec3& pc = mesh.point(VertexHandle(c));
-    const Vec3 xc = px - pc;
-    const double e = xc.norm();
-    const HalfedgeHandle hcx = mesh.opposite_halfedge_handle(hxc);
-    const int f_left = mesh.face_handle(hxc).idx(), f_right = mesh.face_handle(hcx).idx();
+    const double e = (px - pc).norm();
+    const int f_left = mesh.face_handle(hxc).idx();
+    const int f_right = mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
 
     // (1) Through x as a vertex: the Dijkstra bound; x becomes the pseudo source.
-    offer(c, rx.d + e, px, rx.d, f_left >= 0 ? f_left : f_right);
-    if (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0) return;  // x is the (pseudo) source: done
-    // Every other candidate is at least rx.d (causality): nothing to gain if c is already there.
+    Candidate through_x;
+    through_x.d = rx.d + e;
+    through_x.source = px;
+    through_x.origin = px;
+    through_x.offset = rx.d;
+    through_x.face = f_left >= 0 ? f_left : f_right;
+    offer(c, through_x);
+    if (rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0)) return;  // x is the (pseudo) source
+    // A straight line is never shorter at c than at x: nothing to gain if c is already there.
     if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && rc->d <= rx.d) return;
 
-    double best = kInf;
-    Vec3 best_s;
-    double best_offset = 0;
-    int best_f = -1;
-    // Causality: a path through x (or through the edge x-y) is not shorter at c than at its
-    // corners; a shorter one means the line does not really come that way.
-    auto consider = [&](const Vec3& s, double offset, int f, double at_least) {
-      const double d = offset + (s - pc).norm();
-      if (d >= at_least * (1 - 1e-12) && d < best) {
-        best = d;
-        best_s = s;
-        best_offset = offset;
-        best_f = f;
-      }
-    };
-    const Vec3& n_x = rx.normal;
-    for (int side = 0; side < 2; ++side) {
-      const int t0 = side == 0 ? f_left : f_right;
-      if (t0 < 0) continue;
-      // The halfedge x -> y of t0 (y its third vertex) and the face beyond x-y.
-      const HalfedgeHandle hxy = side == 0 ? mesh.opposite_halfedge_handle(mesh.next_halfedge_handle(mesh.next_halfedge_handle(hxc)))
-                                           : mesh.next_halfedge_handle(hcx);
-      // side 0: face(x->c) = (x, c, y): its halfedge y->x is next(next(x->c)); x->y is its opposite.
-      // side 1: face(c->x) = (c, x, y): next(c->x) = x->y.
-      const int y = mesh.to_vertex_handle(hxy).idx();
-      const Vec3& py = mesh.point(VertexHandle(y));
-      const HalfedgeHandle in_t0 = side == 0 ? mesh.opposite_halfedge_handle(hxy) : hxy;
-      const int t_back = mesh.face_handle(mesh.opposite_halfedge_handle(in_t0)).idx();
-      const bool interior_xy = t_back >= 0;
-      const Vec3 n0 = face_normal(mesh, t0);
-
-      // (2) x's own virtual source, unfolded exactly into t0: it lies in t0's plane already, in
-      // the face across x-y (an unfolding about that edge), or in a plane parallel to t0's.
-      // On a smooth stretch (normals within kSmoothDot) the rotation about x that takes x's plane
-      // onto t0's is a close stand-in for unfolding along the faces between them.
-      Vec3 sx_in_t0 = pc;
-      bool sx_known = false;
-      if (rx.face >= 0) {
-        const double nd = OpenMesh::dot(n_x, n0);
-        if (rx.face == t0 || rx.face == t_back || nd > kSmoothDot) {
-          sx_in_t0 = rx.face == t0 ? rx.source : unfold(rx.source, px, n_x, n0);
-          sx_known = true;
-          if (arrives_through(sx_in_t0, pc, px, py, n0, interior_xy)) consider(sx_in_t0, rx.offset, t0, rx.d);
-        }
-      }
-      // (3) Both corners settled: the source where the two distances meet in t0's plane
-      // (fast-marching unfolding), if the line from there arrives through x-y.
-      const DRec* ry = dt.find(static_cast<uint32_t>(y));
-      if (ry && ry->settled && std::isfinite(ry->d) && rx.offset == 0 && ry->offset == 0) {
-        const Vec3 xy = py - px;
-        const double len = xy.norm();
-        if (len > 0) {
-          const Vec3 u = xy / len;
-          const Vec3 v = OpenMesh::cross(n0, u);
-          const double sc = OpenMesh::dot(pc - px, v);
-          const double sx = (rx.d * rx.d - ry->d * ry->d + len * len) / (2 * len);
-          double sy2 = rx.d * rx.d - sx * sx;
-          if (sy2 > -1e-12 * (rx.d * rx.d + 1e-300)) {
-            sy2 = std::max(sy2, 0.0);
-            const double sy = (sc > 0 ? -1 : 1) * std::sqrt(sy2);
-            const Vec3 s = px + u * sx + v * sy;
-            // Only where x and y see the same source: two different sources (or two sides of a
-            // cut locus) would meet at a point that is no source at all.
-            bool consistent = sx_known && (s - sx_in_t0).norm() <= kConsistency * (rx.d + len);
-            if (consistent) {
-              consistent = false;
-              if (ry->face >= 0) {
-                const Vec3& ny = ry->normal;
-                if (OpenMesh::dot(ny, n0) > kSmoothDot || ry->face == t0 || ry->face == t_back) {
-                  const Vec3 sy_in_t0 = ry->face == t0 ? ry->source : unfold(ry->source, py, ny, n0);
-                  consistent = (s - sy_in_t0).norm() <= kConsistency * (ry->d + len);
-                }
-              }
-            }
-            if (consistent && arrives_through(s, pc, px, py, n0, interior_xy)) consider(s, 0.0, t0, std::max(rx.d, ry->d));
-          }
-        }
-      }
+    // (2) x's virtual source, unfolded into either face at x-c, when the straight line crosses
+    // x's faces in between.
+    const double euclid_bound = rx.offset + (pc - rx.origin).norm();
+    Candidate best;
+    Layout L;
+    for (const bool after : {true, false}) {
+      const int t0 = after ? f_left : f_right;
+      if (t0 < 0 || !lay_out(rx, x, c, after, L)) continue;
+      const double d = rx.offset + std::hypot(L.e - L.s.x, L.s.y);
+      // Causality, and never below the straight line from where the source really is (an
+      // unfolding is exact only along the faces it went through; a line that strays from them can
+      // come out too short).
+      if (d < rx.d * (1 - 1e-12) || d < euclid_bound * (1 - 1e-12) || !(d < best.d)) continue;
+      Candidate cand;
+      // Back to 3D in t0's plane: c's edge direction and the in-plane perpendicular toward y.
+      const Vec3 uc = (pc - px) / e;
+      const Vec3& py = mesh.point(VertexHandle(after ? mesh.to_vertex_handle(mesh.next_halfedge_handle(hxc)).idx()
+                                                     : mesh.to_vertex_handle(mesh.next_halfedge_handle(
+                                                           mesh.opposite_halfedge_handle(hxc))).idx()));
+      Vec3 v = (py - px) - uc * OpenMesh::dot(py - px, uc);
+      const double vl = v.norm();
+      if (!(vl > 0)) continue;
+      v /= vl;
+      auto to3 = [&](P2 q) { return px + uc * q.x + v * q.y; };
+      cand.d = d;
+      cand.source = to3(L.s);
+      cand.offset = rx.offset;
+      cand.face = t0;
+      cand.origin = rx.origin;
+      best = cand;
     }
-    if (best_f >= 0) offer(c, best, best_s, best_offset, best_f);
+    if (best.face >= 0) offer(c, best);
+  }
+
+  void build_ring(int x) {
+    ring.clear();
+    const VertexHandle vx(x);
+    const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
+    if (!h0.is_valid()) return;
+    // At a border vertex OpenMesh's outgoing halfedge has no face: start just after that gap.
+    ring_closed = !mesh.is_boundary(h0);
+    const HalfedgeHandle start = ring_closed ? h0 : mesh.ccw_rotated_halfedge_handle(h0);
+    const Vec3& px = mesh.point(vx);
+    HalfedgeHandle h = start;
+    do {
+      const VertexHandle y = mesh.to_vertex_handle(h);
+      const Vec3 w = mesh.point(y) - px;
+      const double len = w.norm();
+      const FaceHandle f = mesh.face_handle(h);
+      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, 0.0});
+      h = mesh.ccw_rotated_halfedge_handle(h);
+    } while (h != start && ring.size() < (1u << 16));
+    const size_t m = ring.size();
+    for (size_t i = 0; i < m; ++i) {
+      if (ring[i].face_after < 0) continue;
+      const Vec3& a = ring[i].u;
+      const Vec3& b = ring[(i + 1) % m].u;
+      ring[i].angle = std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
+    }
   }
 
   // The line source: a loop vertex x gives its wedge neighbours their distance to the loop's two
@@ -324,6 +455,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   void settle_neighbours(int x) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
+    build_ring(x);
     auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
       if (rc) {
@@ -384,7 +516,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
       heap.pop();
       r->settled = true;
-      if (r->face >= 0) r->normal = face_normal(mesh, r->face);
       ++n_settled;
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
