@@ -18,8 +18,8 @@ using detail::VRec;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Face normals closer than this count as one plane.
-constexpr double kFlatDot = 1 - 1e-9;
+// Three unit edge directions at a vertex with a smaller triple product count as one plane.
+constexpr double kFlatDet = 1e-9;
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
@@ -51,17 +51,6 @@ struct Candidate {
   Vec3 origin{0, 0, 0};
 };
 
-Vec3 face_normal(const Mesh& mesh, int f) {
-  auto h = mesh.halfedge_handle(FaceHandle(f));
-  const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
-  h = mesh.next_halfedge_handle(h);
-  const Vec3& b = mesh.point(mesh.from_vertex_handle(h));
-  const Vec3& c = mesh.point(mesh.to_vertex_handle(h));
-  Vec3 n = OpenMesh::cross(b - a, c - a);
-  const double l = n.norm();
-  return l > 0 ? n / l : n;
-}
-
 std::string dname(double d) { return std::to_string(d); }
 
 }  // namespace
@@ -85,7 +74,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     Vec3 u;
     double len;
     int face_after;
-    double angle;
+    double angle;  // < 0: not computed yet (see angle_after)
   };
   std::vector<Ray> ring;
   bool ring_closed = false;
@@ -230,7 +219,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   };
 
   // Lays out rx's source for the edge x-c in the face after (after = true) or before the edge.
-  bool lay_out(const DRec& rx, int x, int c, bool after, Layout& L) const {
+  bool lay_out(const DRec& rx, int x, int c, bool after, Layout& L) {
     const int m = static_cast<int>(ring.size());
     int ic = -1, jf = -1;
     for (int i = 0; i < m; ++i) {
@@ -245,7 +234,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     const int y_ray = after ? wrap(ic + 1) : wrap(ic - 1);
     if (!ring_closed && after && ic + 1 >= m) return false;
     L.e = ring[ic].len;
-    const double a0 = ring[t0_ray].angle;
+    const double a0 = angle_after(t0_ray);
     L.y = {ring[y_ray].len * std::cos(a0), ring[y_ray].len * std::sin(a0)};
     const P2 c2{L.e, 0};
     const Vec3& px = mesh.point(VertexHandle(x));
@@ -290,7 +279,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       const Ray& fr = ring[wrap(face_ray)];
       if (fr.face_after < 0) return false;  // a border gap before reaching x's face
       if (fr.face_after == rx.face) break;
-      beta += fr.angle;
+      beta += angle_after(wrap(face_ray));
       if (beta >= std::numbers::pi) return false;
       near_ray += dir;
       face_ray += dir;
@@ -328,14 +317,15 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   }
 
   // Whether the `count` faces around x, starting with the face after ray `first` and going in
-  // direction `dir`, lie in one plane.
+  // direction `dir`, lie in one plane: every two neighbours do when their three edges at x do.
   bool fan_is_flat(int first, int count, int dir) const {
     const int m = static_cast<int>(ring.size());
-    auto face_at = [&](int i) { return ring[((i % m) + m) % m].face_after; };
-    const Vec3 n0 = face_normal(mesh, face_at(first));
-    for (int k = 1; k < count; ++k) {
-      const int f = face_at(first + dir * k);
-      if (f < 0 || OpenMesh::dot(face_normal(mesh, f), n0) <= kFlatDot) return false;
+    auto ray = [&](int i) -> const Ray& { return ring[((i % m) + m) % m]; };
+    for (int k = 0; k + 1 < count; ++k) {
+      const int i = first + dir * k;  // face k lies between rays i and i + dir
+      const double det =
+          OpenMesh::dot(ray(i).u, OpenMesh::cross(ray(i + dir).u, ray(i + 2 * dir).u));
+      if (std::abs(det) > kFlatDet) return false;
     }
     return true;
   }
@@ -410,16 +400,20 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       const Vec3 w = mesh.point(y) - px;
       const double len = w.norm();
       const FaceHandle f = mesh.face_handle(h);
-      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, 0.0});
+      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, -1.0});
       h = mesh.ccw_rotated_halfedge_handle(h);
     } while (h != start && ring.size() < (1u << 16));
-    const size_t m = ring.size();
-    for (size_t i = 0; i < m; ++i) {
-      if (ring[i].face_after < 0) continue;
-      const Vec3& a = ring[i].u;
-      const Vec3& b = ring[(i + 1) % m].u;
-      ring[i].angle = std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
+  }
+
+  // The corner angle at x of the face after ray i (computed on first use).
+  double angle_after(int i) {
+    Ray& r = ring[i];
+    if (r.angle < 0) {
+      const Vec3& a = r.u;
+      const Vec3& b = ring[(i + 1) % ring.size()].u;
+      r.angle = std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
     }
+    return r.angle;
   }
 
   // The line source: a loop vertex x gives its wedge neighbours their distance to the loop's two
