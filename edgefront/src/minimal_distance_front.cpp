@@ -20,6 +20,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Three unit edge directions at a vertex with a smaller triple product count as one plane.
 constexpr double kFlatDet = 1e-9;
+// A settled vertex agrees with an unfolded source when their distances differ by this (relative).
+constexpr double kBracketTol = 3e-3;
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
@@ -309,11 +311,22 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       const double t = d.y * c2.x / denom;
       if (t < -1e-12 || t > 1 + 1e-12) return false;
       const double rho = d.x * (c2.x + t * (L.s.x - c2.x)) + d.y * t * L.s.y;
-      if (rho > rays[k].second * (1 + 1e-9)) leaves_fan = true;  // passes beyond the edge's far end
+      if (rho > rays[k].second * (1 + 1e-9)) {
+        if (k == 0) return false;  // it must enter t0 through x-y
+        leaves_fan = true;  // passes beyond the edge's far end
+      }
     }
-    // A line that leaves x's faces crosses faces this unfolding did not see: only where those
-    // around x are one plane is it still sound (this keeps planar regions exact).
-    return !leaves_fan || fan_is_flat(t0_ray, n_rays + 1, dir);
+    if (!leaves_fan) return true;
+    // A line that leaves x's faces crosses faces this unfolding did not see. It is still taken
+    // where those faces are one plane (this keeps planar regions exact), and where y, the other
+    // end of the edge it enters t0 through, is settled from the same source at the distance this
+    // unfolding gives it: then the lines to x and to y bracket the one to c (the fast-marching
+    // update of the face x, y, c, with the source's position instead of a triangulation).
+    if (fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
+    const DRec* ry = dt.find(static_cast<uint32_t>(ring[y_ray].v));
+    if (!ry || !ry->settled || ry->offset != rx.offset || !(ry->origin == rx.origin)) return false;
+    const double dy = rx.offset + std::hypot(L.s.x - L.y.x, L.s.y - L.y.y);
+    return std::abs(dy - ry->d) <= kBracketTol * ry->d;
   }
 
   // Whether the `count` faces around x, starting with the face after ray `first` and going in
