@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <numbers>
 #include <optional>
 #include <cmath>
 #include <queue>
@@ -76,7 +75,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     Vec3 u;
     double len;
     int face_after;
-    double angle;  // < 0: not computed yet (see angle_after)
+    P2 corner;  // see corner_after
+    bool corner_known;
   };
   std::vector<Ray> ring;
   bool ring_closed = false;
@@ -236,8 +236,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     const int y_ray = after ? wrap(ic + 1) : wrap(ic - 1);
     if (!ring_closed && after && ic + 1 >= m) return false;
     L.e = ring[ic].len;
-    const double a0 = angle_after(t0_ray);
-    L.y = {ring[y_ray].len * std::cos(a0), ring[y_ray].len * std::sin(a0)};
+    const P2 a0 = corner_after(t0_ray);
+    L.y = {ring[y_ray].len * a0.x, ring[y_ray].len * a0.y};
     const P2 c2{L.e, 0};
     const Vec3& px = mesh.point(VertexHandle(x));
 
@@ -266,10 +266,16 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     }
 
     // Walk from t0 away from c around x to x's face, collecting the crossed edges.
-    std::array<std::pair<double, double>, kMaxCross> rays;  // (angle from c, length)
+    // Angles are unit 2D vectors (cos, sin); adding angles multiplies them as complex numbers.
+    auto turn = [](P2 a, P2 b) { return P2{a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x}; };
+    struct CrossedRay {
+      P2 dir;  // (cos, sin) of its angle from c
+      double len;
+    };
+    std::array<CrossedRay, kMaxCross> rays;
     int n_rays = 0;
     const int dir = after ? 1 : -1;
-    double beta = a0;
+    P2 beta = a0;
     int near_ray = after ? ic + 1 : ic - 1;  // unwrapped indices
     int face_ray = after ? ic + 1 : ic - 2;
     for (int steps = 0;; ++steps) {
@@ -281,8 +287,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       const Ray& fr = ring[wrap(face_ray)];
       if (fr.face_after < 0) return false;  // a border gap before reaching x's face
       if (fr.face_after == rx.face) break;
-      beta += angle_after(wrap(face_ray));
-      if (beta >= std::numbers::pi) return false;
+      beta = turn(beta, corner_after(wrap(face_ray)));
+      if (beta.y < 0 || (beta.y == 0 && beta.x < 0)) return false;  // a half turn or more
       near_ray += dir;
       face_ray += dir;
     }
@@ -290,28 +296,25 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // plane at angle psi from the near edge (toward the far one) goes to angle beta + psi.
     const Vec3& u_near = ring[wrap(near_ray)].u;
     const Vec3& u_far = ring[wrap(near_ray + dir)].u;
-    const Vec3 n_side = OpenMesh::cross(u_near, u_far);
-    auto polar = [&](const Vec3& p, double& r, double& psi) {
-      const Vec3 w = p - px;
-      const Vec3 cw = OpenMesh::cross(u_near, w);
-      r = w.norm();
-      psi = std::atan2(OpenMesh::dot(cw, n_side) >= 0 ? cw.norm() : -cw.norm(), OpenMesh::dot(u_near, w));
-    };
-    double rs = 0, psi = 0;
-    polar(rx.source, rs, psi);
-    if (psi < -1e-9) return false;  // the source lies on the near side: the line does not come that way
-    const double theta = beta + std::max(psi, 0.0);
-    if (theta >= std::numbers::pi - 1e-12) return false;  // it would pass x on the other side
-    L.s = {rs * std::cos(theta), rs * std::sin(theta)};
+    const Vec3 w = rx.source - px;
+    const double rs = w.norm();
+    if (!(rs > 0)) return false;
+    const Vec3 cw = OpenMesh::cross(u_near, w);
+    const double sin_psi = (OpenMesh::dot(cw, OpenMesh::cross(u_near, u_far)) >= 0 ? 1 : -1) * cw.norm() / rs;
+    if (sin_psi < -1e-9) return false;  // the source lies on the near side: the line does not come that way
+    const P2 psi{OpenMesh::dot(u_near, w) / rs, std::max(sin_psi, 0.0)};
+    const P2 theta = turn(beta, psi);
+    if (theta.y < 1e-12 && (theta.y < 0 || theta.x < 0)) return false;  // it would pass x on the other side
+    L.s = {rs * theta.x, rs * theta.y};
     bool leaves_fan = false;
     for (int k = 0; k < n_rays; ++k) {
-      const P2 d{std::cos(rays[k].first), std::sin(rays[k].first)};
+      const P2 d = rays[k].dir;
       const double denom = d.x * L.s.y - d.y * (L.s.x - c2.x);
       if (denom == 0) return false;
       const double t = d.y * c2.x / denom;
       if (t < -1e-12 || t > 1 + 1e-12) return false;
       const double rho = d.x * (c2.x + t * (L.s.x - c2.x)) + d.y * t * L.s.y;
-      if (rho > rays[k].second * (1 + 1e-9)) {
+      if (rho > rays[k].len * (1 + 1e-9)) {
         if (k == 0) return false;  // it must enter t0 through x-y
         leaves_fan = true;  // passes beyond the edge's far end
       }
@@ -325,7 +328,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
     const DRec* ry = dt.find(static_cast<uint32_t>(ring[y_ray].v));
     if (!ry || !ry->settled || ry->offset != rx.offset || !(ry->origin == rx.origin)) return false;
-    const double dy = rx.offset + std::hypot(L.s.x - L.y.x, L.s.y - L.y.y);
+    const double dy = rx.offset + std::sqrt((L.s.x - L.y.x) * (L.s.x - L.y.x) + (L.s.y - L.y.y) * (L.s.y - L.y.y));
     return std::abs(dy - ry->d) <= kBracketTol * ry->d;
   }
 
@@ -372,7 +375,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     for (const bool after : {true, false}) {
       const int t0 = after ? f_left : f_right;
       if (t0 < 0 || !lay_out(rx, x, c, after, L)) continue;
-      const double d = rx.offset + std::hypot(L.e - L.s.x, L.s.y);
+      const double d = rx.offset + std::sqrt((L.e - L.s.x) * (L.e - L.s.x) + L.s.y * L.s.y);
       // Causality, and never below the straight line from where the source really is (an
       // unfolding is exact only along the faces it went through; a line that strays from them can
       // come out too short).
@@ -413,20 +416,23 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       const Vec3 w = mesh.point(y) - px;
       const double len = w.norm();
       const FaceHandle f = mesh.face_handle(h);
-      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, -1.0});
+      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, P2{1, 0}, false});
       h = mesh.ccw_rotated_halfedge_handle(h);
     } while (h != start && ring.size() < (1u << 16));
   }
 
-  // The corner angle at x of the face after ray i (computed on first use).
-  double angle_after(int i) {
+  // The corner angle at x of the face after ray i as (cos, sin) (computed on first use).
+  P2 corner_after(int i) {
     Ray& r = ring[i];
-    if (r.angle < 0) {
+    if (!r.corner_known) {
       const Vec3& a = r.u;
       const Vec3& b = ring[(i + 1) % ring.size()].u;
-      r.angle = std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
+      const double c = OpenMesh::dot(a, b), s = OpenMesh::cross(a, b).norm();
+      const double l = std::sqrt(c * c + s * s);
+      r.corner = l > 0 ? P2{c / l, s / l} : P2{1, 0};
+      r.corner_known = true;
     }
-    return r.angle;
+    return r.corner;
   }
 
   // The line source: a loop vertex x gives its wedge neighbours their distance to the loop's two
