@@ -41,7 +41,7 @@ Rgb mix(const Rgb& a, const Rgb& b, double w) {
   w = std::clamp(w, 0.0, 1.0);
   Rgb c{};
   for (size_t k = 0; k < 3; ++k) {
-    c[k] = static_cast<std::uint8_t>(std::lround((1.0 - w) * a[k] + w * b[k]));
+    c[k] = static_cast<std::uint8_t>((1.0 - w) * a[k] + w * b[k] + 0.5);  // non-negative: rounds
   }
   return c;
 }
@@ -49,7 +49,7 @@ Rgb mix(const Rgb& a, const Rgb& b, double w) {
 Rgb scale(const Rgb& c, double factor) {
   Rgb out{};
   for (size_t k = 0; k < 3; ++k) {
-    out[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k] * factor, 0.0, 255.0)));
+    out[k] = static_cast<std::uint8_t>(std::clamp(c[k] * factor, 0.0, 255.0) + 0.5);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include "render/render.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -225,6 +226,31 @@ FieldInfo field_info(const ScalarField& field) {
   return info;
 }
 
+/// What the shading pass needs of a face.
+struct FaceShade {
+  float light[3] = {0, 0, 0};  ///< per corner
+  float value[3] = {0, 0, 0};  ///< field values per corner (when `use_field`)
+  float grad = 0;              ///< |screen gradient| of the field, value per sample
+  bool use_field = false;
+  bool back = false;
+  Rgb color = {0, 0, 0};  ///< when not `use_field`: the final unshaded color (tint applied)
+};
+
+/// The colormap at 1024 steps (a lookup per sample instead of the piecewise-linear evaluation).
+struct ColormapTable {
+  static constexpr int kSize = 1024;
+  std::array<Rgb, kSize> colors{};
+  ColormapTable() {
+    for (int i = 0; i < kSize; ++i) colors[static_cast<size_t>(i)] = colormap(static_cast<double>(i) / (kSize - 1));
+  }
+  const Rgb& operator()(double t) const {
+    const double x = std::clamp(t, 0.0, 1.0) * (kSize - 1) + 0.5;
+    return colors[static_cast<size_t>(x >= 0 ? x : 0.0)];  // NaN: x fails the test: entry 0
+  }
+};
+
+/// Triangles in two passes: visibility (z-buffer, face index and perspective-correct weights per
+/// sample), then shading of the visible samples only.
 void draw_triangles(const Scene& scene, const RenderOptions& o, const Camera& cam, const std::vector<Vec3>& screen,
                     Target& target) {
   const Mesh& mesh = *scene.mesh;
@@ -264,10 +290,13 @@ void draw_triangles(const Scene& scene, const RenderOptions& o, const Camera& ca
     }
   }
   const double diffuse = 1.0 - o.ambient;
-
   const FieldInfo field = scene.field ? field_info(*scene.field) : FieldInfo{};
-  const double iso_half_width = 0.5 * o.isoline_width_px * o.supersample;
 
+  // ---- pass 1: visibility ----
+  const size_t samples = target.depth.size();
+  std::vector<int> sample_face(samples, -1);
+  std::vector<float> sample_w0(samples), sample_w1(samples);
+  std::vector<FaceShade> shade(mesh.n_faces());
   for (const auto f : mesh.faces()) {
     auto it = mesh.cfv_iter(f);
     const VertexHandle vh[3] = {*it, *++it, *++it};
@@ -280,87 +309,97 @@ void draw_triangles(const Scene& scene, const RenderOptions& o, const Camera& ca
     if (!(s[0][2] > 0 && s[1][2] > 0 && s[2][2] > 0)) continue;  // behind the camera (not with a fitted camera)
     const double area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1]) - (s[2][0] - s[0][0]) * (s[1][1] - s[0][1]);
     if (!(std::abs(area) > 1e-12)) continue;  // edge-on or degenerate: covers no sample
-    const Vec3& p0 = mesh.point(vh[0]);
-    const Vec3 face_normal = OpenMesh::cross(mesh.point(vh[1]) - p0, mesh.point(vh[2]) - p0);
-    const double facing = OpenMesh::dot(face_normal, cam.light(p0));
-    const bool back = facing < 0;
-
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({s[0][0], s[1][0], s[2][0]}))));
     const int x1 = std::min(target.w - 1, static_cast<int>(std::ceil(std::max({s[0][0], s[1][0], s[2][0]}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({s[0][1], s[1][1], s[2][1]}))));
     const int y1 = std::min(target.h - 1, static_cast<int>(std::ceil(std::max({s[0][1], s[1][1], s[2][1]}))));
     if (x0 > x1 || y0 > y1) continue;
 
-    // Light per corner: Lambert with the headlight, on the side that is seen.
-    double vertex_light[3];
+    // What shading needs of this face.
+    FaceShade& fs = shade[static_cast<size_t>(f.idx())];
+    const Vec3& p0 = mesh.point(vh[0]);
+    const Vec3 face_normal = OpenMesh::cross(mesh.point(vh[1]) - p0, mesh.point(vh[2]) - p0);
+    fs.back = OpenMesh::dot(face_normal, cam.light(p0)) < 0;
     const double face_len = face_normal.norm();
     const Vec3 unit_face_normal = face_len > 0 ? face_normal / face_len : Vec3(0, 0, 0);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = mesh.point(vh[k]);
+    for (int k = 0; k < 3; ++k) {  // Lambert with the headlight, on the side that is seen
       Vec3 n = unit_face_normal;
       if (o.smooth_shading && OpenMesh::dot(vertex_normal[vi[k]], unit_face_normal) > kCosCrease) n = vertex_normal[vi[k]];
-      const double d = OpenMesh::dot(n, o.smooth_shading ? cam.light(p) : cam.light(p0));
-      vertex_light[k] = o.ambient + diffuse * std::max(0.0, back ? -d : d);
+      const double d = OpenMesh::dot(n, o.smooth_shading ? cam.light(mesh.point(vh[k])) : cam.light(p0));
+      fs.light[k] = static_cast<float>(o.ambient + diffuse * std::max(0.0, fs.back ? -d : d));
     }
     const int hl = highlight[static_cast<size_t>(f.idx())];
-    bool use_field = false;
-    Rgb flat_color = scene.base_color;
-    double value[3] = {0, 0, 0};
-    double grad = 0.0;  // |screen gradient| of the field, value per sample
+    fs.color = scene.base_color;
     if (hl >= 0) {
-      flat_color = scene.highlights[static_cast<size_t>(hl)].color;
+      fs.color = scene.highlights[static_cast<size_t>(hl)].color;
     } else if (field.values != nullptr) {
+      double value[3];
       for (int k = 0; k < 3; ++k) value[k] = (*field.values)[vi[k]];
       if (std::isfinite(value[0]) && std::isfinite(value[1]) && std::isfinite(value[2])) {
-        use_field = true;
+        fs.use_field = true;
+        for (int k = 0; k < 3; ++k) fs.value[k] = static_cast<float>(value[k]);
         const double gx = ((value[1] - value[0]) * (s[2][1] - s[0][1]) - (value[2] - value[0]) * (s[1][1] - s[0][1])) / area;
         const double gy = ((value[2] - value[0]) * (s[1][0] - s[0][0]) - (value[1] - value[0]) * (s[2][0] - s[0][0])) / area;
-        grad = std::sqrt(gx * gx + gy * gy);
+        fs.grad = static_cast<float>(std::sqrt(gx * gx + gy * gy));
       } else {
-        flat_color = scene.field->no_value_color;
+        fs.color = scene.field->no_value_color;
       }
     }
-    const Rgb isoline_color = scene.field ? scene.field->isoline_color : Rgb{};
+    if (fs.back && !fs.use_field) fs.color = mix(fs.color, o.back_face_color, o.back_face_tint);
 
+    // Barycentric weights from edge functions, stepped along each row; the sign of `area`
+    // handles both windings. Perspective-correct weights through 1/z.
     const double inv_area = 1.0 / area;
+    const double iz[3] = {1.0 / s[0][2], 1.0 / s[1][2], 1.0 / s[2][2]};
+    const double db0 = -(s[2][1] - s[1][1]) * inv_area, db1 = -(s[0][1] - s[2][1]) * inv_area;
+    const int face_index = f.idx();
     for (int y = y0; y <= y1; ++y) {
-      const double py = y + 0.5;
-      for (int x = x0; x <= x1; ++x) {
-        const double px = x + 0.5;
-        // Barycentric weights from edge functions; the sign of `area` handles both windings.
-        const double b0 = ((s[2][0] - s[1][0]) * (py - s[1][1]) - (s[2][1] - s[1][1]) * (px - s[1][0])) * inv_area;
-        const double b1 = ((s[0][0] - s[2][0]) * (py - s[2][1]) - (s[0][1] - s[2][1]) * (px - s[2][0])) * inv_area;
+      const double py = y + 0.5, px = x0 + 0.5;
+      double b0 = ((s[2][0] - s[1][0]) * (py - s[1][1]) - (s[2][1] - s[1][1]) * (px - s[1][0])) * inv_area;
+      double b1 = ((s[0][0] - s[2][0]) * (py - s[2][1]) - (s[0][1] - s[2][1]) * (px - s[2][0])) * inv_area;
+      size_t idx = static_cast<size_t>(y) * static_cast<size_t>(target.w) + static_cast<size_t>(x0);
+      for (int x = x0; x <= x1; ++x, ++idx, b0 += db0, b1 += db1) {
         const double b2 = 1.0 - b0 - b1;
         if (b0 < 0 || b1 < 0 || b2 < 0) continue;
-        double w0 = b0, w1 = b1, w2 = b2, z;
+        double z, w0 = b0, w1 = b1;
         if (cam.perspective) {
-          const double q0 = b0 / s[0][2], q1 = b1 / s[1][2], q2 = b2 / s[2][2];
-          const double sum = q0 + q1 + q2;
-          z = 1.0 / sum;
+          const double q0 = b0 * iz[0], q1 = b1 * iz[1], q2 = b2 * iz[2];
+          z = 1.0 / (q0 + q1 + q2);
           w0 = q0 * z;
           w1 = q1 * z;
-          w2 = q2 * z;
         } else {
           z = b0 * s[0][2] + b1 * s[1][2] + b2 * s[2][2];
         }
-        const size_t idx = static_cast<size_t>(y) * static_cast<size_t>(target.w) + static_cast<size_t>(x);
         if (!(z < target.depth[idx])) continue;
         target.depth[idx] = static_cast<float>(z);
-
-        Rgb color = flat_color;
-        if (use_field) {
-          const double v = w0 * value[0] + w1 * value[1] + w2 * value[2];
-          color = colormap(field.span > 0 ? (v - field.lo) / field.span : 0.0);
-          if (field.step > 0 && grad > 0) {
-            const double nearest = std::round(v / field.step) * field.step;
-            if (std::abs(v - nearest) < iso_half_width * grad) color = isoline_color;
-          }
-        }
-        if (back) color = mix(color, o.back_face_color, o.back_face_tint);
-        const double light = w0 * vertex_light[0] + w1 * vertex_light[1] + w2 * vertex_light[2];
-        target.put(idx, scale(color, light));
+        sample_face[idx] = face_index;
+        sample_w0[idx] = static_cast<float>(w0);
+        sample_w1[idx] = static_cast<float>(w1);
       }
     }
+  }
+
+  // ---- pass 2: shading of the visible samples ----
+  static const ColormapTable table;
+  const Rgb isoline_color = scene.field ? scene.field->isoline_color : Rgb{};
+  const double iso_half_width = 0.5 * o.isoline_width_px * o.supersample;
+  for (size_t idx = 0; idx < samples; ++idx) {
+    const int face = sample_face[idx];
+    if (face < 0) continue;
+    const FaceShade& fs = shade[static_cast<size_t>(face)];
+    const double w0 = sample_w0[idx], w1 = sample_w1[idx], w2 = 1.0 - w0 - w1;
+    Rgb color = fs.color;
+    if (fs.use_field) {
+      const double v = w0 * fs.value[0] + w1 * fs.value[1] + w2 * fs.value[2];
+      color = table(field.span > 0 ? (v - field.lo) / field.span : 0.0);
+      if (field.step > 0 && fs.grad > 0) {
+        const double nearest = std::round(v / field.step) * field.step;
+        if (std::abs(v - nearest) < iso_half_width * fs.grad) color = isoline_color;
+      }
+      if (fs.back) color = mix(color, o.back_face_color, o.back_face_tint);
+    }
+    const double light = w0 * fs.light[0] + w1 * fs.light[1] + w2 * fs.light[2];
+    target.put(idx, scale(color, light));
   }
 }
 
