@@ -88,25 +88,21 @@ void validate_scene(const Scene& scene) {
     require(!scene.field, "a scalar field needs a mesh");
     require(scene.highlights.empty(), "face highlights need a mesh");
   }
-  for (size_t i = 0; i < scene.lines.size(); ++i) {
-    const Polyline& line = scene.lines[i];
-    require(std::isfinite(line.width_px) && line.width_px > 0 && line.width_px <= 100,
-            "line " + std::to_string(i) + ": the width must lie within (0, 100] pixels");
-    for (size_t k = 0; k < line.points.size(); ++k) {
-      require(finite(line.points[k]),
-              "line " + std::to_string(i) + ", point " + std::to_string(k) + " has a non-finite coordinate");
+  // Lines and point sets: a size in pixels and finite points.
+  const auto check = [&anything](const std::string& what, double size_px, const std::string& size_name,
+                                 const std::vector<Vec3>& points) {
+    require(std::isfinite(size_px) && size_px > 0 && size_px <= 100,
+            what + ": the " + size_name + " must lie within (0, 100] pixels");
+    for (size_t k = 0; k < points.size(); ++k) {
+      require(finite(points[k]), what + ", point " + std::to_string(k) + " has a non-finite coordinate");
     }
-    anything = anything || !line.points.empty();
+    anything = anything || !points.empty();
+  };
+  for (size_t i = 0; i < scene.lines.size(); ++i) {
+    check("line " + std::to_string(i), scene.lines[i].width_px, "width", scene.lines[i].points);
   }
   for (size_t i = 0; i < scene.points.size(); ++i) {
-    const PointSet& set = scene.points[i];
-    require(std::isfinite(set.radius_px) && set.radius_px > 0 && set.radius_px <= 100,
-            "point set " + std::to_string(i) + ": the radius must lie within (0, 100] pixels");
-    for (size_t k = 0; k < set.points.size(); ++k) {
-      require(finite(set.points[k]),
-              "point set " + std::to_string(i) + ", point " + std::to_string(k) + " has a non-finite coordinate");
-    }
-    anything = anything || !set.points.empty();
+    check("point set " + std::to_string(i), scene.points[i].radius_px, "radius", scene.points[i].points);
   }
   require(anything, "nothing to draw (no mesh, lines or points)");
 }
