@@ -156,7 +156,7 @@ TEST(Render, OrthographicCubeCoversItsAnalyticProjectedArea) {
   // (radius sqrt(3)/2) to `fill` of the smaller half side.
   const Mesh cube = unit_cube();
   const int w = 400, h = 300;
-  for (const auto& [az, el] : {std::pair{0.0, 0.0}, {45.0, 0.0}, {30.0, 20.0}, {-70.0, 35.0}, {160.0, -50.0}}) {
+  for (const auto& [az, el] : {std::pair{0.0, 0.0}, {45.0, 0.0}, {30.0, 20.0}, {-70.0, 35.0}, {160.0, -50.0}, {25.0, 90.0}, {0.0, -90.0}}) {
     render::RenderOptions o = ortho_options(w, h, az, el);
     const render::Image image = render::render(render::Scene{.mesh = &cube}, o);
     const double a = az * kPi / 180, e = el * kPi / 180;
