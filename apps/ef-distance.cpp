@@ -4,7 +4,7 @@
 ///
 ///   ef-distance MESH (--source V[,V...] | --loop V,V,V... | --point F:b0,b1,b2 ...)
 ///               [--side left|right] [--max-distance D] [--method mdf|dijkstra]
-///               [-o FILE.txt | -o FILE.ply]
+///               [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
 /// Output: one distance per line in input vertex order ("inf" where not reached: another
 /// component, behind a loop, beyond --max-distance), written with the fewest digits that read
@@ -12,6 +12,8 @@
 /// scalar "distance" and colors: a colormap over [0, largest finite distance] with dark isoline
 /// bands every 1/20 of that range, grey where not reached (for MeshLab and similar viewers). A
 /// one-line summary (method, time, reached vertices, peak front, stop reason) goes to stderr.
+/// --png renders the field (colormap, isolines at a nice step, grey where not reached) with the
+/// sources (points or the loop) into a picture (apps/common/app_render.h).
 ///
 /// Exit codes: 0 ok, 1 error (one line "ef-distance: error: ..." on stderr), 2 usage error.
 
@@ -33,6 +35,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_render.h"
 #include "app_util.h"
 #include "edgefront/atomic_write.h"
 #include "edgefront/error.h"
@@ -40,10 +43,12 @@
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
+#include "render/color.h"
+#include "render/scene.h"
 
 namespace {
 
-using edgefront::apps::colormap;
+using edgefront::render::colormap;
 using edgefront::apps::lower_extension;
 
 using edgefront::VertexHandle;
@@ -185,6 +190,7 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "mdf (Minimal Distance Front, default) or dijkstra (over edges)")
       ->check(CLI::IsMember({"mdf", "dijkstra"}));
   app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply");
+  edgefront::apps::PngOutput png(app);
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     if (source_text.empty() && loop_text.empty() && point_texts.empty()) {
@@ -262,6 +268,24 @@ int main(int argc, char** argv) {
       } else {
         edgefront::write_file_atomically(output, [&text](std::ostream& os) { os << text; }, false);
       }
+    }
+
+    if (png.requested()) {
+      edgefront::render::Scene scene{.mesh = &mesh, .field = edgefront::render::ScalarField{.values = field.distance}};
+      if (!loop_text.empty()) {
+        scene.lines.push_back(edgefront::render::polyline_from_halfedges(mesh, source.loop));
+      } else {
+        edgefront::render::PointSet sources{.color = {220, 30, 30}, .radius_px = 4.0};
+        for (const VertexHandle v : source.vertices) sources.points.push_back(mesh.point(v));
+        for (const edgefront::SurfacePoint& p : points) {
+          auto it = mesh.cfv_iter(p.face);
+          edgefront::Vec3 at(0, 0, 0);
+          for (size_t k = 0; k < 3; ++k, ++it) at += mesh.point(*it) * p.bary[k];
+          sources.points.push_back(at);
+        }
+        scene.points.push_back(std::move(sources));
+      }
+      png.write(scene);
     }
 
     std::ostringstream s;

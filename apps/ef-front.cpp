@@ -2,12 +2,14 @@
 /// (its breadth-first hop distance from the source).
 ///
 ///   ef-front MESH (--source V[,V...] | --loop V,V,V...) [--side left|right] [--levels K]
-///            [--method vf|mef] [-o FILE.txt | -o FILE.ply]
+///            [--method vf|mef] [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
 /// Output: one line per vertex in input order with the level at which it joined the front (-1
 /// when not reached), on stdout or into FILE.txt; FILE.ply gets the mesh with a per-vertex scalar
 /// "level" and colors (a colormap over the levels, alternate levels slightly darker, grey for
-/// unreached vertices). A summary (levels, reached vertices, loops, events, peak front, peak
+/// unreached vertices). --png renders the levels as colors (isolines at a nice level step, grey
+/// where not reached) with the front where the run stopped: the MEF's loops as red lines (inert
+/// loops resting on a border in orange), the VF's front vertices as points. A summary (levels, reached vertices, loops, events, peak front, peak
 /// working memory, time) goes to stderr.
 ///
 /// Exit codes: 0 ok, 1 error (one line "ef-front: error: ..." on stderr), 2 usage error.
@@ -22,6 +24,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -30,6 +33,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_render.h"
 #include "app_util.h"
 #include "edgefront/atomic_write.h"
 #include "edgefront/error.h"
@@ -38,10 +42,12 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_edge_front.h"
 #include "edgefront/vertex_front.h"
+#include "render/color.h"
+#include "render/scene.h"
 
 namespace {
 
-using edgefront::apps::colormap;
+using edgefront::render::colormap;
 using edgefront::apps::lower_extension;
 
 using edgefront::VertexHandle;
@@ -120,6 +126,7 @@ int main(int argc, char** argv) {
   app.add_option("--method", method, "vf (Vertex Front) or mef (Minimal Edge Front, default)")
       ->check(CLI::IsMember({"vf", "mef"}));
   app.add_option("-o,--output", output, "write the levels to FILE.txt, or a PLY with level and colors to FILE.ply");
+  edgefront::apps::PngOutput png(app);
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     if (source_text.empty() && loop_text.empty()) {
@@ -159,13 +166,18 @@ int main(int argc, char** argv) {
       if (slot < 0) slot = l;
     };
     RunSummary summary;
+    std::vector<edgefront::render::Polyline> front_lines;  // for --png
+    edgefront::render::PointSet front_points{.color = {220, 30, 30}, .radius_px = 2.5};
     const auto t0 = std::chrono::steady_clock::now();
     if (method == "vf") {
       edgefront::VertexFront front(mesh);
       front.set_enclosed_callback(record);
       front.reset(source);
       front.run(levels);
-      for (const auto& [v, l] : front.front_vertices()) record(v, l);
+      for (const auto& [v, l] : front.front_vertices()) {
+        record(v, l);
+        front_points.points.push_back(mesh.point(v));
+      }
       summary.levels = front.level();
       summary.peak_front = front.peak_front_size();
       summary.peak_bytes = front.peak_working_memory_bytes();
@@ -188,6 +200,10 @@ int main(int argc, char** argv) {
       front.run(levels);
       for (const auto& [v, l] : front.front_vertices()) record(v, l);
       const std::vector<edgefront::FrontLoop> loops = front.loops();
+      for (const edgefront::FrontLoop& loop : loops) {
+        front_lines.push_back(edgefront::render::polyline_from_halfedges(
+            mesh, loop.halfedges, loop.inert ? edgefront::render::Rgb{255, 150, 0} : edgefront::render::Rgb{220, 30, 30}));
+      }
       summary.levels = front.level();
       summary.peak_front = front.peak_front_size();
       summary.peak_bytes = front.peak_working_memory_bytes();
@@ -230,6 +246,15 @@ int main(int argc, char** argv) {
       } else {
         edgefront::write_file_atomically(output, [&text](std::ostream& os) { os << text; }, false);
       }
+    }
+
+    if (png.requested()) {
+      std::vector<double> values(n);
+      for (size_t i = 0; i < n; ++i) values[i] = level[i] >= 0 ? level[i] : std::numeric_limits<double>::infinity();
+      edgefront::render::Scene scene{.mesh = &mesh, .field = edgefront::render::ScalarField{.values = std::move(values)}};
+      scene.lines = std::move(front_lines);
+      scene.points.push_back(std::move(front_points));
+      png.write(scene);
     }
 
     // Summary.

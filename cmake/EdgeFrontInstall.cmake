@@ -1,16 +1,16 @@
 # Install rules and the CMake package config.
 #
-# Included last by the top-level CMakeLists, when the targets edgefront, twist and gcs exist
-# (static or INTERFACE: both are handled). Installs:
-#   <prefix>/include/{edgefront,twist,gcs}/*.h       public headers
-#   <prefix>/<libdir>/lib{edgefront,twist,gcs}.a     libraries (twist and gcs only once they have sources)
+# Included last by the top-level CMakeLists, when the targets edgefront, render, twist and gcs
+# exist (static or INTERFACE: both are handled). Installs:
+#   <prefix>/include/{edgefront,render,twist,gcs}/*.h     public headers
+#   <prefix>/<libdir>/lib{edgefront,render,twist,gcs}.a   libraries (twist and gcs only once they have sources)
 #   <prefix>/bin/<app>                               apps (their install() is in apps/CMakeLists.txt)
 #   <prefix>/<libdir>/cmake/EdgeFront/               EdgeFrontConfig.cmake, version file, targets
 #
 # A consumer writes `find_package(EdgeFront REQUIRED)` and links `edgefront::edgefront`,
-# `twist::twist` and `gcs::gcs`, the names used inside this build. Each library has its own export
+# `render::render`, `twist::twist` and `gcs::gcs`, the names used inside this build. Each library has its own export
 # set, because an export set has a single NAMESPACE; CMake writes the cross-set references
-# (twist -> edgefront::edgefront, gcs -> twist::twist) with the other set's namespace.
+# (render, twist -> edgefront::edgefront, gcs -> twist::twist) with the other set's namespace.
 
 # On by default when EdgeFront is the top-level project, off when it is add_subdirectory()'d.
 if(CMAKE_SOURCE_DIR STREQUAL PROJECT_SOURCE_DIR)
@@ -29,7 +29,7 @@ include(CMakePackageConfigHelpers)
 set(EDGEFRONT_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/EdgeFront"
     CACHE STRING "Where EdgeFrontConfig.cmake is installed, relative to the prefix")
 
-foreach(lib IN ITEMS edgefront twist gcs)
+foreach(lib IN ITEMS edgefront render twist gcs)
   install(TARGETS ${lib}
     EXPORT ${lib}Targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -42,7 +42,7 @@ foreach(lib IN ITEMS edgefront twist gcs)
       DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
       FILES_MATCHING PATTERN "*.h")
   endif()
-  # Order matters: EdgeFrontConfig.cmake includes these files edgefront, twist, gcs, so that each
+  # Order matters: EdgeFrontConfig.cmake includes these files edgefront, render, twist, gcs, so that each
   # finds the targets it refers to.
   install(EXPORT ${lib}Targets
     NAMESPACE ${lib}::
