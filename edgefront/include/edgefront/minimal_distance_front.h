@@ -20,8 +20,8 @@
 /// geodesic where a line strays from the faces its source was unfolded along.
 ///
 /// Accuracy (bench/results/geodesic-*.md): exact (1e-14) on planar meshes under any
-/// triangulation and on open cylinders; cones 0.01-0.02% mean; on CGAL's scanned models the mean
-/// relative error is about 0.4% (Dijkstra 4-7%, CGAL's heat method 1-4%).
+/// triangulation and on open cylinders; cones 1e-5% mean; on CGAL's scanned models the mean
+/// relative error is 0.18-1.1% (Dijkstra 4-7%, CGAL's heat method 1.3-3%).
 ///
 /// Memory: the loops, the front-vertex table and the priority queue hold O(front) elements; the
 /// result arrays (`DistanceField`) are the only per-mesh allocation, and the stepwise class can be
