@@ -1,6 +1,6 @@
 /// gcs-eval: judge a reconstructed mesh against a ground truth (gcs/evaluation.h).
 ///
-///   gcs-eval MESH GT [--samples N] [--seed S] [--json] [--no-self-intersections]
+///   gcs-eval MESH GT [--samples N] [--seed S] [--json] [--no-self-intersections] [--point-to-sample]
 ///
 /// GT is a point set (.xyz/.txt/.pts, or .ply/.off/.obj without faces; with or without normals)
 /// or a mesh (.off/.obj/.ply/.stl with faces): a mesh file is taken as a mesh when it has faces.
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   gcs::EvaluationOptions options;
   bool json = false;
   bool no_self = false;
+  bool point_to_sample = false;
   app.add_option("MESH", mesh_path, "the reconstructed mesh (.off, .obj, .ply, .stl)")->required();
   app.add_option("GT", gt_path,
                  "ground truth: points (.xyz, .ply/.off/.obj without faces; normals optional) or a mesh with faces")
@@ -65,9 +66,13 @@ int main(int argc, char** argv) {
   app.add_option("--seed", options.seed, "sampling seed")->default_val(options.seed);
   app.add_flag("--json", json, "print one JSON object instead of the table");
   app.add_flag("--no-self-intersections", no_self, "skip the self-intersection count");
+  app.add_flag("--point-to-sample", point_to_sample,
+               "measure distances to a mesh to its nearest sample instead of exactly to its surface "
+               "(point-to-point both ways, as many published figures)");
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     options.self_intersections = !no_self;
+    options.exact_surface_distance = !point_to_sample;
     edgefront::MeshReadResult result = edgefront::read_mesh(mesh_path);
     print_read_warnings("mesh", result.report);
     const gcs::GroundTruth gt = load_ground_truth(gt_path);

@@ -168,6 +168,22 @@ TEST(GcsEval, TranslatedPlaneHasChamferAndHausdorffEqualToTheOffset) {
   }
 }
 
+TEST(GcsEval, PointToSampleVariantAddsTheSamplingGap) {
+  // A plane against itself, measured point-to-point between two independent sample sets: the
+  // nearest of n uniform points at density n / area lies 1 / (2 sqrt(density)) away on average
+  // (a little more near the border), instead of 0 measured exactly.
+  const Mesh plane = shapes::grid({.cells = 10});  // area 4
+  gcs::EvaluationOptions o = fast();
+  o.exact_surface_distance = false;
+  const gcs::Evaluation e = gcs::evaluate(plane, gcs::GroundTruth::from_mesh(plane), o);
+  const double gap = 0.5 / std::sqrt(static_cast<double>(o.samples) / 4.0);
+  EXPECT_FALSE(e.exact_surface_distance);
+  EXPECT_NEAR(e.result_to_gt.mean, gap, 0.1 * gap);
+  EXPECT_NEAR(e.gt_to_result.mean, gap, 0.1 * gap);
+  EXPECT_NE(gcs::evaluation_to_json(e).find("\"distance_to_mesh\": \"nearest_sample\""), std::string::npos);
+  EXPECT_LT(gcs::evaluate(plane, gcs::GroundTruth::from_mesh(plane), fast()).chamfer_l1, 1e-12);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Orientation consistency
 

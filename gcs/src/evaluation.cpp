@@ -724,6 +724,7 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
 
   Evaluation e;
   e.ground_truth_is_mesh = gt.is_mesh();
+  e.exact_surface_distance = options.exact_surface_distance;
   // Ground truth: its points (or samples), their normals, and its scale.
   std::vector<Vec3> gt_points;
   std::vector<Vec3> gt_point_normals;  // empty without normals
@@ -741,7 +742,11 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
     Samples s = sample_triangles(tris, options.samples, options.seed + 0x9e3779b97f4a7c15ULL, "the ground-truth mesh");
     gt_points = std::move(s.points);
     gt_point_normals = std::move(s.normals);
-    gt_bvh = std::make_unique<TriangleBvh>(std::move(tris));
+    if (options.exact_surface_distance) {
+      gt_bvh = std::make_unique<TriangleBvh>(std::move(tris));
+    } else {
+      gt_index = std::make_unique<PointIndex>(gt_points);
+    }
   } else {
     const PointCloud& c = gt.points();
     check_cloud(c);
@@ -772,9 +777,14 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
     }
   }
   // Ground truth -> result.
-  const TriangleBvh result_bvh(std::move(result_tris));
   std::vector<double> d_gt(gt_points.size());
-  for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
+  if (options.exact_surface_distance) {
+    const TriangleBvh result_bvh(std::move(result_tris));
+    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
+  } else {
+    const PointIndex result_index(rs.points);
+    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = result_index.nearest(gt_points[i]).second;
+  }
 
   for (const double t : options.fscore_thresholds) {
     FScore f;
@@ -836,7 +846,8 @@ std::string format_evaluation(const Evaluation& e) {
   os << "ground truth:            " << (e.ground_truth_is_mesh ? "mesh, " : "point set, ") << e.ground_truth_points
      << (e.ground_truth_is_mesh ? " samples" : " points") << ", bbox diagonal " << fixed(e.gt_bbox_diagonal, 6)
      << "\n";
-  os << "result samples:          " << e.result_to_gt.count << "\n";
+  os << "result samples:          " << e.result_to_gt.count << "; distance to a mesh: "
+     << (e.exact_surface_distance ? "exact, to its surface" : "to its nearest sample") << "\n";
   dist("chamfer-L1:              ", e.chamfer_l1);
   dist("  result -> gt mean:     ", e.result_to_gt.mean);
   dist("  gt -> result mean:     ", e.gt_to_result.mean);
@@ -904,6 +915,8 @@ std::string evaluation_to_json(const Evaluation& e) {
   const double diag = e.gt_bbox_diagonal;
   os << "{\"ground_truth\": {\"kind\": \"" << (e.ground_truth_is_mesh ? "mesh" : "points")
      << "\", \"points\": " << e.ground_truth_points << ", \"bbox_diagonal\": " << num(diag) << "},\n";
+  os << " \"result_samples\": " << e.result_to_gt.count << ", \"distance_to_mesh\": \""
+     << (e.exact_surface_distance ? "surface" : "nearest_sample") << "\",\n";
   os << " \"chamfer_l1\": " << num(e.chamfer_l1) << ", \"chamfer_l1_percent\": " << num(e.scale(e.chamfer_l1)) << ",\n";
   os << " \"hausdorff\": " << num(e.hausdorff) << ", \"hausdorff_percent\": " << num(e.scale(e.hausdorff)) << ",\n";
   os << " \"hausdorff_p95\": " << num(e.hausdorff_p95) << ", \"hausdorff_p95_percent\": " << num(e.scale(e.hausdorff_p95))

@@ -18,8 +18,9 @@
 ///   normal. A point-set ground truth is used as it is: all of its points.
 /// - Distance *to a mesh* is the exact point-to-triangle distance, found with a bounding-volume
 ///   hierarchy (axis-aligned boxes, median split, leaves of up to 4 triangles) over the mesh's
-///   triangles and a nearest-first traversal that prunes by box distance. Distance *to a point
-///   set* is the distance to its nearest point (a nanoflann kd-tree).
+///   triangles and a nearest-first traversal that prunes by box distance (or, with
+///   `exact_surface_distance = false`, the distance to the nearest of the mesh's samples).
+///   Distance *to a point set* is the distance to its nearest point (a nanoflann kd-tree).
 /// - Result -> ground truth distances are taken from the result's samples ("accuracy", the
 ///   precision side); ground truth -> result distances from the ground truth's points or samples
 ///   ("completeness", the recall side).
@@ -59,6 +60,11 @@ struct EvaluationOptions {
   std::vector<double> fscore_thresholds = {0.005, 0.01};
   /// Count self-intersecting face pairs (the most expensive validity check; O(F log F)).
   bool self_intersections = true;
+  /// How the distance *to a mesh* is measured: true (default) the exact distance to its surface;
+  /// false the distance to the nearest of its `samples` samples, i.e. point-to-point both ways
+  /// as in many published evaluations (and the kitten figures of anchors.md). The point-to-point
+  /// variant adds the sampling gap (about 0.5 / sqrt(samples / area)) to every distance to a mesh.
+  bool exact_surface_distance = true;
 };
 
 /// What a reconstruction is compared with: an oriented or unoriented point set, or a mesh.
@@ -154,6 +160,7 @@ struct MeshValidity {
 /// Everything `evaluate` measures.
 struct Evaluation {
   bool ground_truth_is_mesh = false;
+  bool exact_surface_distance = true;   ///< as in the options
   std::size_t ground_truth_points = 0;  ///< points (point set) or samples (mesh) measured
   double gt_bbox_diagonal = 0;          ///< the scale of every "percent" below
   double scale(double absolute) const { return 100.0 * absolute / gt_bbox_diagonal; }  ///< absolute -> % of diagonal
