@@ -352,6 +352,21 @@ TEST(GcsEval, ValidityOfATorusAndOfAnOpenGrid) {
   EXPECT_DOUBLE_EQ(p.genus, 1.0);
 }
 
+TEST(GcsEval, DeletedElementsAreIgnored) {
+  // A mesh the way an editing loop leaves it: a face deleted, not garbage-collected.
+  Mesh mesh = shapes::icosphere(3);
+  mesh.delete_face(edgefront::FaceHandle(0), false);
+  const gcs::Evaluation e = gcs::evaluate(mesh, gcs::GroundTruth::from_points(sphere_samples(5000)), fast(5000));
+  EXPECT_EQ(e.validity.faces, shapes::icosphere(3).n_faces() - 1);
+  EXPECT_EQ(e.validity.border_loops, 1u);
+  EXPECT_FALSE(e.validity.closed);
+  EXPECT_EQ(e.validity.self_intersecting_pairs, std::optional<std::size_t>(0));
+  EXPECT_DOUBLE_EQ(e.orientation->raw, 1.0);
+  std::size_t faces = 0;
+  for (const auto& c : e.orientation->components) faces += c.faces;
+  EXPECT_EQ(faces, e.validity.faces);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input
 
