@@ -110,11 +110,13 @@ struct Triangle {
     for (const Vec3& q : p) b.add(q);
     return b;
   }
-  Vec3 unit_normal() const {
-    const Vec3 n = (p[1] - p[0]) % (p[2] - p[0]);
-    const double len = n.norm();
-    return len > 0.0 ? n / len : Vec3(0, 0, 0);
+  Vec3 n = Vec3(0, 0, 0);  // unit normal; zero for a degenerate triangle (set by finish())
+  void finish() {
+    const Vec3 c = (p[1] - p[0]) % (p[2] - p[0]);
+    const double len = c.norm();
+    n = len > 0.0 ? c / len : Vec3(0, 0, 0);
   }
+  const Vec3& unit_normal() const { return n; }
 };
 
 Vec3 closest_on_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
@@ -212,17 +214,22 @@ class TriangleBvh {
     return best;
   }
 
-  /// Calls f(tri) for each triangle whose box overlaps `query`.
+  /// Number of triangles; `in_order(k)` is the k-th triangle in the hierarchy's leaf order
+  /// (spatially coherent).
+  int size() const { return static_cast<int>(order_.size()); }
+  int in_order(int k) const { return order_[static_cast<std::size_t>(k)]; }
+
+  /// Calls f(tri) for each triangle at leaf-order position >= `first` whose box overlaps `query`.
   template <class F>
-  void for_each_overlapping(const Box& query, F&& f) const {
+  void for_each_overlapping(const Box& query, int first, F&& f) const {
     std::array<int, 128> stack;
     int top = 0;
     stack[static_cast<std::size_t>(top++)] = 0;
     while (top > 0) {
       const Node& node = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (!node.box.overlaps(query)) continue;
+      if (node.end <= first || !node.box.overlaps(query)) continue;
       if (node.left < 0) {
-        for (int i = node.begin; i < node.end; ++i) {
+        for (int i = std::max(node.begin, first); i < node.end; ++i) {
           const int t = order_[static_cast<std::size_t>(i)];
           if (boxes_[static_cast<std::size_t>(t)].overlaps(query)) f(t);
         }
@@ -239,7 +246,7 @@ class TriangleBvh {
   struct Node {
     Box box;
     int left = -1, right = -1;  // children; -1 for a leaf
-    int begin = 0, end = 0;     // range of order_ (leaves)
+    int begin = 0, end = 0;     // range of order_ below the node
   };
 
   // Median split on the longest axis of the centroids' box; depth <= log2(n) + 1.
@@ -267,8 +274,11 @@ class TriangleBvh {
     });
     const int left = build(begin, mid);
     const int right = build(mid, end);
-    nodes_[static_cast<std::size_t>(id)].left = left;
-    nodes_[static_cast<std::size_t>(id)].right = right;
+    Node& node = nodes_[static_cast<std::size_t>(id)];
+    node.left = left;
+    node.right = right;
+    node.begin = begin;
+    node.end = end;
     return id;
   }
 
@@ -295,6 +305,7 @@ std::vector<Triangle> mesh_triangles(const Mesh& mesh, std::vector<int>* face_of
       ++k;
     }
     EF_CHECK(k == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
+    t.finish();
     tris.push_back(t);
     if (face_of) face_of->push_back(f.idx());
   }
@@ -509,7 +520,7 @@ int dominant_axis(const Vec3& n) {
 
 // Does the closed segment pq meet the closed triangle t?
 bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Triangle& t, const Tolerance& tol) {
-  const Vec3 n = t.unit_normal();
+  const Vec3& n = t.unit_normal();
   if (n.sqrnorm() == 0.0) return false;  // degenerate triangles are not tested
   const double dp = n | (p - t.p[0]), dq = n | (q - t.p[0]);
   const int drop = dominant_axis(n);
@@ -557,7 +568,7 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
     const Vec3& w = t1.p[static_cast<std::size_t>((i1 + 2) % 3)];
     const Vec3& a = t1.p[static_cast<std::size_t>(i1)];
     const Vec3& b = t2.p[static_cast<std::size_t>(i2)];
-    const Vec3 n1 = t1.unit_normal();
+    const Vec3& n1 = t1.unit_normal();
     if (n1.sqrnorm() == 0.0 || t2.unit_normal().sqrnorm() == 0.0) return false;
     if (std::abs(n1 | (b - u)) > tol.len) return false;  // not coplanar: they meet only on the edge
     return (((w - u) % (a - u)) | ((w - u) % (b - u))) > tol.area * tol.area;
@@ -586,12 +597,13 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
 std::size_t count_self_intersections_of(const TriangleBvh& bvh) {
   const std::vector<Triangle>& tris = bvh.triangles();
   std::size_t count = 0;
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    if (tris[i].unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
-    bvh.for_each_overlapping(bvh.box(static_cast<int>(i)), [&](int j) {
-      if (static_cast<std::size_t>(j) <= i) return;
-      if (tris[static_cast<std::size_t>(j)].unit_normal().sqrnorm() == 0.0) return;
-      if (faces_intersect(tris[i], tris[static_cast<std::size_t>(j)])) ++count;
+  // Each pair once: triangle k (leaf order) against the overlapping ones after it.
+  for (int k = 0; k < bvh.size(); ++k) {
+    const Triangle& a = tris[static_cast<std::size_t>(bvh.in_order(k))];
+    if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
+    bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
+      const Triangle& b = tris[static_cast<std::size_t>(j)];
+      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) ++count;
     });
   }
   return count;
@@ -630,8 +642,10 @@ std::size_t count_self_intersections(const Mesh& mesh) {
   return count_self_intersections_of(TriangleBvh(std::move(tris)));
 }
 
-MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
-  check_mesh_coordinates(mesh, "the mesh");
+namespace {
+
+// Validity of `mesh`; `bvh` (over the mesh's live faces) is reused when given.
+MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* bvh) {
   const edgefront::MeshStats st = edgefront::compute_stats(mesh);
   MeshValidity m;
   m.vertices = st.vertices;
@@ -654,7 +668,9 @@ MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
   m.duplicate_faces = st.duplicate_faces;
   m.valence_histogram = st.valence_histogram;
 
-  std::vector<Triangle> tris = mesh_triangles(mesh);
+  std::vector<Triangle> own;
+  if (!bvh) own = mesh_triangles(mesh);
+  const std::vector<Triangle>& tris = bvh ? bvh->triangles() : own;
   std::vector<double> min_angles;
   min_angles.reserve(tris.size());
   std::size_t below10 = 0, below30 = 0;
@@ -680,8 +696,21 @@ MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
     const std::size_t k = min_angles.size();
     m.median_min_angle_deg = k % 2 ? min_angles[k / 2] : 0.5 * (min_angles[k / 2 - 1] + min_angles[k / 2]);
   }
-  if (count_self) m.self_intersecting_pairs = tris.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(tris)));
+  if (count_self) {
+    if (bvh) {
+      m.self_intersecting_pairs = count_self_intersections_of(*bvh);
+    } else {
+      m.self_intersecting_pairs = own.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(own)));
+    }
+  }
   return m;
+}
+
+}  // namespace
+
+MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
+  check_mesh_coordinates(mesh, "the mesh");
+  return validity_of(mesh, count_self, nullptr);
 }
 
 namespace {
@@ -778,8 +807,8 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
   }
   // Ground truth -> result.
   std::vector<double> d_gt(gt_points.size());
+  const TriangleBvh result_bvh(std::move(result_tris));  // also for the self-intersections
   if (options.exact_surface_distance) {
-    const TriangleBvh result_bvh(std::move(result_tris));
     for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
   } else {
     const PointIndex result_index(rs.points);
@@ -805,7 +834,7 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
     e.orientation = orientation_of(result, face_of, rs, n_gt_at);
     e.normal_consistency = e.orientation->unsigned_consistency;
   }
-  e.validity = mesh_validity(result, options.self_intersections);
+  e.validity = validity_of(result, options.self_intersections, &result_bvh);
   return e;
 }
 

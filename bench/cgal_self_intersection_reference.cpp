@@ -1,0 +1,107 @@
+// cgal_self_intersection_reference: gcs::count_self_intersections against CGAL's
+// Polygon_mesh_processing::self_intersections (exact predicates) on the same meshes.
+//
+//   cgal_self_intersection_reference MESH... [--repeats R]
+//
+// Each mesh is read with edgefront::read_mesh and copied face by face into a CGAL::Surface_mesh
+// (same vertices, same triangles). Prints one markdown row per mesh: faces, both pair counts,
+// whether they agree, and the best of R (default 3) times of each. Exit codes: 0 done (also when
+// the counts differ: it is a measurement), 1 error, 2 usage.
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "edgefront/mesh_io.h"
+#include "gcs/evaluation.h"
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double best_seconds(int repeats, F&& f) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < repeats; ++i) {
+    const Clock::time_point t0 = Clock::now();
+    f();
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return best;
+}
+
+SurfaceMesh to_cgal(const edgefront::Mesh& mesh) {
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> map(mesh.n_vertices());
+  for (const auto v : mesh.vertices()) {
+    const edgefront::Vec3& p = mesh.point(v);
+    map[static_cast<std::size_t>(v.idx())] = sm.add_vertex(Kernel::Point_3(p[0], p[1], p[2]));
+  }
+  for (const auto f : mesh.faces()) {
+    std::vector<SurfaceMesh::Vertex_index> fv;
+    for (const auto v : mesh.fv_range(f)) fv.push_back(map[static_cast<std::size_t>(v.idx())]);
+    if (sm.add_face(fv) == SurfaceMesh::null_face()) throw std::runtime_error("CGAL refused a face");
+  }
+  return sm;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> files;
+  int repeats = 3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--repeats" && i + 1 < argc) {
+      repeats = std::atoi(argv[++i]);
+      if (repeats < 1) {
+        std::cerr << "cgal_self_intersection_reference: error: --repeats must be >= 1\n";
+        return 2;
+      }
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::cerr << "usage: cgal_self_intersection_reference MESH... [--repeats R]\n";
+      return 2;
+    } else {
+      files.push_back(arg);
+    }
+  }
+  if (files.empty()) {
+    std::cerr << "usage: cgal_self_intersection_reference MESH... [--repeats R]\n";
+    return 2;
+  }
+  try {
+    std::cout << "| mesh | faces | CGAL pairs | gcs pairs | agree | CGAL time | gcs time | CGAL / gcs |\n";
+    std::cout << "|---|---|---|---|---|---|---|---|\n";
+    for (const std::string& file : files) {
+      const edgefront::Mesh mesh = edgefront::load_mesh(file);
+      const SurfaceMesh sm = to_cgal(mesh);
+      std::size_t cgal_pairs = 0, gcs_pairs = 0;
+      const double t_cgal = best_seconds(repeats, [&] {
+        std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> pairs;
+        CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
+        cgal_pairs = pairs.size();
+      });
+      const double t_gcs = best_seconds(repeats, [&] { gcs_pairs = gcs::count_self_intersections(mesh); });
+      std::cout << "| " << file << " | " << mesh.n_faces() << " | " << cgal_pairs << " | " << gcs_pairs << " | "
+                << (cgal_pairs == gcs_pairs ? "yes" : "**no**") << " | " << t_cgal << " s | " << t_gcs << " s | "
+                << t_cgal / t_gcs << " |\n";
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "cgal_self_intersection_reference: error: " << e.what() << "\n";
+    return 1;
+  }
+}
