@@ -1,10 +1,12 @@
 // cgal_self_intersection_reference: gcs::count_self_intersections against CGAL's
 // Polygon_mesh_processing::self_intersections (exact predicates) on the same meshes.
 //
-//   cgal_self_intersection_reference MESH... [--repeats R]
+//   cgal_self_intersection_reference [MESH...] [--repeats R]
 //
 // Each mesh is read with edgefront::read_mesh and copied face by face into a CGAL::Surface_mesh
-// (same vertices, same triangles). Prints one markdown row per mesh: faces, both pair counts,
+// (same vertices, same triangles). Generated cases come first: two interpenetrating icospheres
+// (subdivision 3, centres 0.8 apart) in one mesh, and edgefront::shapes meshes at resolution 64:
+// torus, a thin vault shell (thickness 0.02), grid, hairpin, Möbius strip, bumpy sphere (s = 6). Prints one markdown row per mesh: faces, both pair counts,
 // whether they agree, and the best of R (default 3) times of each. Exit codes: 0 done (also when
 // the counts differ: it is a measurement), 1 error, 2 usage.
 
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "edgefront/mesh_io.h"
+#include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 
 namespace {
@@ -72,21 +75,39 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "usage: cgal_self_intersection_reference MESH... [--repeats R]\n";
+      std::cerr << "usage: cgal_self_intersection_reference [MESH...] [--repeats R]\n";
       return 2;
     } else {
       files.push_back(arg);
     }
   }
-  if (files.empty()) {
-    std::cerr << "usage: cgal_self_intersection_reference MESH... [--repeats R]\n";
-    return 2;
-  }
   try {
+    namespace shapes = edgefront::shapes;
+    std::vector<std::pair<std::string, edgefront::Mesh>> cases;
+    {
+      edgefront::Mesh two = shapes::icosphere(3);
+      const edgefront::Mesh other = shapes::icosphere(3);
+      std::vector<edgefront::VertexHandle> map;
+      for (const auto v : other.vertices()) map.push_back(two.add_vertex(other.point(v) + edgefront::Vec3(0.8, 0, 0)));
+      for (const auto f : other.faces()) {
+        std::vector<edgefront::VertexHandle> fv;
+        for (const auto v : other.fv_range(f)) fv.push_back(map[static_cast<std::size_t>(v.idx())]);
+        two.add_face(fv);
+      }
+      cases.emplace_back("two interpenetrating icospheres", std::move(two));
+    }
+    for (const char* name : {"torus", "vault-shell", "grid", "hairpin", "mobius"}) {
+      shapes::MeshOptions o;
+      o.resolution = 64;
+      o.shape.thickness = 0.02;
+      cases.emplace_back(std::string(name) + " (shapes, 64)", shapes::make(name, o));
+    }
+    cases.emplace_back("bumpy sphere (s = 6)", shapes::bumpy_sphere(6));
+    for (const std::string& file : files) cases.emplace_back(file, edgefront::load_mesh(file));
+
     std::cout << "| mesh | faces | CGAL pairs | gcs pairs | agree | CGAL time | gcs time | CGAL / gcs |\n";
     std::cout << "|---|---|---|---|---|---|---|---|\n";
-    for (const std::string& file : files) {
-      const edgefront::Mesh mesh = edgefront::load_mesh(file);
+    for (const auto& [file, mesh] : cases) {
       const SurfaceMesh sm = to_cgal(mesh);
       std::size_t cgal_pairs = 0, gcs_pairs = 0;
       const double t_cgal = best_seconds(repeats, [&] {

@@ -31,7 +31,10 @@
 ///   an exact-in-spirit, tolerance-guarded triangle-triangle test (each edge of one triangle
 ///   against the other triangle, coplanar cases in 2D). Faces sharing an edge count only when they
 ///   are coplanar and folded onto each other; faces sharing a vertex count only when they meet
-///   beyond it.
+///   beyond it. "Sharing" is by vertex index: faces that merely touch (also at distinct but
+///   coincident vertices, as along an unwelded seam) count. The counts agree with CGAL's
+///   Polygon_mesh_processing::self_intersections on CGAL's sample models and the test shapes
+///   (bench/cgal_self_intersection_reference).
 ///
 /// Cost: O((S + G) log F) for S result samples, G ground-truth points/samples, F faces; 100K
 /// samples against 100K faces take well under a few seconds (see bench/results/).
