@@ -76,16 +76,13 @@ int main(int argc, char** argv) {
     edgefront::MeshReadResult result = edgefront::read_mesh(mesh_path);
     print_read_warnings("mesh", result.report);
     const gcs::GroundTruth gt = load_ground_truth(gt_path);
-    const gcs::Evaluation e = gcs::evaluate(result.mesh, gt, options);
+    gcs::Evaluation e = gcs::evaluate(result.mesh, gt, options);
+    e.validity.faces_dropped_when_read = result.report.faces_dropped_nonmanifold;
     if (json) {
       std::cout << gcs::evaluation_to_json(e);
     } else {
       std::cout << "mesh:                    " << mesh_path << "\n";
       std::cout << "ground truth file:       " << gt_path << "\n";
-      if (result.report.faces_dropped_nonmanifold > 0) {
-        std::cout << "read:                    " << result.report.faces_dropped_nonmanifold
-                  << " non-manifold faces of the file dropped (the mesh was not edge-manifold)\n";
-      }
       std::cout << gcs::format_evaluation(e);
     }
     std::cout.flush();

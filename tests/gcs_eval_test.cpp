@@ -531,6 +531,14 @@ TEST_F(GcsEvalApp, ErrorsAndExitCodes) {
   expect_error(file("sphere.off") + " " + file("gt.xyz") + " --samples 0", 2, "samples");
   expect_error(file("sphere.off"), 2, "GT");
 
+  // A non-manifold file: the reader drops a face, and the report says so.
+  const std::string nonmanifold =
+      eftest::shell_quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / "bad" / "nonmanifold.off").string());
+  const eftest::CommandResult nm = run(nonmanifold + " " + nonmanifold + " --samples 100 --json");
+  EXPECT_EQ(nm.exit_code, 0) << nm.err;
+  EXPECT_NEAR(json_number(nm.out, "faces_dropped_when_read"), 1.0, 0.0);
+  EXPECT_NE(nm.err.find("gcs-eval: warning: mesh:"), std::string::npos) << nm.err;
+
   const eftest::CommandResult help = run("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--samples"), std::string::npos);

@@ -910,7 +910,12 @@ std::string format_evaluation(const Evaluation& e) {
   os << "mesh:                    " << m.vertices << " vertices, " << m.edges << " edges, " << m.faces
      << " faces, area " << fixed(m.area, 6) << "\n";
   os << "manifold:                edges " << (m.edge_manifold ? "yes" : "no") << ", vertices "
-     << (m.vertex_manifold ? "yes" : "no") << " (" << m.nonmanifold_vertices << " non-manifold)\n";
+     << (m.vertex_manifold ? "yes" : "no") << " (" << m.nonmanifold_vertices << " non-manifold)";
+  if (m.faces_dropped_when_read > 0) {
+    os << "; but the file had " << m.faces_dropped_when_read
+       << " more faces that made it non-manifold (dropped on reading)";
+  }
+  os << "\n";
   os << "components:              " << m.components << ", border loops " << m.border_loops
      << (m.closed ? " (closed)" : "") << ", isolated vertices " << m.isolated_vertices << "\n";
   os << "euler / genus:           " << m.euler_characteristic << " / " << m.genus;
@@ -984,6 +989,7 @@ std::string evaluation_to_json(const Evaluation& e) {
      << ", \"area\": " << num(m.area) << ", \"edge_manifold\": " << (m.edge_manifold ? "true" : "false")
      << ", \"nonmanifold_edges\": " << m.nonmanifold_edges << ", \"vertex_manifold\": "
      << (m.vertex_manifold ? "true" : "false") << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
+     << ", \"faces_dropped_when_read\": " << m.faces_dropped_when_read
      << ",\n  \"components\": " << m.components << ", \"border_loops\": " << m.border_loops
      << ", \"closed\": " << (m.closed ? "true" : "false") << ", \"euler_characteristic\": " << m.euler_characteristic
      << ", \"genus\": " << num(m.genus) << ", \"component_genus\": [";

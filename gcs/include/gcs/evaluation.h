@@ -137,6 +137,10 @@ struct MeshValidity {
   /// the report states it.
   std::size_t nonmanifold_edges = 0;
   std::size_t nonmanifold_vertices = 0;  ///< vertices whose faces form more than one fan
+  /// Not measured here: set by a caller that read the mesh from a file (gcs-eval sets it from
+  /// edgefront::MeshReadReport::faces_dropped_nonmanifold): faces of the file that would have
+  /// made an edge or vertex non-manifold and were dropped, so the file was not manifold.
+  std::size_t faces_dropped_when_read = 0;
   bool edge_manifold = true;
   bool vertex_manifold = true;
   std::size_t components = 0;  ///< connected components (isolated vertices included)
