@@ -15,36 +15,23 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <iterator>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "edgefront/mesh_io.h"
 #include "edgefront/shapes.h"
+#include "bench_timing.h"
 #include "gcs/evaluation.h"
 
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
-using Clock = std::chrono::steady_clock;
-
-template <class F>
-double best_seconds(int repeats, F&& f) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < repeats; ++i) {
-    const Clock::time_point t0 = Clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return best;
-}
 
 SurfaceMesh to_cgal(const edgefront::Mesh& mesh) {
   SurfaceMesh sm;
@@ -110,12 +97,12 @@ int main(int argc, char** argv) {
     for (const auto& [file, mesh] : cases) {
       const SurfaceMesh sm = to_cgal(mesh);
       std::size_t cgal_pairs = 0, gcs_pairs = 0;
-      const double t_cgal = best_seconds(repeats, [&] {
+      const double t_cgal = efbench::best_seconds(repeats, [&] {
         std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> pairs;
         CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
         cgal_pairs = pairs.size();
       });
-      const double t_gcs = best_seconds(repeats, [&] { gcs_pairs = gcs::count_self_intersections(mesh); });
+      const double t_gcs = efbench::best_seconds(repeats, [&] { gcs_pairs = gcs::count_self_intersections(mesh); });
       std::cout << "| " << file << " | " << mesh.n_faces() << " | " << cgal_pairs << " | " << gcs_pairs << " | "
                 << (cgal_pairs == gcs_pairs ? "yes" : "**no**") << " | " << t_cgal << " s | " << t_gcs << " s | "
                 << t_cgal / t_gcs << " |\n";

@@ -12,33 +12,15 @@
 // and the ratio exact / p2p. Exit codes: 0 done, 2 usage.
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <limits>
 #include <string>
 
 #include "edgefront/shapes.h"
+#include "bench_timing.h"
 #include "gcs/evaluation.h"
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-template <class F>
-double best_seconds(int repeats, F&& f) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < repeats; ++i) {
-    const Clock::time_point t0 = Clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return best;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   std::size_t samples = 100000;
@@ -72,9 +54,9 @@ int main(int argc, char** argv) {
     p2p.exact_surface_distance = false;
     gcs::Evaluation e;
     std::size_t pairs = 0;
-    const double t_exact = best_seconds(repeats, [&] { e = gcs::evaluate(mesh, gt, exact); });
-    const double t_p2p = best_seconds(repeats, [&] { gcs::evaluate(mesh, gt, p2p); });
-    const double t_self = best_seconds(repeats, [&] { pairs = gcs::count_self_intersections(mesh); });
+    const double t_exact = efbench::best_seconds(repeats, [&] { e = gcs::evaluate(mesh, gt, exact); });
+    const double t_p2p = efbench::best_seconds(repeats, [&] { gcs::evaluate(mesh, gt, p2p); });
+    const double t_self = efbench::best_seconds(repeats, [&] { pairs = gcs::count_self_intersections(mesh); });
     std::printf("%10zu %10.3f %10.3f %10.3f %12.2f %14.5f%s\n", mesh.n_faces(), t_exact, t_p2p, t_self,
                 t_exact / t_p2p, e.scale(e.chamfer_l1),
                 pairs ? "  (self-intersections found!)" : "");
