@@ -24,7 +24,8 @@ namespace {
 
 std::string lower_extension(const std::filesystem::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -48,17 +49,19 @@ gcs::GroundTruth load_ground_truth(const std::filesystem::path& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Judge a reconstructed mesh against a ground truth point set or mesh: Chamfer-L1, Hausdorff, "
-               "F-scores, normal and orientation consistency, and mesh validity.",
-               "gcs-eval"};
+  CLI::App app{
+      "Judge a reconstructed mesh against a ground truth point set or mesh: Chamfer-L1, Hausdorff, "
+      "F-scores, normal and orientation consistency, and mesh validity.",
+      "gcs-eval"};
   std::string mesh_path, gt_path;
   gcs::EvaluationOptions options;
   bool json = false;
   bool no_self = false;
   bool point_to_sample = false;
   app.add_option("MESH", mesh_path, "the reconstructed mesh (.off, .obj, .ply, .stl)")->required();
-  app.add_option("GT", gt_path,
-                 "ground truth: points (.xyz, .ply/.off/.obj without faces; normals optional) or a mesh with faces")
+  app.add_option(
+         "GT", gt_path,
+         "ground truth: points (.xyz, .ply/.off/.obj without faces; normals optional) or a mesh with faces")
       ->required();
   app.add_option("--samples", options.samples, "area-uniform samples per mesh surface")
       ->default_val(options.samples)

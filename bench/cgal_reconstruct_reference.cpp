@@ -83,7 +83,8 @@ Args parse_args(int argc, char** argv) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used != text.size() || text.empty() || text[0] == '-') throw UsageError(arg + ": not a count: " + text);
+      if (used != text.size() || text.empty() || text[0] == '-')
+        throw UsageError(arg + ": not a count: " + text);
       return v;
     };
     if (arg == "-o") {
@@ -104,7 +105,9 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // CGAL triangles -> edgefront::Mesh through the project's own reader (counts refused faces).
 edgefront::MeshReadResult to_mesh(const std::vector<Point3>& vertices,
@@ -118,7 +121,8 @@ edgefront::MeshReadResult to_mesh(const std::vector<Point3>& vertices,
 }
 
 void report(const std::string& method, double seconds, const edgefront::MeshReadResult& r,
-            const std::filesystem::path& file, const gcs::GroundTruth& gt, const gcs::EvaluationOptions& options) {
+            const std::filesystem::path& file, const gcs::GroundTruth& gt,
+            const gcs::EvaluationOptions& options) {
   edgefront::write_mesh(r.mesh, file);
   const Clock::time_point t0 = Clock::now();
   const gcs::Evaluation e = gcs::evaluate(r.mesh, gt, options);
@@ -133,8 +137,8 @@ void report(const std::string& method, double seconds, const edgefront::MeshRead
   p2p.self_intersections = false;
   const gcs::Evaluation ep = gcs::evaluate(r.mesh, gt, p2p);
   std::cout << "point-to-sample variant: chamfer-L1 " << ep.scale(ep.chamfer_l1) << "% (gt -> result mean "
-            << ep.scale(ep.gt_to_result.mean) << "%), hausdorff " << ep.scale(ep.hausdorff) << "%, F-score @ 1% "
-            << ep.fscores.back().fscore << "\n\n";
+            << ep.scale(ep.gt_to_result.mean) << "%), hausdorff " << ep.scale(ep.hausdorff)
+            << "%, F-score @ 1% " << ep.fscores.back().fscore << "\n\n";
 }
 
 }  // namespace
@@ -150,7 +154,8 @@ int main(int argc, char** argv) {
   }
   try {
     const edgefront::PointCloud cloud = edgefront::read_points(args.points);
-    if (!cloud.has_normals()) throw edgefront::InvalidInput(args.points.string() + " has no normals (Poisson needs them)");
+    if (!cloud.has_normals())
+      throw edgefront::InvalidInput(args.points.string() + " has no normals (Poisson needs them)");
     std::filesystem::create_directories(args.out_dir);
     const std::string stem = args.points.stem().string();
     const gcs::GroundTruth gt = gcs::GroundTruth::from_points(cloud);
@@ -171,8 +176,8 @@ int main(int argc, char** argv) {
       std::vector<std::array<std::size_t, 3>> facets;
       CGAL::advancing_front_surface_reconstruction(points.begin(), points.end(), std::back_inserter(facets));
       const double t = seconds_since(t0);
-      report("CGAL advancing front", t, to_mesh(points, facets), args.out_dir / (stem + "-advancing-front.off"), gt,
-             args.eval);
+      report("CGAL advancing front", t, to_mesh(points, facets),
+             args.out_dir / (stem + "-advancing-front.off"), gt, args.eval);
     }
     {  // Poisson
       const Clock::time_point t0 = Clock::now();
@@ -202,7 +207,8 @@ int main(int argc, char** argv) {
         triangles.push_back(tri);
       }
       std::cout << "(Poisson average spacing " << spacing << ")\n";
-      report("CGAL Poisson", t, to_mesh(vertices, triangles), args.out_dir / (stem + "-poisson.off"), gt, args.eval);
+      report("CGAL Poisson", t, to_mesh(vertices, triangles), args.out_dir / (stem + "-poisson.off"), gt,
+             args.eval);
     }
     return 0;
   } catch (const std::exception& e) {

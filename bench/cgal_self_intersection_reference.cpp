@@ -6,9 +6,9 @@
 // Each mesh is read with edgefront::read_mesh and copied face by face into a CGAL::Surface_mesh
 // (same vertices, same triangles). Generated cases come first: two interpenetrating icospheres
 // (subdivision 3, centres 0.8 apart) in one mesh, and edgefront::shapes meshes at resolution 64:
-// torus, a thin vault shell (thickness 0.02), grid, hairpin, Möbius strip, bumpy sphere (s = 6). Prints one markdown row per mesh: faces, both pair counts,
-// whether they agree, and the best of R (default 3) times of each. Exit codes: 0 done (also when
-// the counts differ: it is a measurement), 1 error, 2 usage.
+// torus, a thin vault shell (thickness 0.02), grid, hairpin, Möbius strip, bumpy sphere (s = 6). Prints one
+// markdown row per mesh: faces, both pair counts, whether they agree, and the best of R (default 3) times of
+// each. Exit codes: 0 done (also when the counts differ: it is a measurement), 1 error, 2 usage.
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -23,9 +23,9 @@
 #include <utility>
 #include <vector>
 
+#include "bench_timing.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/shapes.h"
-#include "bench_timing.h"
 #include "gcs/evaluation.h"
 
 namespace {
@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
       edgefront::Mesh two = shapes::icosphere(3);
       const edgefront::Mesh other = shapes::icosphere(3);
       std::vector<edgefront::VertexHandle> map;
-      for (const auto v : other.vertices()) map.push_back(two.add_vertex(other.point(v) + edgefront::Vec3(0.8, 0, 0)));
+      for (const auto v : other.vertices())
+        map.push_back(two.add_vertex(other.point(v) + edgefront::Vec3(0.8, 0, 0)));
       for (const auto f : other.faces()) {
         std::vector<edgefront::VertexHandle> fv;
         for (const auto v : other.fv_range(f)) fv.push_back(map[static_cast<std::size_t>(v.idx())]);
@@ -102,10 +103,11 @@ int main(int argc, char** argv) {
         CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
         cgal_pairs = pairs.size();
       });
-      const double t_gcs = efbench::best_seconds(repeats, [&] { gcs_pairs = gcs::count_self_intersections(mesh); });
-      std::cout << "| " << file << " | " << mesh.n_faces() << " | " << cgal_pairs << " | " << gcs_pairs << " | "
-                << (cgal_pairs == gcs_pairs ? "yes" : "**no**") << " | " << t_cgal << " s | " << t_gcs << " s | "
-                << t_cgal / t_gcs << " |\n";
+      const double t_gcs =
+          efbench::best_seconds(repeats, [&] { gcs_pairs = gcs::count_self_intersections(mesh); });
+      std::cout << "| " << file << " | " << mesh.n_faces() << " | " << cgal_pairs << " | " << gcs_pairs
+                << " | " << (cgal_pairs == gcs_pairs ? "yes" : "**no**") << " | " << t_cgal << " s | "
+                << t_gcs << " s | " << t_cgal / t_gcs << " |\n";
     }
     return 0;
   } catch (const std::exception& e) {

@@ -18,8 +18,8 @@
 #include <iostream>
 #include <string>
 
-#include "edgefront/shapes.h"
 #include "bench_timing.h"
+#include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 
 int main(int argc, char** argv) {
@@ -43,8 +43,10 @@ int main(int argc, char** argv) {
   edgefront::shapes::SampleOptions so;
   so.points = samples;
   const gcs::GroundTruth gt = gcs::GroundTruth::from_points(edgefront::shapes::sample("bumpy-sphere", so));
-  std::printf("samples %zu (mesh) and %zu (ground truth points), best of %d runs\n", samples, samples, repeats);
-  std::printf("%10s %10s %10s %10s %12s %14s\n", "faces", "exact_s", "p2p_s", "selfint_s", "exact/p2p", "chamfer_%");
+  std::printf("samples %zu (mesh) and %zu (ground truth points), best of %d runs\n", samples, samples,
+              repeats);
+  std::printf("%10s %10s %10s %10s %12s %14s\n", "faces", "exact_s", "p2p_s", "selfint_s", "exact/p2p",
+              "chamfer_%");
   for (const int s : {5, 6, 7}) {
     const edgefront::Mesh mesh = edgefront::shapes::bumpy_sphere(s);
     gcs::EvaluationOptions exact;
@@ -56,10 +58,10 @@ int main(int argc, char** argv) {
     std::size_t pairs = 0;
     const double t_exact = efbench::best_seconds(repeats, [&] { e = gcs::evaluate(mesh, gt, exact); });
     const double t_p2p = efbench::best_seconds(repeats, [&] { gcs::evaluate(mesh, gt, p2p); });
-    const double t_self = efbench::best_seconds(repeats, [&] { pairs = gcs::count_self_intersections(mesh); });
+    const double t_self =
+        efbench::best_seconds(repeats, [&] { pairs = gcs::count_self_intersections(mesh); });
     std::printf("%10zu %10.3f %10.3f %10.3f %12.2f %14.5f%s\n", mesh.n_faces(), t_exact, t_p2p, t_self,
-                t_exact / t_p2p, e.scale(e.chamfer_l1),
-                pairs ? "  (self-intersections found!)" : "");
+                t_exact / t_p2p, e.scale(e.chamfer_l1), pairs ? "  (self-intersections found!)" : "");
   }
   return 0;
 }

@@ -46,7 +46,8 @@ gcs::EvaluationOptions fast(std::size_t samples = 20000) {
 /// `src` translated by `offset`, optionally with every face reversed; appended to `dst`.
 void append(Mesh& dst, const Mesh& src, const Vec3& offset = Vec3(0, 0, 0), bool reversed = false) {
   std::vector<VertexHandle> map(src.n_vertices());
-  for (const auto v : src.vertices()) map[static_cast<std::size_t>(v.idx())] = dst.add_vertex(src.point(v) + offset);
+  for (const auto v : src.vertices())
+    map[static_cast<std::size_t>(v.idx())] = dst.add_vertex(src.point(v) + offset);
   for (const auto f : src.faces()) {
     std::vector<VertexHandle> fv;
     for (const auto v : src.fv_range(f)) fv.push_back(map[static_cast<std::size_t>(v.idx())]);
@@ -147,7 +148,8 @@ TEST(GcsEval, TranslatedPlaneHasChamferAndHausdorffEqualToTheOffset) {
   for (const bool mesh_gt : {true, false}) {
     SCOPED_TRACE(mesh_gt ? "mesh ground truth" : "point ground truth");
     PointCloud cloud = shapes::sample_mesh(plane, {.points = 5000, .seed = 3, .shape = {}});
-    const gcs::GroundTruth gt = mesh_gt ? gcs::GroundTruth::from_mesh(plane) : gcs::GroundTruth::from_points(cloud);
+    const gcs::GroundTruth gt =
+        mesh_gt ? gcs::GroundTruth::from_mesh(plane) : gcs::GroundTruth::from_points(cloud);
     const gcs::Evaluation e = gcs::evaluate(moved, gt, fast());
     // Ground truth -> result is exactly the offset; for a point set, result -> ground truth is
     // the offset plus the in-plane gap to the nearest point, so only the mesh case is exact there.
@@ -244,7 +246,8 @@ TEST(GcsEval, HalfFlippedAreaSeparateComponentsVersusOneComponent) {
 TEST(GcsEval, UnorientedGroundTruthHasNoOrientation) {
   PointCloud gt = sphere_samples(2000);
   gt.normals.clear();
-  const gcs::Evaluation e = gcs::evaluate(shapes::icosphere(2), gcs::GroundTruth::from_points(gt), fast(2000));
+  const gcs::Evaluation e =
+      gcs::evaluate(shapes::icosphere(2), gcs::GroundTruth::from_points(gt), fast(2000));
   EXPECT_FALSE(e.orientation.has_value());
   EXPECT_FALSE(e.normal_consistency.has_value());
   EXPECT_NE(gcs::format_evaluation(e).find("orientation consistency: n/a"), std::string::npos);
@@ -258,7 +261,8 @@ TEST(GcsEval, UnorientedGroundTruthHasNoOrientation) {
 Mesh make_mesh(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& faces) {
   Mesh m;
   for (const Vec3& p : points) m.add_vertex(p);
-  for (const auto& f : faces) EXPECT_TRUE(m.add_face(VertexHandle(f[0]), VertexHandle(f[1]), VertexHandle(f[2])).is_valid());
+  for (const auto& f : faces)
+    EXPECT_TRUE(m.add_face(VertexHandle(f[0]), VertexHandle(f[1]), VertexHandle(f[2])).is_valid());
   return m;
 }
 
@@ -291,31 +295,34 @@ TEST(GcsEval, SelfIntersectionsOfSpheresAndPlanes) {
 
 TEST(GcsEval, SelfIntersectionsOfFacesSharingAVertexOrAnEdge) {
   // Sharing an edge, bent (not coplanar): no intersection.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0.3}},
-                                                    {{{0, 1, 2}}, {{1, 0, 3}}})),
+  EXPECT_EQ(gcs::count_self_intersections(
+                make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0.3}}, {{{0, 1, 2}}, {{1, 0, 3}}})),
             0u);
   // Sharing an edge, folded flat onto each other (coplanar, same side): one pair.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.6, 0.6, 0}},
-                                                    {{{0, 1, 2}}, {{1, 0, 3}}})),
+  EXPECT_EQ(gcs::count_self_intersections(
+                make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.6, 0.6, 0}}, {{{0, 1, 2}}, {{1, 0, 3}}})),
             1u);
   // Sharing a vertex only, touching there: no intersection.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0.2}, {0, -1, 0.5}},
-                                                    {{{0, 1, 2}}, {{0, 3, 4}}})),
+  EXPECT_EQ(gcs::count_self_intersections(make_mesh(
+                {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0.2}, {0, -1, 0.5}}, {{{0, 1, 2}}, {{0, 3, 4}}})),
             0u);
   // Sharing a vertex, the second triangle pierces the first: one pair.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 0.5, -1}, {1, 0.5, 1}},
-                                                    {{{0, 1, 2}}, {{0, 3, 4}}})),
+  EXPECT_EQ(gcs::count_self_intersections(make_mesh(
+                {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 0.5, -1}, {1, 0.5, 1}}, {{{0, 1, 2}}, {{0, 3, 4}}})),
             1u);
   // No shared vertex, one triangle through the other: one pair; far apart: none.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh(
-                {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, -1}, {0.6, 0.5, 1}, {0.5, 0.7, 1}}, {{{0, 1, 2}}, {{3, 4, 5}}})),
+  EXPECT_EQ(gcs::count_self_intersections(
+                make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, -1}, {0.6, 0.5, 1}, {0.5, 0.7, 1}},
+                          {{{0, 1, 2}}, {{3, 4, 5}}})),
             1u);
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh(
-                {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {5.5, 0.5, -1}, {5.6, 0.5, 1}, {5.5, 0.7, 1}}, {{{0, 1, 2}}, {{3, 4, 5}}})),
+  EXPECT_EQ(gcs::count_self_intersections(
+                make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {5.5, 0.5, -1}, {5.6, 0.5, 1}, {5.5, 0.7, 1}},
+                          {{{0, 1, 2}}, {{3, 4, 5}}})),
             0u);
   // Coplanar overlap without a shared vertex.
-  EXPECT_EQ(gcs::count_self_intersections(make_mesh(
-                {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}}, {{{0, 1, 2}}, {{3, 4, 5}}})),
+  EXPECT_EQ(gcs::count_self_intersections(
+                make_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}},
+                          {{{0, 1, 2}}, {{3, 4, 5}}})),
             1u);
 }
 
@@ -356,7 +363,8 @@ TEST(GcsEval, DeletedElementsAreIgnored) {
   // A mesh the way an editing loop leaves it: a face deleted, not garbage-collected.
   Mesh mesh = shapes::icosphere(3);
   mesh.delete_face(edgefront::FaceHandle(0), false);
-  const gcs::Evaluation e = gcs::evaluate(mesh, gcs::GroundTruth::from_points(sphere_samples(5000)), fast(5000));
+  const gcs::Evaluation e =
+      gcs::evaluate(mesh, gcs::GroundTruth::from_points(sphere_samples(5000)), fast(5000));
   EXPECT_EQ(e.validity.faces, shapes::icosphere(3).n_faces() - 1);
   EXPECT_EQ(e.validity.border_loops, 1u);
   EXPECT_FALSE(e.validity.closed);
@@ -392,16 +400,19 @@ TEST(GcsEval, BadInputIsAClearError) {
   Mesh nan_mesh = sphere;
   nan_mesh.set_point(VertexHandle(5), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   expect_invalid([&] { gcs::evaluate(nan_mesh, points, fast()); }, "vertex 5");
-  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(PointCloud{}), fast()); }, "empty");
+  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(PointCloud{}), fast()); },
+                 "empty");
   PointCloud nan_gt = gt;
   nan_gt.points[17][1] = std::numeric_limits<double>::infinity();
   expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(nan_gt), fast()); }, "point 17");
   PointCloud zero_normal = gt;
   zero_normal.normals[3] = Vec3(0, 0, 0);
-  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(zero_normal), fast()); }, "point 3");
+  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(zero_normal), fast()); },
+                 "point 3");
   PointCloud short_normals = gt;
   short_normals.normals.pop_back();
-  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(short_normals), fast()); }, "normals");
+  expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(short_normals), fast()); },
+                 "normals");
   PointCloud same;
   same.points.assign(10, Vec3(1, 2, 3));
   expect_invalid([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(same), fast()); }, "no extent");
@@ -471,21 +482,25 @@ TEST_F(GcsEvalApp, TableAndJsonAgreeWithTheLibrary) {
   edgefront::write_mesh(mesh, dir_ / "sphere.off");
   edgefront::write_points(gt, dir_ / "gt.xyz");
 
-  const eftest::CommandResult table = run(file("sphere.off") + " " + file("gt.xyz") + " --samples 4000 --seed 5");
+  const eftest::CommandResult table =
+      run(file("sphere.off") + " " + file("gt.xyz") + " --samples 4000 --seed 5");
   ASSERT_EQ(table.exit_code, 0) << table.err;
-  for (const char* key : {"chamfer-L1:", "hausdorff 95%:", "F-score @ 0.50%:", "F-score @ 1.00%:", "normal consistency:",
-                          "orientation consistency: 1.0000 as is", "self-intersecting pairs: 0", "euler / genus:",
-                          "valence histogram:", "min angle:", "point set, 3000 points"}) {
+  for (const char* key :
+       {"chamfer-L1:", "hausdorff 95%:", "F-score @ 0.50%:", "F-score @ 1.00%:", "normal consistency:",
+        "orientation consistency: 1.0000 as is", "self-intersecting pairs: 0",
+        "euler / genus:", "valence histogram:", "min angle:", "point set, 3000 points"}) {
     EXPECT_NE(table.out.find(key), std::string::npos) << key << "\n" << table.out;
   }
 
-  const eftest::CommandResult json = run(file("sphere.off") + " " + file("gt.xyz") + " --samples 4000 --seed 5 --json");
+  const eftest::CommandResult json =
+      run(file("sphere.off") + " " + file("gt.xyz") + " --samples 4000 --seed 5 --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   gcs::EvaluationOptions o;
   o.samples = 4000;
   o.seed = 5;
-  const gcs::Evaluation e = gcs::evaluate(edgefront::load_mesh(dir_ / "sphere.off"),
-                                          gcs::GroundTruth::from_points(edgefront::read_points(dir_ / "gt.xyz")), o);
+  const gcs::Evaluation e =
+      gcs::evaluate(edgefront::load_mesh(dir_ / "sphere.off"),
+                    gcs::GroundTruth::from_points(edgefront::read_points(dir_ / "gt.xyz")), o);
   EXPECT_EQ(json.out, gcs::evaluation_to_json(e));
   EXPECT_NEAR(json_number(json.out, "chamfer_l1"), e.chamfer_l1, 1e-15);
   EXPECT_NEAR(json_number(json.out, "genus"), 0.0, 0.0);
@@ -499,13 +514,15 @@ TEST_F(GcsEvalApp, GroundTruthKindIsDecidedByContent) {
   for (const auto v : torus.vertices()) points_only.add_vertex(torus.point(v));
   edgefront::write_mesh(points_only, dir_ / "vertices.off");
 
-  const eftest::CommandResult as_mesh = run(file("torus.off") + " " + file("torus.ply") + " --samples 2000 --json");
+  const eftest::CommandResult as_mesh =
+      run(file("torus.off") + " " + file("torus.ply") + " --samples 2000 --json");
   ASSERT_EQ(as_mesh.exit_code, 0) << as_mesh.err;
   EXPECT_NE(as_mesh.out.find("\"kind\": \"mesh\""), std::string::npos);
   EXPECT_LT(json_number(as_mesh.out, "chamfer_l1"), 1e-12);
   EXPECT_NEAR(json_number(as_mesh.out, "raw"), 1.0, 0.0);
 
-  const eftest::CommandResult as_points = run(file("torus.off") + " " + file("vertices.off") + " --samples 2000 --json");
+  const eftest::CommandResult as_points =
+      run(file("torus.off") + " " + file("vertices.off") + " --samples 2000 --json");
   ASSERT_EQ(as_points.exit_code, 0) << as_points.err;
   EXPECT_NE(as_points.out.find("\"kind\": \"points\""), std::string::npos);
   EXPECT_NE(as_points.out.find("\"orientation_consistency\": null"), std::string::npos);  // no normals
@@ -524,9 +541,11 @@ TEST_F(GcsEvalApp, ErrorsAndExitCodes) {
   expect_error(file("missing.off") + " " + file("gt.xyz"), 1, "missing.off");
   expect_error(file("sphere.off") + " " + file("missing.xyz"), 1, "missing.xyz");
   expect_error(file("nofaces.off") + " " + file("gt.xyz"), 1, "no faces");
-  const std::string nan_points = eftest::shell_quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / "bad" / "nan_points.xyz").string());
+  const std::string nan_points =
+      eftest::shell_quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / "bad" / "nan_points.xyz").string());
   expect_error(file("sphere.off") + " " + nan_points, 1, "nan_points.xyz");
-  const std::string empty = eftest::shell_quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / "bad" / "no_points.xyz").string());
+  const std::string empty =
+      eftest::shell_quoted((fs::path(EDGEFRONT_TEST_DATA_DIR) / "bad" / "no_points.xyz").string());
   expect_error(file("sphere.off") + " " + empty, 1, "no_points.xyz");
   expect_error(file("sphere.off") + " " + file("gt.xyz") + " --samples 0", 2, "samples");
   expect_error(file("sphere.off"), 2, "GT");

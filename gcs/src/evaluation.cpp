@@ -41,7 +41,8 @@ void check_options(const EvaluationOptions& o) {
   }
   for (const double t : o.fscore_thresholds) {
     if (!std::isfinite(t) || !(t > 0.0)) {
-      throw InvalidInput("evaluation: F-score thresholds must be finite and > 0 (fractions of the bbox diagonal)");
+      throw InvalidInput(
+          "evaluation: F-score thresholds must be finite and > 0 (fractions of the bbox diagonal)");
     }
   }
 }
@@ -59,17 +60,19 @@ void check_mesh_coordinates(const Mesh& mesh, const char* what) {
 void check_cloud(const PointCloud& cloud) {
   if (cloud.empty()) throw InvalidInput("evaluation: the ground-truth point set is empty");
   if (!cloud.normals.empty() && cloud.normals.size() != cloud.points.size()) {
-    throw InvalidInput("evaluation: the ground truth has " + std::to_string(cloud.normals.size()) + " normals for " +
-                       std::to_string(cloud.points.size()) + " points");
+    throw InvalidInput("evaluation: the ground truth has " + std::to_string(cloud.normals.size()) +
+                       " normals for " + std::to_string(cloud.points.size()) + " points");
   }
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     if (!finite(cloud.points[i])) {
-      throw InvalidInput("evaluation: the ground truth has a non-finite coordinate at point " + std::to_string(i));
+      throw InvalidInput("evaluation: the ground truth has a non-finite coordinate at point " +
+                         std::to_string(i));
     }
   }
   for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
     if (!finite(cloud.normals[i]) || !(cloud.normals[i].sqrnorm() > 0.0)) {
-      throw InvalidInput("evaluation: the ground truth has a non-finite or zero normal at point " + std::to_string(i));
+      throw InvalidInput("evaluation: the ground truth has a non-finite or zero normal at point " +
+                         std::to_string(i));
     }
   }
 }
@@ -148,8 +151,9 @@ Vec3 closest_on_triangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3
   if (!(sum > 0.0)) {  // degenerate (collinear) triangle: nearest of its three sides
     const std::array<Vec3, 3> q = {closest_on_segment(x, a, b), closest_on_segment(x, b, c),
                                    closest_on_segment(x, c, a)};
-    return *std::min_element(q.begin(), q.end(),
-                             [&](const Vec3& u, const Vec3& w) { return (u - x).sqrnorm() < (w - x).sqrnorm(); });
+    return *std::min_element(q.begin(), q.end(), [&](const Vec3& u, const Vec3& w) {
+      return (u - x).sqrnorm() < (w - x).sqrnorm();
+    });
   }
   return a + (vb / sum) * ab + (vc / sum) * ac;
 }
@@ -269,7 +273,8 @@ class TriangleBvh {
     const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : (ext[1] >= ext[2] ? 1 : 2);
     const int mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
-      const double ca = centroids_[static_cast<std::size_t>(a)][axis], cb = centroids_[static_cast<std::size_t>(b)][axis];
+      const double ca = centroids_[static_cast<std::size_t>(a)][axis],
+                   cb = centroids_[static_cast<std::size_t>(b)][axis];
       return ca < cb || (ca == cb && a < b);
     });
     const int left = build(begin, mid);
@@ -324,7 +329,8 @@ struct Samples {
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 // Area-uniform samples of the triangles. \throw InvalidInput when the total area is zero.
-Samples sample_triangles(const std::vector<Triangle>& tris, std::size_t count, std::uint64_t seed, const char* what) {
+Samples sample_triangles(const std::vector<Triangle>& tris, std::size_t count, std::uint64_t seed,
+                         const char* what) {
   std::vector<double> cumulative(tris.size());
   double total = 0;
   for (std::size_t i = 0; i < tris.size(); ++i) {
@@ -343,7 +349,8 @@ Samples sample_triangles(const std::vector<Triangle>& tris, std::size_t count, s
   s.tri.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), uniform01(rng) * total);
-    const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()), tris.size() - 1);
+    const std::size_t k =
+        std::min<std::size_t>(static_cast<std::size_t>(it - cumulative.begin()), tris.size() - 1);
     const Triangle& t = tris[k];
     const double r1 = std::sqrt(uniform01(rng)), r2 = uniform01(rng);
     s.points.push_back((1 - r1) * t.p[0] + r1 * (1 - r2) * t.p[1] + r1 * r2 * t.p[2]);
@@ -365,8 +372,8 @@ struct CloudAdaptor {
     return false;
   }
 };
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>, CloudAdaptor, 3,
-                                                   std::uint32_t>;
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+                                                   CloudAdaptor, 3, std::uint32_t>;
 
 class PointIndex {
  public:
@@ -424,15 +431,17 @@ OrientationConsistency orientation_of(const Mesh& mesh, const std::vector<int>& 
   o.components.resize(labels.count);
   for (const auto f : mesh.faces()) {
     if (mesh.status(f).deleted()) continue;
-    const int c = labels.vertex_component[static_cast<std::size_t>(mesh.to_vertex_handle(mesh.halfedge_handle(f)).idx())];
+    const int c =
+        labels
+            .vertex_component[static_cast<std::size_t>(mesh.to_vertex_handle(mesh.halfedge_handle(f)).idx())];
     ++o.components[static_cast<std::size_t>(c)].faces;
   }
   double sum_abs = 0;
   std::size_t agree_total = 0;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
     const FaceHandle f(face_of_tri[static_cast<std::size_t>(s.tri[i])]);
-    const std::size_t c = static_cast<std::size_t>(
-        labels.vertex_component[static_cast<std::size_t>(mesh.to_vertex_handle(mesh.halfedge_handle(f)).idx())]);
+    const std::size_t c = static_cast<std::size_t>(labels.vertex_component[static_cast<std::size_t>(
+        mesh.to_vertex_handle(mesh.halfedge_handle(f)).idx())]);
     const double dot = s.normals[i] | gt_normal[i];
     sum_abs += std::abs(dot);
     ++o.components[c].samples;
@@ -473,7 +482,8 @@ Tolerance tolerance_of(const Triangle& t1, const Triangle& t2) {
   double extent = 0, magnitude = 0;
   for (const Triangle* t : {&t1, &t2}) {
     for (int i = 0; i < 3; ++i) {
-      extent = std::max(extent, (t->p[static_cast<std::size_t>(i)] - t->p[static_cast<std::size_t>((i + 1) % 3)]).norm());
+      extent = std::max(
+          extent, (t->p[static_cast<std::size_t>(i)] - t->p[static_cast<std::size_t>((i + 1) % 3)]).norm());
       magnitude = std::max(magnitude, t->p[static_cast<std::size_t>(i)].max_abs());
     }
   }
@@ -491,7 +501,9 @@ P2 project(const Vec3& p, int drop) {
   const int i = drop == 0 ? 1 : 0, j = drop == 2 ? 1 : 2;
   return {p[i], p[j]};
 }
-double orient2(const P2& a, const P2& b, const P2& c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+double orient2(const P2& a, const P2& b, const P2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
 int sign(double v, double tol) { return v > tol ? 1 : (v < -tol ? -1 : 0); }
 
 bool point_in_triangle_2d(const P2& p, const P2& a, const P2& b, const P2& c, double tol) {
@@ -510,7 +522,8 @@ bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b, d
   };
   // Touching or collinear overlap: an endpoint on the other segment. `tol` is an area here; the
   // box slack uses it as a length too, which is only more permissive at rounding level.
-  return on_segment(p, q, a, o1) || on_segment(p, q, b, o2) || on_segment(a, b, p, o3) || on_segment(a, b, q, o4);
+  return on_segment(p, q, a, o1) || on_segment(p, q, b, o2) || on_segment(a, b, p, o3) ||
+         on_segment(a, b, q, o4);
 }
 
 int dominant_axis(const Vec3& n) {
@@ -586,9 +599,11 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
   }
   // No shared vertex: two closed triangles meet iff a side of one meets the other.
   for (int i = 0; i < 3; ++i) {
-    if (segment_meets_triangle(t1.p[static_cast<std::size_t>(i)], t1.p[static_cast<std::size_t>((i + 1) % 3)], t2, tol))
+    if (segment_meets_triangle(t1.p[static_cast<std::size_t>(i)], t1.p[static_cast<std::size_t>((i + 1) % 3)],
+                               t2, tol))
       return true;
-    if (segment_meets_triangle(t2.p[static_cast<std::size_t>(i)], t2.p[static_cast<std::size_t>((i + 1) % 3)], t1, tol))
+    if (segment_meets_triangle(t2.p[static_cast<std::size_t>(i)], t2.p[static_cast<std::size_t>((i + 1) % 3)],
+                               t1, tol))
       return true;
   }
   return false;
@@ -679,7 +694,8 @@ MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* b
     double a = kInf;
     for (int i = 0; i < 3; ++i) {
       const Vec3& p = t.p[static_cast<std::size_t>(i)];
-      const Vec3 e1 = t.p[static_cast<std::size_t>((i + 1) % 3)] - p, e2 = t.p[static_cast<std::size_t>((i + 2) % 3)] - p;
+      const Vec3 e1 = t.p[static_cast<std::size_t>((i + 1) % 3)] - p,
+                 e2 = t.p[static_cast<std::size_t>((i + 2) % 3)] - p;
       // A zero-length side makes the face degenerate: its smallest angle is 0.
       a = std::min(a, e1.sqrnorm() > 0.0 && e2.sqrnorm() > 0.0 ? angle_deg(e1, e2) : 0.0);
     }
@@ -768,7 +784,8 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
     for (const auto v : m.vertices()) {
       if (!m.status(v).deleted() && !m.is_isolated(v)) gt_box.add(m.point(v));
     }
-    Samples s = sample_triangles(tris, options.samples, options.seed + 0x9e3779b97f4a7c15ULL, "the ground-truth mesh");
+    Samples s = sample_triangles(tris, options.samples, options.seed + 0x9e3779b97f4a7c15ULL,
+                                 "the ground-truth mesh");
     gt_points = std::move(s.points);
     gt_point_normals = std::move(s.normals);
     if (options.exact_surface_distance) {
@@ -809,7 +826,8 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
   std::vector<double> d_gt(gt_points.size());
   const TriangleBvh result_bvh(std::move(result_tris));  // also for the self-intersections
   if (options.exact_surface_distance) {
-    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
+    for (std::size_t i = 0; i < gt_points.size(); ++i)
+      d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
   } else {
     const PointIndex result_index(rs.points);
     for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = result_index.nearest(gt_points[i]).second;
@@ -872,9 +890,9 @@ std::string format_evaluation(const Evaluation& e) {
   auto dist = [&](const char* label, double v) {
     os << label << fixed(v, 6) << "  (" << fixed(e.scale(v), 4) << "% of bbox diagonal)\n";
   };
-  os << "ground truth:            " << (e.ground_truth_is_mesh ? "mesh, " : "point set, ") << e.ground_truth_points
-     << (e.ground_truth_is_mesh ? " samples" : " points") << ", bbox diagonal " << fixed(e.gt_bbox_diagonal, 6)
-     << "\n";
+  os << "ground truth:            " << (e.ground_truth_is_mesh ? "mesh, " : "point set, ")
+     << e.ground_truth_points << (e.ground_truth_is_mesh ? " samples" : " points") << ", bbox diagonal "
+     << fixed(e.gt_bbox_diagonal, 6) << "\n";
   os << "result samples:          " << e.result_to_gt.count << "; distance to a mesh: "
      << (e.exact_surface_distance ? "exact, to its surface" : "to its nearest sample") << "\n";
   dist("chamfer-L1:              ", e.chamfer_l1);
@@ -901,8 +919,8 @@ std::string format_evaluation(const Evaluation& e) {
       flipped += c.samples > 0 && c.flipped ? 1 : 0;
     }
     os << "orientation consistency: " << fixed(e.orientation->raw, 4) << " as is, "
-       << fixed(e.orientation->per_component, 4) << " with the better sign per component (" << flipped << " of "
-       << with_samples << " components better flipped)\n";
+       << fixed(e.orientation->per_component, 4) << " with the better sign per component (" << flipped
+       << " of " << with_samples << " components better flipped)\n";
   } else {
     os << "orientation consistency: n/a (ground truth without normals)\n";
   }
@@ -927,11 +945,12 @@ std::string format_evaluation(const Evaluation& e) {
   }
   os << "\n";
   os << "self-intersecting pairs: "
-     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("not computed")) << "\n";
+     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("not computed"))
+     << "\n";
   os << "degenerate / duplicate:  " << m.degenerate_faces << " / " << m.duplicate_faces << " faces\n";
   os << "min angle:               " << fixed(m.min_angle_deg, 2) << " deg, median of per-face minimum "
-     << fixed(m.median_min_angle_deg, 2) << " deg; " << fixed(100 * m.faces_min_angle_below_10, 2) << "% of faces < 10 deg, "
-     << fixed(100 * m.faces_min_angle_below_30, 2) << "% < 30 deg\n";
+     << fixed(m.median_min_angle_deg, 2) << " deg; " << fixed(100 * m.faces_min_angle_below_10, 2)
+     << "% of faces < 10 deg, " << fixed(100 * m.faces_min_angle_below_30, 2) << "% < 30 deg\n";
   os << "valence histogram:      ";
   std::size_t total = 0;
   for (const std::size_t c : m.valence_histogram) total += c;
@@ -951,32 +970,35 @@ std::string evaluation_to_json(const Evaluation& e) {
      << "\", \"points\": " << e.ground_truth_points << ", \"bbox_diagonal\": " << num(diag) << "},\n";
   os << " \"result_samples\": " << e.result_to_gt.count << ", \"distance_to_mesh\": \""
      << (e.exact_surface_distance ? "surface" : "nearest_sample") << "\",\n";
-  os << " \"chamfer_l1\": " << num(e.chamfer_l1) << ", \"chamfer_l1_percent\": " << num(e.scale(e.chamfer_l1)) << ",\n";
-  os << " \"hausdorff\": " << num(e.hausdorff) << ", \"hausdorff_percent\": " << num(e.scale(e.hausdorff)) << ",\n";
-  os << " \"hausdorff_p95\": " << num(e.hausdorff_p95) << ", \"hausdorff_p95_percent\": " << num(e.scale(e.hausdorff_p95))
+  os << " \"chamfer_l1\": " << num(e.chamfer_l1) << ", \"chamfer_l1_percent\": " << num(e.scale(e.chamfer_l1))
      << ",\n";
+  os << " \"hausdorff\": " << num(e.hausdorff) << ", \"hausdorff_percent\": " << num(e.scale(e.hausdorff))
+     << ",\n";
+  os << " \"hausdorff_p95\": " << num(e.hausdorff_p95)
+     << ", \"hausdorff_p95_percent\": " << num(e.scale(e.hausdorff_p95)) << ",\n";
   os << " \"result_to_gt\": " << distance_json(e.result_to_gt, diag) << ",\n";
   os << " \"gt_to_result\": " << distance_json(e.gt_to_result, diag) << ",\n";
   os << " \"fscores\": [";
   for (std::size_t i = 0; i < e.fscores.size(); ++i) {
     const FScore& f = e.fscores[i];
-    os << (i ? ", " : "") << "{\"threshold_fraction\": " << num(f.threshold_fraction) << ", \"threshold\": "
-       << num(f.threshold) << ", \"precision\": " << num(f.precision) << ", \"recall\": " << num(f.recall)
-       << ", \"fscore\": " << num(f.fscore) << "}";
+    os << (i ? ", " : "") << "{\"threshold_fraction\": " << num(f.threshold_fraction)
+       << ", \"threshold\": " << num(f.threshold) << ", \"precision\": " << num(f.precision)
+       << ", \"recall\": " << num(f.recall) << ", \"fscore\": " << num(f.fscore) << "}";
   }
   os << "],\n";
   os << " \"normal_consistency\": " << (e.normal_consistency ? num(*e.normal_consistency) : "null") << ",\n";
   os << " \"orientation_consistency\": ";
   if (e.orientation) {
-    os << "{\"raw\": " << num(e.orientation->raw) << ", \"per_component\": " << num(e.orientation->per_component)
-       << ", \"components\": [";
+    os << "{\"raw\": " << num(e.orientation->raw)
+       << ", \"per_component\": " << num(e.orientation->per_component) << ", \"components\": [";
     bool first = true;
     for (std::size_t c = 0; c < e.orientation->components.size(); ++c) {
       const ComponentOrientation& co = e.orientation->components[c];
       if (co.faces == 0) continue;
-      os << (first ? "" : ", ") << "{\"component\": " << c << ", \"faces\": " << co.faces << ", \"samples\": "
-         << co.samples << ", \"area_share\": " << num(co.area_share) << ", \"agreeing\": " << num(co.agreeing)
-         << ", \"flipped\": " << (co.flipped ? "true" : "false") << "}";
+      os << (first ? "" : ", ") << "{\"component\": " << c << ", \"faces\": " << co.faces
+         << ", \"samples\": " << co.samples << ", \"area_share\": " << num(co.area_share)
+         << ", \"agreeing\": " << num(co.agreeing) << ", \"flipped\": " << (co.flipped ? "true" : "false")
+         << "}";
       first = false;
     }
     os << "]}";
@@ -987,20 +1009,26 @@ std::string evaluation_to_json(const Evaluation& e) {
   const MeshValidity& m = e.validity;
   os << " \"mesh\": {\"vertices\": " << m.vertices << ", \"edges\": " << m.edges << ", \"faces\": " << m.faces
      << ", \"area\": " << num(m.area) << ", \"edge_manifold\": " << (m.edge_manifold ? "true" : "false")
-     << ", \"nonmanifold_edges\": " << m.nonmanifold_edges << ", \"vertex_manifold\": "
-     << (m.vertex_manifold ? "true" : "false") << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
+     << ", \"nonmanifold_edges\": " << m.nonmanifold_edges
+     << ", \"vertex_manifold\": " << (m.vertex_manifold ? "true" : "false")
+     << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
      << ", \"faces_dropped_when_read\": " << m.faces_dropped_when_read
      << ",\n  \"components\": " << m.components << ", \"border_loops\": " << m.border_loops
-     << ", \"closed\": " << (m.closed ? "true" : "false") << ", \"euler_characteristic\": " << m.euler_characteristic
-     << ", \"genus\": " << num(m.genus) << ", \"component_genus\": [";
-  for (std::size_t i = 0; i < m.component_genus.size(); ++i) os << (i ? ", " : "") << num(m.component_genus[i]);
-  os << "],\n  \"isolated_vertices\": " << m.isolated_vertices << ", \"degenerate_faces\": " << m.degenerate_faces
-     << ", \"duplicate_faces\": " << m.duplicate_faces << ", \"self_intersecting_pairs\": "
+     << ", \"closed\": " << (m.closed ? "true" : "false")
+     << ", \"euler_characteristic\": " << m.euler_characteristic << ", \"genus\": " << num(m.genus)
+     << ", \"component_genus\": [";
+  for (std::size_t i = 0; i < m.component_genus.size(); ++i)
+    os << (i ? ", " : "") << num(m.component_genus[i]);
+  os << "],\n  \"isolated_vertices\": " << m.isolated_vertices
+     << ", \"degenerate_faces\": " << m.degenerate_faces << ", \"duplicate_faces\": " << m.duplicate_faces
+     << ", \"self_intersecting_pairs\": "
      << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("null"))
-     << ",\n  \"min_angle_deg\": " << num(m.min_angle_deg) << ", \"median_min_angle_deg\": "
-     << num(m.median_min_angle_deg) << ", \"faces_min_angle_below_10\": " << num(m.faces_min_angle_below_10)
+     << ",\n  \"min_angle_deg\": " << num(m.min_angle_deg)
+     << ", \"median_min_angle_deg\": " << num(m.median_min_angle_deg)
+     << ", \"faces_min_angle_below_10\": " << num(m.faces_min_angle_below_10)
      << ", \"faces_min_angle_below_30\": " << num(m.faces_min_angle_below_30) << ", \"valence_histogram\": [";
-  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k) os << (k ? ", " : "") << m.valence_histogram[k];
+  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k)
+    os << (k ? ", " : "") << m.valence_histogram[k];
   os << "]}}\n";
   return os.str();
 }

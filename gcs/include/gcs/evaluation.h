@@ -122,7 +122,8 @@ struct ComponentOrientation {
 /// Share of result area whose normal agrees with the ground truth's side (n·n_gt > 0).
 struct OrientationConsistency {
   double raw = 0;            ///< as the mesh is
-  double per_component = 0;  ///< each component with its better global sign: what a repair can reach by flipping whole components
+  double per_component = 0;  ///< each component with its better global sign: what a repair can reach by
+                             ///< flipping whole components
   double unsigned_consistency = 0;  ///< mean |n·n_gt|, i.e. normal consistency
   /// Indexed by the component label of edgefront::connected_components(result); components
   /// without faces (isolated vertices) or without samples have `samples == 0`.
@@ -157,11 +158,11 @@ struct MeshValidity {
   /// Face pairs that intersect beyond a shared vertex or edge (nullopt when not computed).
   std::optional<std::size_t> self_intersecting_pairs;
   std::vector<std::size_t> valence_histogram;  ///< [k] = vertices with k incident edges
-  double min_angle_deg = 0;         ///< smallest interior angle over all faces (degrees)
-  double median_min_angle_deg = 0;  ///< median over faces of each face's smallest angle
-  double faces_min_angle_below_10 = 0;  ///< share of faces whose smallest angle is < 10 degrees
-  double faces_min_angle_below_30 = 0;  ///< share of faces whose smallest angle is < 30 degrees
-  double area = 0;  ///< total surface area
+  double min_angle_deg = 0;                    ///< smallest interior angle over all faces (degrees)
+  double median_min_angle_deg = 0;             ///< median over faces of each face's smallest angle
+  double faces_min_angle_below_10 = 0;         ///< share of faces whose smallest angle is < 10 degrees
+  double faces_min_angle_below_30 = 0;         ///< share of faces whose smallest angle is < 30 degrees
+  double area = 0;                             ///< total surface area
 };
 
 /// Everything `evaluate` measures.
@@ -170,7 +171,9 @@ struct Evaluation {
   bool exact_surface_distance = true;   ///< as in the options
   std::size_t ground_truth_points = 0;  ///< points (point set) or samples (mesh) measured
   double gt_bbox_diagonal = 0;          ///< the scale of every "percent" below
-  double scale(double absolute) const { return 100.0 * absolute / gt_bbox_diagonal; }  ///< absolute -> % of diagonal
+  double scale(double absolute) const {
+    return 100.0 * absolute / gt_bbox_diagonal;
+  }  ///< absolute -> % of diagonal
 
   OneSidedDistance result_to_gt;  ///< accuracy (from the result's samples)
   OneSidedDistance gt_to_result;  ///< completeness (from the ground truth's points/samples)
@@ -193,14 +196,16 @@ struct Evaluation {
 ///        point or of identical points: zero bounding-box diagonal), non-finite coordinates or
 ///        normals (naming the vertex or point), zero normals, normals of another count than the
 ///        points, `samples` outside [1, 10^8], non-positive or non-finite thresholds.
-Evaluation evaluate(const edgefront::Mesh& result, const GroundTruth& gt, const EvaluationOptions& options = {});
+Evaluation evaluate(const edgefront::Mesh& result, const GroundTruth& gt,
+                    const EvaluationOptions& options = {});
 
 /// Orientation consistency of `mesh` against an oriented point set (for instance analytic
 /// samples from edgefront::shapes::sample): area-uniform samples of the mesh, each compared with
 /// the normal of its nearest ground-truth point. Same method and options (samples, seed) as
 /// `evaluate`, without the rest of the evaluation.
 /// \throw edgefront::InvalidInput as `evaluate`, and when `oriented_gt` has no normals.
-OrientationConsistency orientation_consistency(const edgefront::Mesh& mesh, const edgefront::PointCloud& oriented_gt,
+OrientationConsistency orientation_consistency(const edgefront::Mesh& mesh,
+                                               const edgefront::PointCloud& oriented_gt,
                                                const EvaluationOptions& options = {});
 
 /// Validity measures of `mesh` alone (no ground truth needed).
