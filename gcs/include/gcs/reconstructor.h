@@ -1,0 +1,182 @@
+#pragma once
+/// \file reconstructor.h
+/// Growing-cell-structures (GCS) surface reconstruction: a point cloud in, a triangle mesh out.
+///
+/// The loop of Ivrissimtzis, Jeong & Seidel, "Using Growing Cell Structures for Surface
+/// Reconstruction" (SMI 2003): a closed start mesh scaled to the cloud; each *basic step* draws a
+/// random sample, moves the nearest mesh vertex (the winner) toward it, smooths the winner's
+/// 1-ring tangentially and counts the win in a decaying signal counter; after `steps_per_split`
+/// basic steps the most active vertex is split; vertices that won nothing for a while are
+/// removed by an edge collapse (valence cost, link condition, no normal flips). Every
+/// intermediate mesh is a valid oriented 2-manifold triangle mesh (with borders once topology
+/// changes are on). Topology (neural-mesh style, Ivrissimtzis et al. 2004): triangles that no
+/// sample supports and overlong edges are removed, creating borders; two border loops that are
+/// close, of similar length and orientation-compatible are joined by a strip of triangles,
+/// creating a handle (see ReconstructOptions).
+///
+/// After each batch of splits the registered Operations (operation.h) are called with the
+/// elements changed since their last call; the loop then re-synchronizes its own state.
+///
+/// \code
+///   edgefront::PointCloud cloud = edgefront::read_points("data/vault-shell.xyz");
+///   gcs::ReconstructResult r = gcs::reconstruct(cloud, {.target_vertices = 2000});
+///   edgefront::write_mesh(r.mesh, "vault.ply");
+/// \endcode
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "edgefront/mesh.h"
+#include "edgefront/point_cloud.h"
+#include "gcs/operation.h"
+
+namespace gcs {
+
+/// The closed mesh the loop starts from, scaled to the cloud's bounding box.
+enum class StartShape {
+  box,         ///< 8 vertices, 12 triangles (default)
+  tetrahedron  ///< 4 vertices, 4 triangles (the paper's start)
+};
+
+/// Options of the reconstruction. Defaults follow the paper where it gives a value.
+struct ReconstructOptions {
+  /// Stop when the mesh has this many live vertices; in [4, 4 * number of input points] (and at
+  /// most 50,000,000).
+  std::size_t target_vertices = 5000;
+  StartShape start = StartShape::box;  ///< start mesh
+  /// Basic steps between two vertex splits (the paper's lambda; 70 also works). >= 1.
+  int steps_per_split = 100;
+  /// Winner learning rate alpha_w: x_w += alpha_w (s - x_w). In (0, 1].
+  double winner_rate = 0.06;
+  /// Neighbour smoothing rate alpha_n of the tangential Laplacian. In [0, 1].
+  double neighbor_rate = 0.05;
+  /// Smoothing passes over the winner's 1-ring per basic step (the paper: 5). In [0, 100].
+  int smoothing_iterations = 5;
+  /// Signal counter half-life in units of |V| basic steps: every basic step multiplies all
+  /// counters by 0.5^(1 / (half_life * |V|)) (O(1) through a global scale). > 0.
+  double decay_half_life = 6.0;
+  /// Inactivity window mu: every mu * |V| basic steps, vertices that have not won during the last
+  /// mu * |V| steps are collapsed. > 0; 0 disables collapses.
+  double inactivity_window = 20.0;
+  /// Vertex splits between two calls of the registered operations and of the built-in topology
+  /// pass (border creation and loop merging). >= 1.
+  std::size_t batch_splits = 200;
+  /// Remove triangles no sample supports (creates borders on open surfaces).
+  bool create_borders = true;
+  /// A face is unsupported when its centroid is farther than this times the mean edge length from
+  /// every input point; such faces are removed (only after the mesh has `topology_min_vertices`).
+  double unsupported_distance = 1.5;
+  /// Edges longer than this times the mean edge length are removed with their faces.
+  double long_edge_factor = 10.0;
+  /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
+  bool merge_borders = true;
+  /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
+  /// does not hug the samples yet). Clamped to at most target_vertices / 2.
+  std::size_t topology_min_vertices = 150;
+  /// Seed of the sample draws: the same seed, input and options give the same mesh, byte for byte.
+  std::uint64_t seed = 1;
+  /// Call the progress callback every this many vertex splits (and once at the end). >= 1.
+  std::size_t progress_interval = 100;
+  /// Safety stop: at most this many basic steps per target vertex (0 = no limit). The loop stops
+  /// with StopReason::step_limit when collapses keep the mesh from growing.
+  std::uint64_t max_steps_per_vertex = 2000;
+};
+
+/// Why run() stopped.
+enum class StopReason {
+  target_reached,  ///< the mesh has target_vertices live vertices
+  cancelled,       ///< the progress callback returned false
+  step_limit       ///< max_steps_per_vertex * target_vertices basic steps were done
+};
+
+/// "target reached", "cancelled", "step limit".
+std::string to_string(StopReason reason);
+
+/// Passed to the progress callback.
+struct Progress {
+  std::size_t vertices = 0;         ///< live vertices now
+  std::size_t target_vertices = 0;  ///< the target
+  std::uint64_t basic_steps = 0;    ///< basic steps so far
+  double seconds = 0;               ///< wall time since run() started
+};
+
+/// Returns false to cancel: the run stops at once and returns the valid mesh reached so far.
+using ProgressCallback = std::function<bool(const Progress&)>;
+
+/// What one registered operation did over a run.
+struct OperationReport {
+  std::string name;
+  std::size_t calls = 0;
+  std::size_t changes = 0;       ///< calls that reported mesh_changed
+  double seconds = 0;            ///< total time spent in apply()
+  std::string last_summary;      ///< the last non-empty summary
+};
+
+/// The result of a run.
+struct ReconstructResult {
+  edgefront::Mesh mesh;  ///< garbage-collected, face normals up to date; in input coordinates
+  StopReason stop_reason = StopReason::target_reached;
+  std::uint64_t basic_steps = 0;
+  std::size_t splits = 0;
+  std::size_t collapses = 0;
+  std::size_t faces_removed = 0;  ///< by the built-in border creation
+  std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
+  std::size_t batches = 0;
+  double seconds_total = 0;       ///< wall time of run()
+  double seconds_operations = 0;  ///< of it: in registered operations
+  double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
+  std::vector<OperationReport> operations;  ///< one per registered operation, in order
+};
+
+/// A reconstruction in progress: holds the mesh, the loop's state and the registered operations.
+/// Not copyable; not thread-safe.
+class Reconstructor {
+ public:
+  /// Checks the input and builds the start mesh.
+  /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates, points
+  ///        that all coincide or are collinear (no surface to reconstruct), and options out of
+  ///        their documented ranges (target below 4 or above 4 x the number of points, ...).
+  explicit Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options = {});
+  ~Reconstructor();
+  Reconstructor(const Reconstructor&) = delete;
+  Reconstructor& operator=(const Reconstructor&) = delete;
+
+  /// Registers an operation, called after each batch (in registration order) and once more after
+  /// the loop stops. \throw edgefront::InvalidInput for a null pointer.
+  void add_operation(std::shared_ptr<Operation> operation);
+
+  /// Runs until the target, a cancel or the step limit. The callback (may be empty) is called
+  /// every `progress_interval` splits; it may call validate() and inspect mesh(). Calling run()
+  /// again after a cancel continues from where it stopped; after the target it returns at once.
+  /// The returned mesh is a garbage-collected copy in input coordinates.
+  /// \throw whatever an operation throws (the reconstructor is then unusable).
+  ReconstructResult run(const ProgressCallback& progress = {});
+
+  /// The current mesh, in the loop's internal coordinates (the input translated so that the
+  /// cloud's bounding-box centre is the origin), with deleted elements not yet collected.
+  const edgefront::Mesh& mesh() const;
+  /// The translation from internal to input coordinates (add it to mesh() points).
+  edgefront::Vec3 offset() const;
+
+  /// Checks the loop's state against the mesh: every live vertex is in the spatial index at its
+  /// current position and in the counter order with its counter, no deleted vertex is, the mesh is
+  /// a manifold oriented triangle mesh without degenerate structure (each face a triangle with
+  /// three distinct live vertices, consistent halfedge links, no non-manifold vertex), the
+  /// counters are finite and non-negative. \throw edgefront::InternalError naming the first
+  /// mismatch.
+  void validate() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One call: `Reconstructor(points, options).run(progress)`.
+ReconstructResult reconstruct(edgefront::PointCloud points, const ReconstructOptions& options = {},
+                              const ProgressCallback& progress = {});
+
+}  // namespace gcs
