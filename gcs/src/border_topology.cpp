@@ -1,0 +1,271 @@
+#include "detail/border_topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <vector>
+
+#include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
+
+namespace gcs::detail {
+
+using edgefront::FaceHandle;
+using edgefront::HalfedgeHandle;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+namespace {
+
+Vec3 tri_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
+
+Vec3 centroid(const Mesh& mesh, FaceHandle f) {
+  Vec3 c(0, 0, 0);
+  for (auto v : mesh.fv_range(f)) c += mesh.point(v);
+  return c / 3.0;
+}
+
+Vec3 face_normal(const Mesh& mesh, FaceHandle f) {
+  auto it = mesh.cfv_iter(f);
+  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+  return tri_normal(a, b, c);
+}
+
+// Deletes the faces of every fan but the largest at non-manifold vertices; true if any was deleted.
+size_t fix_nonmanifold_vertices(Mesh& mesh) {
+  size_t removed = 0;
+  for (bool again = true; again;) {
+    again = false;
+    for (auto v : mesh.vertices()) {
+      if (mesh.status(v).deleted() || mesh.is_manifold(v)) continue;
+      // Outgoing halfedges in circulator order, cut into fans at the boundary ones.
+      std::vector<std::vector<FaceHandle>> fans;
+      std::vector<HalfedgeHandle> out;
+      for (auto h : mesh.voh_range(v)) out.push_back(h);
+      size_t start = 0;
+      while (start < out.size() && mesh.face_handle(out[start]).is_valid()) ++start;
+      if (start == out.size()) continue;  // no boundary: cannot be non-manifold
+      std::vector<FaceHandle> cur;
+      for (size_t k = 1; k <= out.size(); ++k) {
+        const HalfedgeHandle h = out[(start + k) % out.size()];
+        const FaceHandle f = mesh.face_handle(h);
+        if (f.is_valid()) {
+          cur.push_back(f);
+        } else if (!cur.empty()) {
+          fans.push_back(cur);
+          cur.clear();
+        }
+      }
+      if (!cur.empty()) fans.push_back(cur);
+      if (fans.size() < 2) continue;
+      size_t keep = 0;
+      for (size_t k = 1; k < fans.size(); ++k) {
+        const auto min_idx = [](const std::vector<FaceHandle>& fs) {
+          int m = std::numeric_limits<int>::max();
+          for (auto f : fs) m = std::min(m, f.idx());
+          return m;
+        };
+        if (fans[k].size() > fans[keep].size() ||
+            (fans[k].size() == fans[keep].size() && min_idx(fans[k]) < min_idx(fans[keep])))
+          keep = k;
+      }
+      for (size_t k = 0; k < fans.size(); ++k) {
+        if (k == keep) continue;
+        for (auto f : fans[k]) {
+          if (mesh.status(f).deleted()) continue;
+          mesh.delete_face(f, true);
+          ++removed;
+        }
+      }
+      again = true;
+    }
+  }
+  return removed;
+}
+
+struct Loop {
+  std::vector<HalfedgeHandle> halfedges;  // boundary halfedges in order; vertex k = from(halfedges[k])
+  std::vector<VertexHandle> vertices;
+  double length = 0;
+};
+
+std::vector<Loop> border_loops(const Mesh& mesh) {
+  std::vector<Loop> loops;
+  std::vector<char> seen(mesh.n_halfedges(), 0);
+  for (auto h : mesh.halfedges()) {
+    if (seen[h.idx()] || !mesh.is_boundary(h)) continue;
+    Loop loop;
+    HalfedgeHandle g = h;
+    do {
+      seen[g.idx()] = 1;
+      loop.halfedges.push_back(g);
+      loop.vertices.push_back(mesh.from_vertex_handle(g));
+      loop.length += mesh.calc_edge_length(g);
+      g = mesh.next_halfedge_handle(g);
+      EF_CHECK(loop.halfedges.size() <= mesh.n_halfedges(), "a border loop does not close");
+    } while (g != h);
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+}  // namespace
+
+size_t clean_topology(Mesh& mesh, size_t min_faces) {
+  size_t removed = fix_nonmanifold_vertices(mesh);
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  if (labels.count > 1) {
+    std::vector<size_t> faces(labels.count, 0);
+    for (auto f : mesh.faces()) ++faces[labels.vertex_component[mesh.fv_begin(f)->idx()]];
+    const size_t largest = static_cast<size_t>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+    for (auto f : mesh.faces()) {
+      const size_t c = static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()]);
+      if (c != largest && faces[c] < min_faces) {
+        mesh.delete_face(f, true);
+        ++removed;
+      }
+    }
+  }
+  // Vertices left without faces (possible when a deleted component had isolated vertices).
+  for (auto v : mesh.vertices())
+    if (mesh.is_isolated(v)) mesh.delete_vertex(v);
+  return removed;
+}
+
+size_t remove_unsupported_faces(Mesh& mesh, const CloudDistance& distance, const BorderParams& params) {
+  std::vector<FaceHandle> doomed;
+  size_t live_faces = 0;
+  const double max_edge2 = params.max_edge_length * params.max_edge_length;
+  for (auto f : mesh.faces()) {
+    ++live_faces;
+    bool remove = distance(centroid(mesh, f)) > params.max_support_distance;
+    if (!remove) {
+      for (auto h : mesh.fh_range(f)) remove = remove || mesh.calc_edge_sqr_length(h) > max_edge2;
+    }
+    if (remove) doomed.push_back(f);
+  }
+  if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
+  for (auto f : doomed) mesh.delete_face(f, true);
+  return doomed.size() + clean_topology(mesh, params.min_component_faces);
+}
+
+size_t merge_border_loops(Mesh& mesh, const CloudDistance& distance, const MergeParams& params) {
+  std::vector<Loop> loops = border_loops(mesh);
+  if (loops.size() < 2) return 0;
+  std::vector<char> used(loops.size(), 0);
+  size_t merged = 0;
+  for (size_t ia = 0; ia < loops.size(); ++ia) {
+    for (size_t ib = ia + 1; ib < loops.size() && !used[ia]; ++ib) {
+      if (used[ib]) continue;
+      const Loop& A = loops[ia];
+      const Loop& B = loops[ib];
+      const size_t nA = A.vertices.size(), nB = B.vertices.size();
+      if (nA < 3 || nB < 3 || nA * nB > 4'000'000) continue;
+      const double lmin = std::min(A.length, B.length), lmax = std::max(A.length, B.length);
+      if (!(lmin > 0) || lmax > params.max_length_ratio * lmin) continue;
+      // Simple, disjoint loops without an edge between them.
+      std::set<int> in_b;
+      for (auto v : B.vertices) in_b.insert(v.idx());
+      std::set<int> in_a;
+      for (auto v : A.vertices) in_a.insert(v.idx());
+      if (in_a.size() != nA || in_b.size() != nB) continue;
+      bool touching = false;
+      for (auto v : A.vertices) {
+        for (auto u : mesh.vv_range(v)) touching = touching || in_b.count(u.idx()) > 0;
+      }
+      if (touching) continue;
+      // Gap: mean distance from A's vertices to B's; the start pair is the closest one.
+      double gap = 0, best = std::numeric_limits<double>::infinity();
+      size_t i0 = 0, k0 = 0;
+      for (size_t i = 0; i < nA; ++i) {
+        double d_min = std::numeric_limits<double>::infinity();
+        size_t k_min = 0;
+        for (size_t k = 0; k < nB; ++k) {
+          const double d = (mesh.point(A.vertices[i]) - mesh.point(B.vertices[k])).norm();
+          if (d < d_min) {
+            d_min = d;
+            k_min = k;
+          }
+        }
+        gap += d_min;
+        if (d_min < best) {
+          best = d_min;
+          i0 = i;
+          k0 = k_min;
+        }
+      }
+      gap /= static_cast<double>(nA);
+      if (gap > std::max(params.max_gap_edges * params.mean_edge_length, params.max_gap_fraction * lmin)) continue;
+      // Orientation: A's and B's boundary halfedges must run opposite at the start pair.
+      const auto at = [](const Loop& L, long k) { return L.vertices[static_cast<size_t>(((k % long(L.vertices.size())) + long(L.vertices.size())) % long(L.vertices.size()))]; };
+      const Vec3 tA = mesh.point(at(A, long(i0) + 1)) - mesh.point(at(A, long(i0) - 1));
+      const Vec3 tB = mesh.point(at(B, long(k0) + 1)) - mesh.point(at(B, long(k0) - 1));
+      if ((tA | tB) >= 0) continue;
+      // Plan the zipper strip.
+      struct Tri {
+        VertexHandle a, b, c;
+        HalfedgeHandle border;  // the loop halfedge the face closes
+      };
+      std::vector<Tri> plan;
+      const auto a_of = [&](size_t i) { return at(A, long(i0 + i)); };
+      const auto b_of = [&](size_t j) { return at(B, long(k0) - long(j)); };
+      const auto ha_of = [&](size_t i) { return A.halfedges[(i0 + i) % nA]; };                       // a(i) -> a(i+1)
+      const auto hb_of = [&](size_t j) { return B.halfedges[static_cast<size_t>((long(k0) - long(j) - 1 + long(nB) * 2) % long(nB))]; };  // b(j+1) -> b(j)
+      size_t i = 0, j = 0;
+      while (i < nA || j < nB) {
+        bool advance_a;
+        if (i == nA) advance_a = false;
+        else if (j == nB) advance_a = true;
+        else
+          advance_a = (mesh.point(a_of(i + 1)) - mesh.point(b_of(j))).sqrnorm() <=
+                      (mesh.point(a_of(i)) - mesh.point(b_of(j + 1))).sqrnorm();
+        if (advance_a) {
+          plan.push_back({a_of(i), a_of(i + 1), b_of(j), ha_of(i)});
+          ++i;
+        } else {
+          plan.push_back({b_of(j + 1), b_of(j), a_of(i), hb_of(j)});
+          ++j;
+        }
+      }
+      double agreement = 0;
+      bool ok = true;
+      for (const Tri& t : plan) {
+        const Vec3 n = tri_normal(mesh.point(t.a), mesh.point(t.b), mesh.point(t.c));
+        const FaceHandle adj = mesh.opposite_face_handle(t.border);
+        const Vec3 m = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+        const double ln = n.norm(), lm = m.norm();
+        if (!(ln > 0) || !(lm > 0)) {
+          ok = false;
+          break;
+        }
+        agreement += (n | m) / (ln * lm);
+        const Vec3 c = (mesh.point(t.a) + mesh.point(t.b) + mesh.point(t.c)) / 3.0;
+        if (distance(c) > params.max_support_distance) {
+          ok = false;
+          break;
+        }
+      }
+      if (!ok || agreement / static_cast<double>(plan.size()) < params.min_normal_agreement) continue;
+      std::vector<FaceHandle> added;
+      for (const Tri& t : plan) {
+        const FaceHandle f = mesh.add_face(t.a, t.b, t.c);
+        if (!f.is_valid()) {
+          ok = false;
+          break;
+        }
+        added.push_back(f);
+      }
+      if (!ok) {
+        for (auto f : added) mesh.delete_face(f, false);
+        continue;
+      }
+      used[ia] = used[ib] = 1;
+      ++merged;
+    }
+  }
+  return merged;
+}
+
+}  // namespace gcs::detail

@@ -1,0 +1,48 @@
+#pragma once
+// The built-in topology changes of the GCS loop (neural-mesh style): removing triangles that no
+// sample supports and overlong edges (borders appear), cleaning what that leaves (non-manifold
+// vertices, tiny components), and joining two border loops by a strip of triangles (handles).
+// Every function leaves a valid manifold oriented triangle mesh (deleted elements not collected).
+
+#include <cstddef>
+#include <functional>
+
+#include "edgefront/mesh.h"
+
+namespace gcs::detail {
+
+/// Distance from a point to the input cloud.
+using CloudDistance = std::function<double(const edgefront::Vec3&)>;
+
+struct BorderParams {
+  double max_support_distance = 0;  ///< faces whose centroid is farther from the cloud are removed
+  double max_edge_length = 0;       ///< faces with a longer edge are removed
+  std::size_t min_component_faces = 8;  ///< components with fewer faces are removed
+};
+
+/// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
+/// components. Returns the number of faces removed. Never empties the mesh: when every face
+/// would go, nothing is removed.
+std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudDistance& distance,
+                                     const BorderParams& params);
+
+/// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
+/// removes components with fewer than min_faces faces (unless it is the only one). Returns the
+/// number of faces removed.
+std::size_t clean_topology(edgefront::Mesh& mesh, std::size_t min_faces);
+
+struct MergeParams {
+  double mean_edge_length = 0;
+  double max_support_distance = 0;   ///< strip face centroids must be this close to the cloud
+  double max_gap_edges = 4.0;        ///< mean distance between matched loop vertices, in mean edge lengths
+  double max_gap_fraction = 0.1;     ///< ... or this fraction of the shorter loop's length
+  double max_length_ratio = 1.6;     ///< longer loop length / shorter loop length
+  double min_normal_agreement = 0.2; ///< mean cosine between strip faces and the faces they border
+};
+
+/// Joins pairs of border loops that are close, of similar length and orientation-compatible
+/// (their boundary halfedges run opposite) with a strip of triangles. Returns the number of
+/// pairs joined (each loop in at most one pair per call).
+std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudDistance& distance, const MergeParams& params);
+
+}  // namespace gcs::detail

@@ -1,0 +1,67 @@
+#pragma once
+// A hashed uniform grid over moving points (the mesh vertices of the GCS loop): insert, remove and
+// move in O(1), nearest-point queries that visit the cells in rings of growing radius around the
+// query (O(1) cells when the points are spread at about one per cell, which the loop keeps by
+// rebuilding with a cell size near the mean edge length).
+//
+// Why not nanoflann: its dynamic index (KDTreeSingleIndexDynamicAdaptor) can add points and mark
+// them removed, but cannot move one; a GCS basic step moves the winner and its 1-ring (about 7
+// points, 5 smoothing passes), so a move would be a removal plus an insertion into a logarithmic
+// forest of static trees whose removed entries stay in place until the sub-tree is rebuilt: the
+// forest grows by ~7 entries per step (10^7 steps for 100K vertices). bench/bench_gcs.cpp
+// measures the grid against nanoflann on the same query stream.
+//
+// Deterministic: a query returns the nearest point, ties broken by the smaller id; the hash map
+// is only looked up, never iterated for results.
+
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace gcs::detail {
+
+class VertexGrid {
+ public:
+  static constexpr std::uint64_t kAbsent = std::numeric_limits<std::uint64_t>::max();
+
+  /// Empties the grid and sets the cell size (> 0).
+  void reset(double cell_size);
+  double cell_size() const { return h_; }
+
+  /// Makes room for ids < n (new ids absent).
+  void resize(std::size_t n);
+  std::size_t capacity() const { return key_.size(); }
+
+  bool contains(int id) const { return static_cast<std::size_t>(id) < key_.size() && key_[id] != kAbsent; }
+  const edgefront::Vec3& position(int id) const { return pos_[id]; }
+  std::size_t size() const { return count_; }
+
+  void insert(int id, const edgefront::Vec3& p);
+  void remove(int id);
+  /// Updates the stored position; moves the id to another cell only when its cell changed.
+  void move(int id, const edgefront::Vec3& p);
+
+  /// The id nearest to p (ties: smaller id), -1 when the grid is empty.
+  int nearest(const edgefront::Vec3& p) const;
+
+  /// Throws InternalError when id's stored cell is not the cell of `p` or the cell lacks it.
+  void check(int id, const edgefront::Vec3& p) const;
+
+ private:
+  std::uint64_t key_of(const edgefront::Vec3& p) const;
+  static std::uint64_t pack(std::int64_t i, std::int64_t j, std::int64_t k);
+  int linear_nearest(const edgefront::Vec3& p) const;
+
+  double h_ = 1.0;
+  double inv_h_ = 1.0;
+  std::size_t count_ = 0;
+  std::vector<std::uint64_t> key_;      // per id: its cell key, kAbsent when not stored
+  std::vector<edgefront::Vec3> pos_;    // per id: stored position
+  std::vector<std::uint32_t> slot_;     // per id: index in its cell's vector
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+}  // namespace gcs::detail

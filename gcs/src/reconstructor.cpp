@@ -1,0 +1,894 @@
+#include "gcs/reconstructor.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+#include <utility>
+
+#include <Eigen/Dense>
+#include <nanoflann.hpp>
+
+#include "detail/border_topology.h"
+#include "detail/vertex_grid.h"
+#include "edgefront/error.h"
+
+namespace gcs {
+
+using edgefront::EdgeHandle;
+using edgefront::FaceHandle;
+using edgefront::HalfedgeHandle;
+using edgefront::InvalidInput;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+std::string to_string(StopReason reason) {
+  switch (reason) {
+    case StopReason::target_reached:
+      return "target reached";
+    case StopReason::cancelled:
+      return "cancelled";
+    case StopReason::step_limit:
+      return "step limit";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// nanoflann over the (static) input points: distance from a point to the cloud.
+struct CloudAdaptor {
+  const std::vector<Vec3>* pts;
+  size_t kdtree_get_point_count() const { return pts->size(); }
+  double kdtree_get_pt(size_t i, size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
+  template <class BBox>
+  bool kdtree_get_bbox(BBox&) const {
+    return false;
+  }
+};
+using CloudTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+                                                      CloudAdaptor, 3, size_t>;
+
+Vec3 face_normal_of(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
+
+// Index in [0, n) from one 64-bit draw (portable, unlike std::uniform_int_distribution; the
+// modulo bias is below n / 2^64).
+size_t draw_index(std::mt19937_64& rng, size_t n) { return static_cast<size_t>(rng() % n); }
+
+void check_options(const ReconstructOptions& o, size_t n_points) {
+  auto fail = [](const std::string& m) { throw InvalidInput("gcs: " + m); };
+  if (o.target_vertices < 4) fail("target_vertices must be at least 4 (got " + std::to_string(o.target_vertices) + ")");
+  if (o.target_vertices > 50'000'000) fail("target_vertices above 50,000,000 is not supported");
+  if (o.target_vertices > 4 * n_points)
+    fail("target_vertices " + std::to_string(o.target_vertices) + " is more than 4 times the number of points (" +
+         std::to_string(n_points) + "): the samples cannot place that many vertices");
+  if (o.steps_per_split < 1) fail("steps_per_split must be >= 1");
+  if (!(o.winner_rate > 0 && o.winner_rate <= 1)) fail("winner_rate must be in (0, 1]");
+  if (!(o.neighbor_rate >= 0 && o.neighbor_rate <= 1)) fail("neighbor_rate must be in [0, 1]");
+  if (o.smoothing_iterations < 0 || o.smoothing_iterations > 100) fail("smoothing_iterations must be in [0, 100]");
+  if (!(o.decay_half_life > 0) || !std::isfinite(o.decay_half_life)) fail("decay_half_life must be positive");
+  if (!(o.inactivity_window >= 0) || !std::isfinite(o.inactivity_window)) fail("inactivity_window must be >= 0");
+  if (o.batch_splits < 1) fail("batch_splits must be >= 1");
+  if (!(o.unsupported_distance > 0) || !std::isfinite(o.unsupported_distance)) fail("unsupported_distance must be positive");
+  if (!(o.long_edge_factor > 1) || !std::isfinite(o.long_edge_factor)) fail("long_edge_factor must be > 1");
+  if (o.progress_interval < 1) fail("progress_interval must be >= 1");
+}
+
+}  // namespace
+
+struct Reconstructor::Impl {
+  ReconstructOptions opt;
+  edgefront::PointCloud cloud;  // centred
+  Vec3 offset{0, 0, 0};
+  double bbox_diagonal = 0;
+  double sample_spacing = 0;
+  CloudAdaptor adaptor;
+  std::unique_ptr<CloudTree> tree;
+
+  Mesh mesh;
+  detail::VertexGrid grid;
+  std::vector<double> tau;  // scaled counters: true counter = tau * scale
+  double scale = 1.0;
+  double decay = 1.0;
+  std::set<std::pair<double, int>> order;
+  std::vector<std::uint64_t> last_win;
+  std::vector<std::uint64_t> vstamp, fstamp;
+  std::uint64_t clock = 1;
+  size_t live = 0;
+
+  std::mt19937_64 rng;
+  std::uint64_t steps = 0;
+  std::uint64_t next_collapse_scan = 0;
+  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, batches = 0;
+  size_t splits_in_batch = 0;
+  size_t topology_last_live = 0;
+  double seconds_ops = 0, seconds_topology = 0;
+  bool finished = false;
+  StopReason finished_reason = StopReason::target_reached;
+
+  struct Registered {
+    std::shared_ptr<Operation> op;
+    std::uint64_t last = 0;
+    OperationReport report;
+  };
+  std::vector<Registered> ops;
+
+  // Snapshot of face vertex triples for detecting what an operation re-connected.
+  std::vector<std::array<int, 3>> face_snapshot;
+
+  std::vector<VertexHandle> ring_buf;
+
+  // ---------------------------------------------------------------- setup
+  void init(edgefront::PointCloud points, const ReconstructOptions& options) {
+    opt = options;
+    if (points.size() < 4)
+      throw InvalidInput("gcs: at least 4 points are needed (got " + std::to_string(points.size()) + ")");
+    for (size_t i = 0; i < points.size(); ++i) {
+      const Vec3& p = points.points[i];
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        throw InvalidInput("gcs: point " + std::to_string(i) + " has a NaN or infinite coordinate");
+    }
+    if (!points.normals.empty() && points.normals.size() != points.points.size())
+      throw InvalidInput("gcs: the cloud has " + std::to_string(points.normals.size()) + " normals for " +
+                         std::to_string(points.points.size()) + " points");
+    check_options(opt, points.size());
+    Vec3 lo = points.points[0], hi = points.points[0];
+    for (const Vec3& p : points.points) {
+      lo.minimize(p);
+      hi.maximize(p);
+    }
+    offset = (lo + hi) * 0.5;
+    bbox_diagonal = (hi - lo).norm();
+    if (!(bbox_diagonal > 1e-12 * std::max(1.0, offset.norm())))
+      throw InvalidInput("gcs: all points coincide: there is no surface to reconstruct");
+    cloud = std::move(points);
+    for (Vec3& p : cloud.points) p -= offset;
+    // Collinear: the second principal extent vanishes.
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : cloud.points) {
+      const Eigen::Vector3d q(p[0], p[1], p[2]);
+      cov += q * q.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
+    if (!(ev[1] > 1e-14 * ev[2]))
+      throw InvalidInput("gcs: all points lie on one line: there is no surface to reconstruct");
+
+    adaptor.pts = &cloud.points;
+    tree = std::make_unique<CloudTree>(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    tree->buildIndex();
+    // Sample spacing: mean distance to the nearest other (distinct) point over up to 1000 points.
+    {
+      const size_t n = cloud.size(), m = std::min<size_t>(n, 1000);
+      double sum = 0;
+      size_t cnt = 0;
+      for (size_t k = 0; k < m; ++k) {
+        const size_t i = k * n / m;
+        size_t idx[8];
+        double d2[8];
+        const size_t got = tree->knnSearch(&cloud.points[i][0], 8, idx, d2);
+        for (size_t j = 0; j < got; ++j) {
+          if (d2[j] > 0) {
+            sum += std::sqrt(d2[j]);
+            ++cnt;
+            break;
+          }
+        }
+      }
+      sample_spacing = cnt ? sum / static_cast<double>(cnt) : bbox_diagonal * 1e-3;
+    }
+
+    rng.seed(opt.seed);
+    build_start_mesh(lo - offset, hi - offset);
+    live = mesh.n_vertices();
+    ensure_sizes();
+    grid.reset(mean_edge_length());
+    grid.resize(mesh.n_vertices());
+    for (auto v : mesh.vertices()) {
+      grid.insert(v.idx(), mesh.point(v));
+      set_tau(v.idx(), 0.0);
+      last_win[v.idx()] = 0;
+    }
+    update_decay();
+    next_collapse_scan = collapse_window();
+    opt.topology_min_vertices = std::min(opt.topology_min_vertices, opt.target_vertices / 2);
+  }
+
+  void build_start_mesh(Vec3 lo, Vec3 hi) {
+    // Pad thin directions (a planar cloud still gets a solid start) and grow by 2%.
+    const double min_extent = 0.05 * bbox_diagonal;
+    for (int a = 0; a < 3; ++a) {
+      const double ext = hi[a] - lo[a];
+      const double pad = 0.02 * ext + 0.5 * std::max(0.0, min_extent - ext);
+      lo[a] -= pad;
+      hi[a] += pad;
+    }
+    std::vector<VertexHandle> vh;
+    if (opt.start == StartShape::box) {
+      for (int i = 0; i < 8; ++i)
+        vh.push_back(mesh.add_vertex(Vec3(i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2])));
+      const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      for (const auto& q : quads) {
+        mesh.add_face(vh[q[0]], vh[q[1]], vh[q[2]]);
+        mesh.add_face(vh[q[0]], vh[q[2]], vh[q[3]]);
+      }
+    } else {
+      const Vec3 c = (lo + hi) * 0.5, e = (hi - lo) * 0.5 * 1.8;  // the tetrahedron contains the box
+      const int s[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+      for (const auto& k : s) vh.push_back(mesh.add_vertex(c + Vec3(k[0] * e[0], k[1] * e[1], k[2] * e[2])));
+      // Orientation fixed below by the signed volume.
+      mesh.add_face(vh[0], vh[1], vh[2]);
+      mesh.add_face(vh[0], vh[3], vh[1]);
+      mesh.add_face(vh[0], vh[2], vh[3]);
+      mesh.add_face(vh[1], vh[3], vh[2]);
+    }
+    double vol = 0;
+    for (auto f : mesh.faces()) {
+      auto it = mesh.cfv_iter(f);
+      const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+      vol += (a | (b % c));
+    }
+    EF_CHECK(mesh.n_faces() > 0 && vol > 0, "start mesh is not outward oriented");
+  }
+
+  // ---------------------------------------------------------------- bookkeeping
+  void ensure_sizes() {
+    const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
+    if (tau.size() < nv) {
+      tau.resize(nv, -1.0);  // -1: not in `order`
+      last_win.resize(nv, steps);
+      vstamp.resize(nv, clock);
+      grid.resize(nv);
+    }
+    if (fstamp.size() < nf) fstamp.resize(nf, clock);
+  }
+
+  void set_tau(int v, double true_value) {
+    if (tau[v] >= 0) order.erase({tau[v], v});
+    tau[v] = true_value / scale;
+    order.insert({tau[v], v});
+  }
+  double true_tau(int v) const { return tau[v] * scale; }
+  void drop_tau(int v) {
+    if (tau[v] >= 0) order.erase({tau[v], v});
+    tau[v] = -1.0;
+  }
+  void update_decay() {
+    decay = std::pow(0.5, 1.0 / (opt.decay_half_life * static_cast<double>(std::max<size_t>(live, 1))));
+  }
+  std::uint64_t collapse_window() const {
+    return static_cast<std::uint64_t>(std::ceil(opt.inactivity_window * static_cast<double>(live)));
+  }
+  void renormalize() {
+    std::set<std::pair<double, int>> fresh;
+    for (const auto& [t, v] : order) {
+      tau[v] = t * scale;
+      fresh.insert({tau[v], v});
+    }
+    order.swap(fresh);
+    scale = 1.0;
+  }
+  void stamp(VertexHandle v) { vstamp[v.idx()] = clock; }
+  void stamp_ring(VertexHandle v) {
+    stamp(v);
+    for (auto u : mesh.vv_range(v)) stamp(u);
+  }
+
+  double mean_edge_length() const {
+    double sum = 0;
+    size_t n = 0;
+    for (auto e : mesh.edges()) {
+      sum += mesh.calc_edge_length(e);
+      ++n;
+    }
+    return n ? sum / static_cast<double>(n) : bbox_diagonal * 0.1;
+  }
+
+  double cloud_distance(const Vec3& p) const {
+    size_t idx = 0;
+    double d2 = 0;
+    tree->knnSearch(&p[0], 1, &idx, &d2);
+    return std::sqrt(d2);
+  }
+
+  // ---------------------------------------------------------------- geometry helpers
+  double mean_adjacent_edge_length(VertexHandle v) const {
+    double s = 0;
+    int k = 0;
+    for (auto h : mesh.voh_range(v)) {
+      s += mesh.calc_edge_length(h);
+      ++k;
+    }
+    return k ? s / k : 0.0;
+  }
+
+  // ---------------------------------------------------------------- the basic step
+  void basic_step() {
+    const Vec3& s = cloud.points[draw_index(rng, cloud.size())];
+    const int wi = grid.nearest(s);
+    EF_CHECK(wi >= 0, "the mesh has no vertex");
+    const VertexHandle w(wi);
+    mesh.point(w) += opt.winner_rate * (s - mesh.point(w));
+    grid.move(wi, mesh.point(w));
+    stamp(w);
+    if (opt.neighbor_rate > 0 && opt.smoothing_iterations > 0) {
+      ring_buf.clear();
+      for (auto u : mesh.vv_range(w)) ring_buf.push_back(u);
+      for (int it = 0; it < opt.smoothing_iterations; ++it) {
+        for (const VertexHandle v : ring_buf) smooth_vertex(v);
+      }
+      for (const VertexHandle v : ring_buf) {
+        grid.move(v.idx(), mesh.point(v));
+        stamp(v);
+      }
+    }
+    order.erase({tau[wi], wi});
+    tau[wi] += 1.0 / scale;
+    order.insert({tau[wi], wi});
+    last_win[wi] = steps;
+    scale *= decay;
+    if (scale < 1e-150) renormalize();
+    ++steps;
+  }
+
+  // One tangential Laplacian update of v (border vertices: along the border only). One pass over
+  // the outgoing halfedges gathers the ring mean and the area-weighted normal.
+  void smooth_vertex(VertexHandle v) {
+    const Vec3 x = mesh.point(v);
+    Vec3 sum(0, 0, 0), n(0, 0, 0);
+    int k = 0;
+    bool border = false;
+    HalfedgeHandle border_out, border_in;
+    for (auto h : mesh.voh_range(v)) {
+      const Vec3& a = mesh.point(mesh.to_vertex_handle(h));
+      sum += a;
+      ++k;
+      if (mesh.face_handle(h).is_valid()) {
+        const Vec3& b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+        n += (a - x) % (b - x);
+      } else {
+        border = true;
+        border_out = h;
+      }
+    }
+    if (k == 0) return;
+    Vec3 mean = sum / k;
+    if (border) {
+      border_in = mesh.prev_halfedge_handle(border_out);
+      mean = (mesh.point(mesh.to_vertex_handle(border_out)) + mesh.point(mesh.from_vertex_handle(border_in))) * 0.5;
+    }
+    Vec3 L = mean - x;
+    const double ln = n.norm();
+    if (ln > 0) {
+      n /= ln;
+      L -= (L | n) * n;
+    }
+    mesh.point(v) += opt.neighbor_rate * L;
+  }
+
+  // ---------------------------------------------------------------- vertex split
+  bool flip_geometry_ok(EdgeHandle e) const {
+    const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const Vec3& p = mesh.point(mesh.from_vertex_handle(h0));
+    const Vec3& q = mesh.point(mesh.to_vertex_handle(h0));
+    const Vec3& r = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h0)));
+    const Vec3& s = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h1)));
+    const Vec3 n_old = face_normal_of(p, q, r).normalized() + face_normal_of(q, p, s).normalized();
+    const Vec3 n1 = face_normal_of(p, s, r), n2 = face_normal_of(s, q, r);
+    return (n1 | n_old) > 0 && (n2 | n_old) > 0 && n1.norm() > 0 && n2.norm() > 0;
+  }
+
+  // Flips the edge of `h` (which runs between v and a neighbour) so that m gains a neighbour.
+  bool try_flip(HalfedgeHandle h) {
+    const EdgeHandle e = mesh.edge_handle(h);
+    if (mesh.is_boundary(e) || !mesh.is_flip_ok(e)) return false;
+    const VertexHandle a = mesh.from_vertex_handle(h) , b = mesh.to_vertex_handle(h);
+    // Neither end may drop below valence 3 (interior) / 2 (border).
+    for (const VertexHandle x : {a, b}) {
+      if (mesh.valence(x) <= (mesh.is_boundary(x) ? 2u : 3u)) return false;
+    }
+    if (!flip_geometry_ok(e)) return false;
+    const VertexHandle r = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, 0)));
+    const VertexHandle s = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, 1)));
+    mesh.flip(e);
+    for (const VertexHandle x : {a, b, r, s}) stamp(x);
+    return true;
+  }
+
+  // Valence-driven edge flips on the edges at v and m (a design addition to the paper's split,
+  // which alone leaves about a quarter of the vertices at valence 6 on a sphere): an edge is
+  // flipped when that lowers the squared deviation of its four vertices from the ideal valence
+  // (6 inside, 4 on a border), the two triangles are nearly coplanar and none folds.
+  void improve_valences(VertexHandle v, VertexHandle m) {
+    const auto dev = [&](VertexHandle x, int delta) {
+      const int ideal = mesh.is_boundary(x) ? 4 : 6;
+      const int d = static_cast<int>(mesh.valence(x)) + delta - ideal;
+      return d * d;
+    };
+    std::vector<EdgeHandle> edges;
+    for (int pass = 0; pass < 3; ++pass) {
+      edges.clear();
+      for (const VertexHandle c : {v, m}) {
+        for (auto h : mesh.voh_range(c)) {
+          for (auto g : mesh.voh_range(mesh.to_vertex_handle(h))) edges.push_back(mesh.edge_handle(g));
+        }
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      bool flipped = false;
+      for (const EdgeHandle e : edges) {
+        if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
+        const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+        const VertexHandle p = mesh.from_vertex_handle(h0), q = mesh.to_vertex_handle(h0);
+        const VertexHandle r = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
+        const VertexHandle s = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
+        const int before = dev(p, 0) + dev(q, 0) + dev(r, 0) + dev(s, 0);
+        const int after = dev(p, -1) + dev(q, -1) + dev(r, 1) + dev(s, 1);
+        if (after >= before) continue;
+        const Vec3 n0 = face_normal_of(mesh.point(p), mesh.point(q), mesh.point(r)).normalized();
+        const Vec3 n1 = face_normal_of(mesh.point(q), mesh.point(p), mesh.point(s)).normalized();
+        if ((n0 | n1) < 0.8) continue;  // keep creases
+        if (try_flip(h0)) flipped = true;
+      }
+      if (!flipped) break;
+    }
+  }
+
+  void split_most_active() {
+    EF_CHECK(!order.empty(), "no vertex to split");
+    const VertexHandle v(order.rbegin()->second);
+    HalfedgeHandle longest;
+    double best = -1;
+    int best_to = std::numeric_limits<int>::max();
+    for (auto h : mesh.voh_range(v)) {
+      const double l = mesh.calc_edge_sqr_length(h);
+      const int to = mesh.to_vertex_handle(h).idx();
+      if (l > best || (l == best && to < best_to)) {
+        best = l;
+        best_to = to;
+        longest = h;
+      }
+    }
+    EF_CHECK(longest.is_valid(), "the most active vertex has no edge");
+    const VertexHandle u = mesh.to_vertex_handle(longest);
+    const Vec3 mid = (mesh.point(v) + mesh.point(u)) * 0.5;
+    const VertexHandle m = mesh.split(mesh.edge_handle(longest), mid);
+    ensure_sizes();
+    // Walk equally both ways from the split edge: each flip moves one neighbour of v to m.
+    bool left_ok = true, right_ok = true;
+    for (bool left = true; (left_ok || right_ok) && mesh.valence(v) > mesh.valence(m) + 1; left = !left) {
+      if (left && left_ok) {
+        const HalfedgeHandle h = mesh.find_halfedge(v, m);
+        left_ok = mesh.face_handle(h).is_valid() &&
+                  try_flip(mesh.prev_halfedge_handle(h));  // edge (a, v) of face (v, m, a)
+      } else if (!left && right_ok) {
+        const HalfedgeHandle h = mesh.find_halfedge(m, v);
+        right_ok = mesh.face_handle(h).is_valid() &&
+                   try_flip(mesh.next_halfedge_handle(h));  // edge (v, b) of face (m, v, b)
+      }
+    }
+    improve_valences(v, m);
+    stamp_ring(v);
+    stamp_ring(m);
+    // Share v's counter in proportion to the vertices' areas.
+    const double av = std::pow(mean_adjacent_edge_length(v), 2), am = std::pow(mean_adjacent_edge_length(m), 2);
+    const double t = true_tau(v.idx());
+    const double share = (av + am) > 0 ? av / (av + am) : 0.5;
+    set_tau(v.idx(), t * share);
+    set_tau(m.idx(), t * (1 - share));
+    last_win[m.idx()] = steps;
+    grid.insert(m.idx(), mesh.point(m));
+    ++live;
+    ++splits;
+    update_decay();
+  }
+
+  // ---------------------------------------------------------------- collapses
+  double collapse_cost(HalfedgeHandle h) const {
+    const double a = mesh.valence(mesh.from_vertex_handle(h)), b = mesh.valence(mesh.to_vertex_handle(h));
+    double sum = (a + b - 10) * (a + b - 10);
+    for (const HalfedgeHandle g : std::array<HalfedgeHandle, 2>{h, mesh.opposite_halfedge_handle(h)}) {
+      if (!mesh.face_handle(g).is_valid()) continue;
+      const double c = mesh.valence(mesh.to_vertex_handle(mesh.next_halfedge_handle(g)));
+      sum += (c - 7) * (c - 7);
+    }
+    return std::sqrt(sum) / 3.0;
+  }
+
+  bool collapse_geometry_ok(HalfedgeHandle h) const {
+    const VertexHandle v0 = mesh.from_vertex_handle(h), v1 = mesh.to_vertex_handle(h);
+    const Vec3& x0 = mesh.point(v0);
+    const Vec3& x1 = mesh.point(v1);
+    for (auto g : mesh.voh_range(v0)) {
+      if (!mesh.face_handle(g).is_valid()) continue;
+      const VertexHandle a = mesh.to_vertex_handle(g), b = mesh.to_vertex_handle(mesh.next_halfedge_handle(g));
+      if (a == v1 || b == v1) continue;
+      const Vec3 n_old = face_normal_of(x0, mesh.point(a), mesh.point(b));
+      const Vec3 n_new = face_normal_of(x1, mesh.point(a), mesh.point(b));
+      const double ln = n_new.norm(), lo = n_old.norm();
+      if (!(ln > 1e-14 * bbox_diagonal * bbox_diagonal) || lo == 0) return false;
+      if ((n_new | n_old) < 0.2 * ln * lo) return false;
+    }
+    return true;
+  }
+
+  bool try_collapse(VertexHandle v) {
+    if (live <= 8) return false;
+    const bool border = mesh.is_boundary(v);
+    HalfedgeHandle best;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (auto h : mesh.voh_range(v)) {
+      if (border && !mesh.is_boundary(mesh.edge_handle(h))) continue;
+      const VertexHandle u = mesh.to_vertex_handle(h);
+      if (mesh.valence(v) + mesh.valence(u) < 7) continue;  // would leave a valence-2 vertex
+      bool opp_ok = true;
+      for (const HalfedgeHandle g : std::array<HalfedgeHandle, 2>{h, mesh.opposite_halfedge_handle(h)}) {
+        if (!mesh.face_handle(g).is_valid()) continue;
+        const VertexHandle c = mesh.to_vertex_handle(mesh.next_halfedge_handle(g));
+        if (mesh.valence(c) <= (mesh.is_boundary(c) ? 2u : 3u)) opp_ok = false;
+      }
+      if (!opp_ok) continue;
+      const double cost = collapse_cost(h);
+      if (cost < best_cost && mesh.is_collapse_ok(h) && collapse_geometry_ok(h)) {
+        best_cost = cost;
+        best = h;
+      }
+    }
+    if (!best.is_valid()) return false;
+    const VertexHandle u = mesh.to_vertex_handle(best);
+    const double t = true_tau(v.idx());
+    mesh.collapse(best);
+    drop_tau(v.idx());
+    grid.remove(v.idx());
+    set_tau(u.idx(), true_tau(u.idx()) + t);
+    stamp_ring(u);
+    --live;
+    ++collapses;
+    return true;
+  }
+
+  void collapse_inactive() {
+    const std::uint64_t window = collapse_window();
+    const size_t nv = mesh.n_vertices();
+    for (size_t i = 0; i < nv; ++i) {
+      const VertexHandle v(static_cast<int>(i));
+      if (mesh.status(v).deleted() || tau[i] < 0) continue;
+      if (last_win[i] + window >= steps) continue;
+      try_collapse(v);
+    }
+    update_decay();
+  }
+
+  // ---------------------------------------------------------------- resync after foreign changes
+  void snapshot_faces() {
+    face_snapshot.assign(mesh.n_faces(), {-1, -1, -1});
+    for (auto f : mesh.faces()) {
+      auto it = mesh.cfv_iter(f);
+      face_snapshot[f.idx()] = {it->idx(), (++it)->idx(), (++it)->idx()};
+    }
+  }
+
+  // Brings counters, grid and stamps in line with a mesh changed by someone else.
+  void resync() {
+    if (mesh.n_vertices() < tau.size() || mesh.n_faces() < fstamp.size()) {
+      full_rebuild();
+      return;
+    }
+    ensure_sizes();
+    size_t n_live = 0;
+    for (size_t i = 0; i < mesh.n_vertices(); ++i) {
+      const VertexHandle v(static_cast<int>(i));
+      const bool is_live = !mesh.status(v).deleted();
+      if (!is_live) {
+        if (grid.contains(static_cast<int>(i))) grid.remove(static_cast<int>(i));
+        drop_tau(static_cast<int>(i));
+        continue;
+      }
+      ++n_live;
+      if (!grid.contains(static_cast<int>(i))) {
+        grid.insert(static_cast<int>(i), mesh.point(v));
+        set_tau(static_cast<int>(i), 0.0);
+        last_win[i] = steps;
+        stamp(v);
+      } else if (grid.position(static_cast<int>(i)) != mesh.point(v)) {
+        grid.move(static_cast<int>(i), mesh.point(v));
+        stamp(v);
+      }
+    }
+    for (size_t i = 0; i < mesh.n_faces(); ++i) {
+      const FaceHandle f(static_cast<int>(i));
+      const bool was = i < face_snapshot.size() && face_snapshot[i][0] >= 0;
+      if (mesh.status(f).deleted()) {
+        if (was)
+          for (int k : face_snapshot[i])
+            if (!mesh.status(VertexHandle(k)).deleted()) vstamp[k] = clock;
+        continue;
+      }
+      auto it = mesh.cfv_iter(f);
+      const std::array<int, 3> now = {it->idx(), (++it)->idx(), (++it)->idx()};
+      if (!was || now != face_snapshot[i]) {
+        fstamp[i] = clock;
+        for (int k : now) vstamp[k] = clock;
+        if (was)
+          for (int k : face_snapshot[i])
+            if (!mesh.status(VertexHandle(k)).deleted()) vstamp[k] = clock;
+      }
+    }
+    live = n_live;
+    update_decay();
+    snapshot_faces();
+  }
+
+  void full_rebuild() {
+    tau.assign(mesh.n_vertices(), -1.0);
+    order.clear();
+    scale = 1.0;
+    last_win.assign(mesh.n_vertices(), steps);
+    vstamp.assign(mesh.n_vertices(), clock);
+    fstamp.assign(mesh.n_faces(), clock);
+    grid.reset(grid.cell_size());
+    grid.resize(mesh.n_vertices());
+    live = 0;
+    for (auto v : mesh.vertices()) {
+      grid.insert(v.idx(), mesh.point(v));
+      set_tau(v.idx(), 0.0);
+      ++live;
+    }
+    update_decay();
+    snapshot_faces();
+  }
+
+  void rebuild_grid_if_needed() {
+    const double target = mean_edge_length();
+    if (target <= 0) return;
+    const double ratio = grid.cell_size() / target;
+    if (ratio > 0.5 && ratio < 2.0) return;
+    grid.reset(target);
+    for (auto v : mesh.vertices()) grid.insert(v.idx(), mesh.point(v));
+  }
+
+  // ---------------------------------------------------------------- batches
+  ChangeSet changes_since(std::uint64_t last) const {
+    ChangeSet cs;
+    for (auto v : mesh.vertices())
+      if (vstamp[v.idx()] > last) cs.vertices.push_back(v);
+    for (auto f : mesh.faces()) {
+      bool changed = fstamp[f.idx()] > last;
+      for (auto v : mesh.fv_range(f)) changed = changed || vstamp[v.idx()] > last;
+      if (changed) cs.faces.push_back(f);
+    }
+    return cs;
+  }
+
+  void topology_pass(bool force) {
+    if (!opt.create_borders && !opt.merge_borders) return;
+    if (live < opt.topology_min_vertices) return;
+    if (!force && topology_last_live > 0 && static_cast<double>(live) < 1.1 * static_cast<double>(topology_last_live))
+      return;
+    const auto t0 = Clock::now();
+    topology_last_live = live;
+    const double ell = mean_edge_length();
+    const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
+    const detail::CloudDistance dist = [this](const Vec3& p) { return cloud_distance(p); };
+    bool changed = false;
+    if (opt.create_borders) {
+      detail::BorderParams bp;
+      bp.max_support_distance = support;
+      bp.max_edge_length = opt.long_edge_factor * ell;
+      bp.min_component_faces = 8;
+      const size_t removed = detail::remove_unsupported_faces(mesh, dist, bp);
+      faces_removed += removed;
+      changed = changed || removed > 0;
+    }
+    if (opt.merge_borders) {
+      detail::MergeParams mp;
+      mp.mean_edge_length = ell;
+      mp.max_support_distance = support;
+      const size_t merged = detail::merge_border_loops(mesh, dist, mp);
+      loops_merged += merged;
+      changed = changed || merged > 0;
+    }
+    if (changed) resync();
+    seconds_topology += seconds_since(t0);
+  }
+
+  void end_batch(bool final_call) {
+    ++batches;
+    splits_in_batch = 0;
+    rebuild_grid_if_needed();
+    snapshot_faces();
+    topology_pass(final_call);
+    if (ops.empty()) return;
+    OperationContext ctx{cloud};
+    ctx.mean_edge_length = mean_edge_length();
+    ctx.bbox_diagonal = bbox_diagonal;
+    ctx.target_vertices = opt.target_vertices;
+    ctx.basic_steps = steps;
+    ctx.batch = batches;
+    ctx.final_call = final_call;
+    for (Registered& r : ops) {
+      ctx.live_vertices = live;
+      const ChangeSet cs = changes_since(r.last);
+      ++clock;
+      const auto t0 = Clock::now();
+      const OperationResult res = r.op->apply(mesh, cs, ctx);
+      const double dt = seconds_since(t0);
+      r.report.seconds += dt;
+      seconds_ops += dt;
+      ++r.report.calls;
+      if (!res.summary.empty()) r.report.last_summary = res.summary;
+      if (res.mesh_changed) {
+        ++r.report.changes;
+        resync();
+        ctx.mean_edge_length = mean_edge_length();
+      }
+      r.last = clock;
+      ++clock;
+    }
+    rebuild_grid_if_needed();
+  }
+
+  ReconstructResult make_result(double seconds) const {
+    ReconstructResult r;
+    r.mesh = mesh;
+    for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
+    r.mesh.garbage_collection();
+    r.mesh.update_face_normals();
+    r.stop_reason = finished_reason;
+    r.basic_steps = steps;
+    r.splits = splits;
+    r.collapses = collapses;
+    r.faces_removed = faces_removed;
+    r.loops_merged = loops_merged;
+    r.batches = batches;
+    r.seconds_total = seconds;
+    r.seconds_operations = seconds_ops;
+    r.seconds_topology = seconds_topology;
+    for (const Registered& reg : ops) r.operations.push_back(reg.report);
+    return r;
+  }
+
+  ReconstructResult run(const ProgressCallback& progress) {
+    const auto t0 = Clock::now();
+    if (finished) return make_result(0.0);
+    const std::uint64_t step_limit =
+        opt.max_steps_per_vertex == 0 ? std::numeric_limits<std::uint64_t>::max()
+                                      : opt.max_steps_per_vertex * static_cast<std::uint64_t>(opt.target_vertices);
+    size_t splits_since_progress = 0;
+    auto report = [&]() {
+      if (!progress) return true;
+      Progress p;
+      p.vertices = live;
+      p.target_vertices = opt.target_vertices;
+      p.basic_steps = steps;
+      p.seconds = seconds_since(t0);
+      return progress(p);
+    };
+    StopReason reason = StopReason::target_reached;
+    while (live < opt.target_vertices) {
+      if (steps >= step_limit) {
+        reason = StopReason::step_limit;
+        break;
+      }
+      for (int i = 0; i < opt.steps_per_split; ++i) {
+        basic_step();
+        if (opt.inactivity_window > 0 && steps >= next_collapse_scan) {
+          collapse_inactive();
+          next_collapse_scan = steps + std::max<std::uint64_t>(1, collapse_window());
+        }
+      }
+      split_most_active();
+      if (++splits_in_batch >= opt.batch_splits) end_batch(false);
+      if (++splits_since_progress >= opt.progress_interval) {
+        splits_since_progress = 0;
+        if (!report()) {
+          reason = StopReason::cancelled;
+          break;
+        }
+      }
+    }
+    if (reason != StopReason::cancelled) {
+      end_batch(true);
+      finished = true;
+      finished_reason = reason;
+      report();
+    }
+    ReconstructResult r = make_result(seconds_since(t0));
+    r.stop_reason = reason;
+    return r;
+  }
+
+  // ---------------------------------------------------------------- validation
+  void validate() const {
+    auto fail = [](const std::string& m) { throw edgefront::InternalError("gcs validate: " + m); };
+    const size_t nv = mesh.n_vertices();
+    if (tau.size() < nv || last_win.size() < nv || vstamp.size() < nv || grid.capacity() < nv)
+      fail("per-vertex state is smaller than the mesh's vertex array");
+    if (fstamp.size() < mesh.n_faces()) fail("per-face state is smaller than the mesh's face array");
+    size_t n_live = 0;
+    for (size_t i = 0; i < nv; ++i) {
+      const VertexHandle v(static_cast<int>(i));
+      const int id = static_cast<int>(i);
+      if (mesh.status(v).deleted()) {
+        if (grid.contains(id)) fail("deleted vertex " + std::to_string(i) + " is in the spatial grid");
+        if (tau[i] >= 0) fail("deleted vertex " + std::to_string(i) + " has a signal counter");
+        continue;
+      }
+      ++n_live;
+      grid.check(id, mesh.point(v));
+      if (!(tau[i] >= 0) || !std::isfinite(tau[i])) fail("vertex " + std::to_string(i) + " has no valid counter");
+      if (!order.count({tau[i], id})) fail("vertex " + std::to_string(i) + " is missing from the counter order");
+      if (!mesh.is_manifold(v)) fail("vertex " + std::to_string(i) + " is not manifold");
+      if (mesh.valence(v) < 2) fail("vertex " + std::to_string(i) + " has valence " + std::to_string(mesh.valence(v)));
+      const Vec3& p = mesh.point(v);
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        fail("vertex " + std::to_string(i) + " has a non-finite position");
+      std::vector<int> nb;
+      for (auto u : mesh.vv_range(v)) {
+        if (mesh.status(u).deleted()) fail("vertex " + std::to_string(i) + " has a deleted neighbour");
+        nb.push_back(u.idx());
+      }
+      std::sort(nb.begin(), nb.end());
+      if (std::adjacent_find(nb.begin(), nb.end()) != nb.end())
+        fail("vertex " + std::to_string(i) + " has two edges to the same neighbour");
+    }
+    if (n_live != live) fail("live vertex count " + std::to_string(live) + " != mesh " + std::to_string(n_live));
+    if (grid.size() != n_live) fail("spatial grid holds " + std::to_string(grid.size()) + " vertices, mesh has " + std::to_string(n_live));
+    if (order.size() != n_live) fail("counter order holds " + std::to_string(order.size()) + " vertices, mesh has " + std::to_string(n_live));
+    for (auto f : mesh.faces()) {
+      int k = 0;
+      std::array<int, 3> vs{};
+      for (auto h : mesh.fh_range(f)) {
+        if (k == 3) fail("face " + std::to_string(f.idx()) + " is not a triangle");
+        if (mesh.status(h).deleted()) fail("face " + std::to_string(f.idx()) + " has a deleted halfedge");
+        if (mesh.face_handle(h) != f) fail("face " + std::to_string(f.idx()) + ": halfedge does not point back");
+        if (mesh.next_halfedge_handle(mesh.prev_halfedge_handle(h)) != h) fail("face " + std::to_string(f.idx()) + ": prev/next links disagree");
+        const VertexHandle v = mesh.to_vertex_handle(h);
+        if (mesh.status(v).deleted()) fail("face " + std::to_string(f.idx()) + " uses a deleted vertex");
+        vs[k++] = v.idx();
+      }
+      if (k != 3) fail("face " + std::to_string(f.idx()) + " is not a triangle");
+      if (vs[0] == vs[1] || vs[1] == vs[2] || vs[0] == vs[2]) fail("face " + std::to_string(f.idx()) + " repeats a vertex");
+    }
+    for (auto h : mesh.halfedges()) {
+      if (mesh.opposite_halfedge_handle(mesh.opposite_halfedge_handle(h)) != h) fail("halfedge opposite link broken");
+      if (mesh.to_vertex_handle(mesh.opposite_halfedge_handle(h)) != mesh.from_vertex_handle(h)) fail("halfedge vertex link broken");
+      if (mesh.is_boundary(h) && mesh.is_boundary(mesh.opposite_halfedge_handle(h))) fail("edge without faces");
+    }
+  }
+};
+
+Reconstructor::Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->init(std::move(points), options);
+}
+Reconstructor::~Reconstructor() = default;
+
+void Reconstructor::add_operation(std::shared_ptr<Operation> operation) {
+  if (!operation) throw InvalidInput("gcs: add_operation needs an operation (got a null pointer)");
+  Impl::Registered r;
+  r.report.name = operation->name();
+  r.op = std::move(operation);
+  r.last = 0;
+  impl_->ops.push_back(std::move(r));
+}
+
+ReconstructResult Reconstructor::run(const ProgressCallback& progress) { return impl_->run(progress); }
+const Mesh& Reconstructor::mesh() const { return impl_->mesh; }
+Vec3 Reconstructor::offset() const { return impl_->offset; }
+void Reconstructor::validate() const { impl_->validate(); }
+
+ReconstructResult reconstruct(edgefront::PointCloud points, const ReconstructOptions& options,
+                              const ProgressCallback& progress) {
+  Reconstructor r(std::move(points), options);
+  return r.run(progress);
+}
+
+}  // namespace gcs

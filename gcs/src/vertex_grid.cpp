@@ -1,0 +1,158 @@
+#include "detail/vertex_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "edgefront/error.h"
+
+namespace gcs::detail {
+
+namespace {
+constexpr std::int64_t kBias = std::int64_t(1) << 20;  // cell coordinates in [-2^20, 2^20)
+
+std::int64_t cell_coord(double x, double inv_h) {
+  const double c = std::floor(x * inv_h);
+  return static_cast<std::int64_t>(std::clamp(c, -double(kBias), double(kBias - 1)));
+}
+}  // namespace
+
+void VertexGrid::reset(double cell_size) {
+  EF_CHECK(std::isfinite(cell_size) && cell_size > 0, "grid cell size must be positive");
+  h_ = cell_size;
+  inv_h_ = 1.0 / cell_size;
+  count_ = 0;
+  std::fill(key_.begin(), key_.end(), kAbsent);
+  cells_.clear();
+}
+
+void VertexGrid::resize(std::size_t n) {
+  if (n <= key_.size()) return;
+  key_.resize(n, kAbsent);
+  pos_.resize(n, edgefront::Vec3(0, 0, 0));
+  slot_.resize(n, 0);
+}
+
+std::uint64_t VertexGrid::pack(std::int64_t i, std::int64_t j, std::int64_t k) {
+  return (static_cast<std::uint64_t>(i + kBias) << 42) | (static_cast<std::uint64_t>(j + kBias) << 21) |
+         static_cast<std::uint64_t>(k + kBias);
+}
+
+std::uint64_t VertexGrid::key_of(const edgefront::Vec3& p) const {
+  return pack(cell_coord(p[0], inv_h_), cell_coord(p[1], inv_h_), cell_coord(p[2], inv_h_));
+}
+
+void VertexGrid::insert(int id, const edgefront::Vec3& p) {
+  EF_CHECK(id >= 0 && static_cast<std::size_t>(id) < key_.size(), "grid id out of range");
+  EF_CHECK(key_[id] == kAbsent, "grid: id inserted twice");
+  const std::uint64_t key = key_of(p);
+  std::vector<int>& cell = cells_[key];
+  slot_[id] = static_cast<std::uint32_t>(cell.size());
+  cell.push_back(id);
+  key_[id] = key;
+  pos_[id] = p;
+  ++count_;
+}
+
+void VertexGrid::remove(int id) {
+  EF_CHECK(contains(id), "grid: removing an absent id");
+  auto it = cells_.find(key_[id]);
+  EF_CHECK(it != cells_.end(), "grid: cell of a stored id is missing");
+  std::vector<int>& cell = it->second;
+  const std::uint32_t s = slot_[id];
+  const int last = cell.back();
+  cell[s] = last;
+  slot_[last] = s;
+  cell.pop_back();
+  if (cell.empty()) cells_.erase(it);
+  key_[id] = kAbsent;
+  --count_;
+}
+
+void VertexGrid::move(int id, const edgefront::Vec3& p) {
+  const std::uint64_t key = key_of(p);
+  if (key == key_[id]) {
+    pos_[id] = p;
+    return;
+  }
+  remove(id);
+  insert(id, p);
+}
+
+int VertexGrid::linear_nearest(const edgefront::Vec3& p) const {
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t id = 0; id < key_.size(); ++id) {
+    if (key_[id] == kAbsent) continue;
+    const double d = (pos_[id] - p).sqrnorm();
+    if (d < best_d) {
+      best_d = d;
+      best = static_cast<int>(id);
+    }
+  }
+  return best;
+}
+
+int VertexGrid::nearest(const edgefront::Vec3& p) const {
+  if (count_ == 0) return -1;
+  const std::int64_t ci = cell_coord(p[0], inv_h_), cj = cell_coord(p[1], inv_h_), ck = cell_coord(p[2], inv_h_);
+  // Lower bound of the distance from p to any cell of ring r + 1: distance to its own cell's
+  // faces plus r whole cells.
+  const double fx = p[0] * inv_h_ - std::floor(p[0] * inv_h_), fy = p[1] * inv_h_ - std::floor(p[1] * inv_h_),
+               fz = p[2] * inv_h_ - std::floor(p[2] * inv_h_);
+  const double margin = std::min({fx, 1 - fx, fy, 1 - fy, fz, 1 - fz}) * h_;
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  std::size_t visited = 0;
+  const std::size_t budget = 8 * count_ + 64;  // then a linear scan is cheaper
+  const double px = p[0] * inv_h_, py = p[1] * inv_h_, pz = p[2] * inv_h_;
+  // Squared distance (in cells) from p to cell (i, j, k); cells farther than the best are skipped.
+  const auto gap = [](double x, std::int64_t c) {
+    const double lo = static_cast<double>(c), hi = lo + 1;
+    return x < lo ? lo - x : (x > hi ? x - hi : 0.0);
+  };
+  auto visit = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    ++visited;
+    if (best >= 0) {
+      const double gx = gap(px, i), gy = gap(py, j), gz = gap(pz, k);
+      if ((gx * gx + gy * gy + gz * gz) * h_ * h_ > best_d) return;
+    }
+    auto it = cells_.find(pack(i, j, k));
+    if (it == cells_.end()) return;
+    for (const int id : it->second) {
+      const double d = (pos_[id] - p).sqrnorm();
+      if (d < best_d || (d == best_d && id < best)) {
+        best_d = d;
+        best = id;
+      }
+    }
+  };
+  for (std::int64_t r = 0;; ++r) {
+    for (std::int64_t di = -r; di <= r; ++di) {
+      for (std::int64_t dj = -r; dj <= r; ++dj) {
+        const bool face = (di == -r || di == r || dj == -r || dj == r);
+        if (face) {
+          for (std::int64_t dk = -r; dk <= r; ++dk) visit(ci + di, cj + dj, ck + dk);
+        } else {
+          visit(ci + di, cj + dj, ck - r);
+          if (r > 0) visit(ci + di, cj + dj, ck + r);
+        }
+      }
+    }
+    if (best >= 0) {
+      const double bound = margin + static_cast<double>(r) * h_;
+      if (best_d <= bound * bound) return best;
+    }
+    if (visited > budget || r > 2 * kBias) return linear_nearest(p);
+  }
+}
+
+void VertexGrid::check(int id, const edgefront::Vec3& p) const {
+  EF_CHECK(contains(id), "vertex " + std::to_string(id) + " is not in the spatial grid");
+  EF_CHECK(pos_[id] == p, "vertex " + std::to_string(id) + " moved without a grid update");
+  EF_CHECK(key_[id] == key_of(p), "vertex " + std::to_string(id) + " is stored in the wrong grid cell");
+  auto it = cells_.find(key_[id]);
+  EF_CHECK(it != cells_.end() && slot_[id] < it->second.size() && it->second[slot_[id]] == id,
+           "grid cell of vertex " + std::to_string(id) + " does not hold it");
+}
+
+}  // namespace gcs::detail
