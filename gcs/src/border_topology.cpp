@@ -6,6 +6,8 @@
 #include <set>
 #include <vector>
 
+#include <OpenMesh/Core/System/omstream.hh>
+
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 
@@ -18,6 +20,20 @@ using edgefront::Vec3;
 using edgefront::VertexHandle;
 
 namespace {
+
+// Mutes OpenMesh's omerr() (add_face reports refused faces there) while alive.
+class MuteOpenMeshErrors {
+ public:
+  MuteOpenMeshErrors() : was_enabled_(omerr().is_enabled()) { omerr().disable(); }
+  ~MuteOpenMeshErrors() {
+    if (was_enabled_) omerr().enable();
+  }
+  MuteOpenMeshErrors(const MuteOpenMeshErrors&) = delete;
+  MuteOpenMeshErrors& operator=(const MuteOpenMeshErrors&) = delete;
+
+ private:
+  bool was_enabled_;
+};
 
 Vec3 tri_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
 
@@ -134,13 +150,19 @@ size_t clean_topology(Mesh& mesh, size_t min_faces) {
   return removed;
 }
 
-size_t remove_unsupported_faces(Mesh& mesh, const CloudDistance& distance, const BorderParams& params) {
+size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const BorderParams& params) {
   std::vector<FaceHandle> doomed;
   size_t live_faces = 0;
   const double max_edge2 = params.max_edge_length * params.max_edge_length;
   for (auto f : mesh.faces()) {
     ++live_faces;
-    bool remove = distance(centroid(mesh, f)) > params.max_support_distance;
+    const CloudHit hit = cloud(centroid(mesh, f));
+    bool remove = hit.distance > params.max_support_distance;
+    if (!remove && hit.distance >= params.normal_check_distance) {
+      const Vec3 n = face_normal(mesh, f);
+      const double ln = n.norm();
+      remove = ln > 0 && std::abs(n | hit.normal) < params.min_normal_cos * ln;
+    }
     if (!remove) {
       for (auto h : mesh.fh_range(f)) remove = remove || mesh.calc_edge_sqr_length(h) > max_edge2;
     }
@@ -151,7 +173,7 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudDistance& distance, const
   return doomed.size() + clean_topology(mesh, params.min_component_faces);
 }
 
-size_t merge_border_loops(Mesh& mesh, const CloudDistance& distance, const MergeParams& params) {
+size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams& params) {
   std::vector<Loop> loops = border_loops(mesh);
   if (loops.size() < 2) return 0;
   std::vector<char> used(loops.size(), 0);
@@ -242,13 +264,14 @@ size_t merge_border_loops(Mesh& mesh, const CloudDistance& distance, const Merge
         }
         agreement += (n | m) / (ln * lm);
         const Vec3 c = (mesh.point(t.a) + mesh.point(t.b) + mesh.point(t.c)) / 3.0;
-        if (distance(c) > params.max_support_distance) {
+        if (cloud(c).distance > params.max_support_distance) {
           ok = false;
           break;
         }
       }
       if (!ok || agreement / static_cast<double>(plan.size()) < params.min_normal_agreement) continue;
       std::vector<FaceHandle> added;
+      const MuteOpenMeshErrors mute;  // a refused face is handled below, not printed
       for (const Tri& t : plan) {
         const FaceHandle f = mesh.add_face(t.a, t.b, t.c);
         if (!f.is_valid()) {

@@ -91,6 +91,10 @@ struct Reconstructor::Impl {
   double sample_spacing = 0;
   CloudAdaptor adaptor;
   std::unique_ptr<CloudTree> tree;
+  // Faces whose centroid is at least this many mean edge lengths from the nearest sample are
+  // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
+  double normal_gate = 0.3;
+  std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
 
   Mesh mesh;
   detail::VertexGrid grid;
@@ -291,11 +295,36 @@ struct Reconstructor::Impl {
     return n ? sum / static_cast<double>(n) : bbox_diagonal * 0.1;
   }
 
-  double cloud_distance(const Vec3& p) const {
+  // The input normal of point i, or (without input normals) the normal of a plane fitted to its
+  // 12 nearest points, computed once on first use.
+  const Vec3& point_normal(size_t i) {
+    if (cloud.has_normals()) return cloud.normals[i];
+    if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
+    Vec3& n = fitted_normal[i];
+    if (n.sqrnorm() > 0) return n;
+    size_t idx[12];
+    double d2[12];
+    const size_t got = tree->knnSearch(&cloud.points[i][0], 12, idx, d2);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < got; ++k) c += Eigen::Vector3d(cloud.points[idx[k]][0], cloud.points[idx[k]][1], cloud.points[idx[k]][2]);
+    c /= static_cast<double>(got);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (size_t k = 0; k < got; ++k) {
+      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[idx[k]][0], cloud.points[idx[k]][1], cloud.points[idx[k]][2]) - c;
+      cov += q * q.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d e = eig.eigenvectors().col(0);
+    n = Vec3(e[0], e[1], e[2]);
+    if (!(n.sqrnorm() > 0.5)) n = Vec3(0, 0, 1);
+    return n;
+  }
+
+  detail::CloudHit cloud_query(const Vec3& p) {
     size_t idx = 0;
     double d2 = 0;
     tree->knnSearch(&p[0], 1, &idx, &d2);
-    return std::sqrt(d2);
+    return {std::sqrt(d2), point_normal(idx)};
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -676,13 +705,14 @@ struct Reconstructor::Impl {
     topology_last_live = live;
     const double ell = mean_edge_length();
     const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
-    const detail::CloudDistance dist = [this](const Vec3& p) { return cloud_distance(p); };
+    const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
     bool changed = false;
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
+      bp.normal_check_distance = normal_gate * ell;
       const size_t removed = detail::remove_unsupported_faces(mesh, dist, bp);
       faces_removed += removed;
       changed = changed || removed > 0;

@@ -11,19 +11,27 @@
 
 namespace gcs::detail {
 
-/// Distance from a point to the input cloud.
-using CloudDistance = std::function<double(const edgefront::Vec3&)>;
+/// The input sample nearest to a point: its distance and its (unoriented) unit normal.
+struct CloudHit {
+  double distance = 0;
+  edgefront::Vec3 normal{0, 0, 0};
+};
+using CloudQuery = std::function<CloudHit(const edgefront::Vec3&)>;
 
 struct BorderParams {
   double max_support_distance = 0;  ///< faces whose centroid is farther from the cloud are removed
   double max_edge_length = 0;       ///< faces with a longer edge are removed
+  /// faces whose normal makes |cos| below this with the nearest sample's normal are removed
+  double min_normal_cos = 0.35;
+  /// ... when the centroid is at least this far from the nearest sample
+  double normal_check_distance = 0;
   std::size_t min_component_faces = 8;  ///< components with fewer faces are removed
 };
 
 /// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
 /// components. Returns the number of faces removed. Never empties the mesh: when every face
 /// would go, nothing is removed.
-std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudDistance& distance,
+std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cloud,
                                      const BorderParams& params);
 
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
@@ -43,6 +51,6 @@ struct MergeParams {
 /// Joins pairs of border loops that are close, of similar length and orientation-compatible
 /// (their boundary halfedges run opposite) with a strip of triangles. Returns the number of
 /// pairs joined (each loop in at most one pair per call).
-std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudDistance& distance, const MergeParams& params);
+std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudQuery& cloud, const MergeParams& params);
 
 }  // namespace gcs::detail
