@@ -291,4 +291,50 @@ size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams
   return merged;
 }
 
+size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices, double max_support_distance,
+                        double min_normal_agreement) {
+  size_t filled = 0;
+  for (const Loop& loop : border_loops(mesh)) {
+    const size_t n = loop.vertices.size();
+    if (n < 3 || n > max_vertices) continue;
+    std::set<int> distinct;
+    for (auto v : loop.vertices) distinct.insert(v.idx());
+    if (distinct.size() != n) continue;
+    Vec3 c(0, 0, 0);
+    for (auto v : loop.vertices) c += mesh.point(v);
+    c /= static_cast<double>(n);
+    if (cloud(c).distance > max_support_distance) continue;
+    double agreement = 0;
+    bool ok = true;
+    for (size_t k = 0; k < n; ++k) {
+      const Vec3 nf = tri_normal(mesh.point(loop.vertices[k]), mesh.point(loop.vertices[(k + 1) % n]), c);
+      const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[k]);
+      const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+      if (!(nf.norm() > 0) || !(na.norm() > 0)) {
+        ok = false;
+        break;
+      }
+      agreement += (nf | na) / (nf.norm() * na.norm());
+    }
+    if (!ok || agreement / static_cast<double>(n) < min_normal_agreement) continue;
+    const VertexHandle center = mesh.add_vertex(c);
+    std::vector<FaceHandle> added;
+    {
+      const MuteOpenMeshErrors mute;
+      for (size_t k = 0; k < n && ok; ++k) {
+        const FaceHandle f = mesh.add_face(loop.vertices[k], loop.vertices[(k + 1) % n], center);
+        ok = f.is_valid();
+        if (ok) added.push_back(f);
+      }
+    }
+    if (!ok) {
+      for (auto f : added) mesh.delete_face(f, false);
+      mesh.delete_vertex(center, false);
+      continue;
+    }
+    ++filled;
+  }
+  return filled;
+}
+
 }  // namespace gcs::detail

@@ -110,7 +110,7 @@ struct Reconstructor::Impl {
   std::mt19937_64 rng;
   std::uint64_t steps = 0;
   std::uint64_t next_collapse_scan = 0;
-  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, batches = 0;
+  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, holes_filled = 0, batches = 0;
   size_t splits_in_batch = 0;
   size_t topology_last_live = 0;
   double seconds_ops = 0, seconds_topology = 0;
@@ -606,6 +606,8 @@ struct Reconstructor::Impl {
 
   // Brings counters, grid and stamps in line with a mesh changed by someone else.
   void resync() {
+    // Keep the mesh manifold without isolated vertices (an operation may leave a bow tie).
+    detail::clean_topology(mesh, 0);
     if (mesh.n_vertices() < tau.size() || mesh.n_faces() < fstamp.size()) {
       full_rebuild();
       return;
@@ -725,6 +727,11 @@ struct Reconstructor::Impl {
       loops_merged += merged;
       changed = changed || merged > 0;
     }
+    if (opt.create_borders) {
+      const size_t filled = detail::fill_small_holes(mesh, dist, 8, support, 0.5);
+      holes_filled += filled;
+      changed = changed || filled > 0;
+    }
     if (changed) resync();
     seconds_topology += seconds_since(t0);
   }
@@ -777,6 +784,7 @@ struct Reconstructor::Impl {
     r.collapses = collapses;
     r.faces_removed = faces_removed;
     r.loops_merged = loops_merged;
+    r.holes_filled = holes_filled;
     r.batches = batches;
     r.seconds_total = seconds;
     r.seconds_operations = seconds_ops;

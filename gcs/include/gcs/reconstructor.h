@@ -12,7 +12,8 @@
 /// changes are on). Topology (neural-mesh style, Ivrissimtzis et al. 2004): triangles that no
 /// sample supports and overlong edges are removed, creating borders; two border loops that are
 /// close, of similar length and orientation-compatible are joined by a strip of triangles,
-/// creating a handle (see ReconstructOptions).
+/// creating a handle; border loops of at most 8 vertices whose fan would lie on the samples are
+/// closed (see ReconstructOptions).
 ///
 /// After each batch of splits the registered Operations (operation.h) are called with the
 /// elements changed since their last call; the loop then re-synchronizes its own state.
@@ -125,6 +126,7 @@ struct ReconstructResult {
   std::size_t collapses = 0;
   std::size_t faces_removed = 0;  ///< by the built-in border creation
   std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
+  std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan
   std::size_t batches = 0;
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations

@@ -53,4 +53,11 @@ struct MergeParams {
 /// pairs joined (each loop in at most one pair per call).
 std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudQuery& cloud, const MergeParams& params);
 
+/// Closes small holes: a border loop of at most `max_vertices` vertices whose fan of triangles
+/// around the loop's centroid lies within `max_support_distance` of the cloud and agrees with the
+/// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex).
+/// Returns the number of loops filled.
+std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
+                             double max_support_distance, double min_normal_agreement);
+
 }  // namespace gcs::detail
