@@ -1,6 +1,6 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
-///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--quiet]
+///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--quiet]
 ///
 /// Prints a one-line summary on stdout; a progress bar on stderr when stderr is a terminal and
 /// --quiet is not given. Exit codes: 0 ok, 1 error (one line "gcs-reconstruct: error: ..." on
@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = options.seed;
   bool no_twist = false;
   bool quiet = false;
+  bool no_borders = false;
   app.add_option("POINTS", input, "input point cloud (.xyz, .txt, .pts, .ply, .off, .obj)")->required();
   app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")->required();
   app.add_option("--vertices", vertices, "target vertex count (default 5000)")->check(CLI::Range(4, 50000000));
@@ -38,6 +39,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-twist", no_twist,
                "disable the twist repair operation (currently no effect: the twist repair is not part of this "
                "build yet)");
+  app.add_flag("--no-borders", no_borders,
+               "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
+               "shells such as the bundled vault are torn apart by the border creation otherwise)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -45,6 +49,7 @@ int main(int argc, char** argv) {
     options.target_vertices = vertices;
     options.seed = seed;
     options.progress_interval = 50;
+    options.create_borders = options.merge_borders = !no_borders;
     (void)no_twist;
     const bool bar = !quiet && isatty(fileno(stderr));
     gcs::ProgressCallback progress;

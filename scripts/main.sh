@@ -22,13 +22,11 @@ run() {
 }
 
 # ---------------------------------------------------------------------------------------------
-# THE MAIN JOB: its one line below is what later work replaces. Planned:
-#   run "$BUILD_DIR/apps/gcs-reconstruct" data/vault-shell.xyz -o out/vault.ply
+# THE MAIN JOB: reconstruct the bundled vault shell point cloud (4000 oriented points) with growing
+# cell structures and write the mesh (2000 vertices, a few seconds). --no-borders keeps the closed
+# shell closed (the border creation tears thin closed shells apart, see README).
 run_main_job() {
-  # Until the reconstructor exists: a geodesic distance field and the edge-front levels from
-  # vertex 0 of the bundled bumpy sphere, as colored PLY files.
-  run "$BUILD_DIR/apps/ef-distance" data/bumpy-sphere.off --source 0 -o out/bumpy-sphere-distance.ply
-  run "$BUILD_DIR/apps/ef-front" data/bumpy-sphere.off --source 0 -o out/bumpy-sphere-levels.ply
+  run "$BUILD_DIR/apps/gcs-reconstruct" data/vault-shell.xyz -o out/vault.ply --vertices 2000 --no-borders
 }
 # ---------------------------------------------------------------------------------------------
 

@@ -129,13 +129,14 @@ std::vector<Loop> border_loops(const Mesh& mesh) {
 
 }  // namespace
 
-size_t clean_topology(Mesh& mesh, size_t min_faces) {
+size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
   size_t removed = fix_nonmanifold_vertices(mesh);
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   if (labels.count > 1) {
     std::vector<size_t> faces(labels.count, 0);
     for (auto f : mesh.faces()) ++faces[labels.vertex_component[mesh.fv_begin(f)->idx()]];
     const size_t largest = static_cast<size_t>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+    min_faces = std::max(min_faces, static_cast<size_t>(min_fraction * static_cast<double>(faces[largest])));
     for (auto f : mesh.faces()) {
       const size_t c = static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()]);
       if (c != largest && faces[c] < min_faces) {
@@ -170,7 +171,7 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
   }
   if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
   for (auto f : doomed) mesh.delete_face(f, true);
-  return doomed.size() + clean_topology(mesh, params.min_component_faces);
+  return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
 }
 
 size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams& params) {

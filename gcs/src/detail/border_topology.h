@@ -25,7 +25,9 @@ struct BorderParams {
   double min_normal_cos = 0.35;
   /// ... when the centroid is at least this far from the nearest sample
   double normal_check_distance = 0;
+
   std::size_t min_component_faces = 8;  ///< components with fewer faces are removed
+  double min_component_fraction = 0.05;  ///< ... or with fewer than this share of the largest's faces
 };
 
 /// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
@@ -35,9 +37,9 @@ std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cl
                                      const BorderParams& params);
 
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
-/// removes components with fewer than min_faces faces (unless it is the only one). Returns the
-/// number of faces removed.
-std::size_t clean_topology(edgefront::Mesh& mesh, std::size_t min_faces);
+/// removes components other than the largest with fewer than max(min_faces, min_fraction x the
+/// largest's face count) faces. Returns the number of faces removed.
+std::size_t clean_topology(edgefront::Mesh& mesh, std::size_t min_faces, double min_fraction = 0);
 
 struct MergeParams {
   double mean_edge_length = 0;

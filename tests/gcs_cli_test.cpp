@@ -1,0 +1,91 @@
+// Tests of the gcs-reconstruct command-line tool: real runs of the built executable on the bundled
+// vault cloud, the written mesh read back, determinism of the file, and the exit codes (0 ok, 1
+// error with one line "gcs-reconstruct: error: ..." on stderr, 2 usage error).
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app_test_util.h"
+#include "edgefront/mesh_io.h"
+#include "edgefront/mesh_stats.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class GcsCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    app_ = fs::path(EDGEFRONT_APP_DIR) / "gcs-reconstruct";
+    if (!fs::exists(app_)) GTEST_SKIP() << "gcs-reconstruct is not built at " << app_;
+    dir_ = fs::temp_directory_path() / ("edgefront_gcs_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!dir_.empty()) fs::remove_all(dir_, ec);
+  }
+  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
+  std::string q(const fs::path& p) const { return eftest::shell_quoted(p.string()); }
+  static std::string vault() { return (fs::path(EDGEFRONT_DATA_DIR) / "vault-sheet.xyz").string(); }
+  fs::path app_, dir_;
+};
+
+TEST_F(GcsCli, WritesTheMeshAndASummary) {
+  const fs::path out = dir_ / "vault.ply";
+  const eftest::CommandResult r = run(q(vault()) + " -o " + q(out) + " --vertices 300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // stderr is a file here: no progress bar
+  EXPECT_NE(r.out.find("300 vertices"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("target reached"), std::string::npos) << r.out;
+  const edgefront::Mesh mesh = edgefront::load_mesh(out);
+  const edgefront::MeshStats s = edgefront::compute_stats(mesh);
+  EXPECT_EQ(s.vertices, 300u);
+  EXPECT_EQ(s.nonmanifold_vertices, 0u);
+  EXPECT_GT(s.faces, 400u);
+}
+
+TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off", c = dir_ / "c.off";
+  ASSERT_EQ(run(q(vault()) + " -o " + q(a) + " --vertices 150 --seed 7 --quiet").exit_code, 0);
+  ASSERT_EQ(run(q(vault()) + " -o " + q(b) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
+  ASSERT_EQ(run(q(vault()) + " -o " + q(c) + " --vertices 150 --seed 8").exit_code, 0);
+  EXPECT_EQ(eftest::slurp(a), eftest::slurp(b));
+  EXPECT_NE(eftest::slurp(a), eftest::slurp(c));
+}
+
+TEST_F(GcsCli, ErrorsAndUsage) {
+  const fs::path out = dir_ / "x.ply";
+  eftest::CommandResult r = run(q(dir_ / "missing.xyz") + " -o " + q(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("gcs-reconstruct: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // Three points: a clear error, no file.
+  const fs::path few = dir_ / "few.xyz";
+  std::ofstream(few) << "0 0 0\n1 0 0\n0 1 0\n";
+  r = run(q(few) + " -o " + q(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("at least 4 points"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // Target above 4 x the point count.
+  r = run(q(vault()) + " -o " + q(out) + " --vertices 20000");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("more than 4 times"), std::string::npos) << r.err;
+  EXPECT_EQ(run(q(vault()) + " -o " + q(out) + " --vertices 3").exit_code, 2);
+  EXPECT_EQ(run(q(vault())).exit_code, 2);                                       // no -o
+  EXPECT_EQ(run(q(vault()) + " -o " + q(dir_ / "x.abc") + " --vertices 50").exit_code, 1);  // bad extension
+  r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("--no-twist"), std::string::npos);
+  EXPECT_NE(r.out.find("no effect"), std::string::npos);
+}
+
+}  // namespace
