@@ -8,8 +8,8 @@
 // them removed, but cannot move one; a GCS basic step moves the winner and its 1-ring (about 7
 // points, 5 smoothing passes), so a move would be a removal plus an insertion into a logarithmic
 // forest of static trees whose removed entries stay in place until the sub-tree is rebuilt: the
-// forest grows by ~7 entries per step (10^7 steps for 100K vertices). bench/bench_gcs.cpp
-// measures the grid against nanoflann on the same query stream.
+// forest grows by ~7 entries per step (10^7 steps for 100K vertices). This reasoning was not
+// measured against nanoflann; bench/bench_gcs.cpp measures the whole loop (time per basic step).
 //
 // Deterministic: a query returns the nearest point, ties broken by the smaller id; the hash map
 // is only looked up, never iterated for results.
