@@ -159,7 +159,7 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
     ++live_faces;
     const CloudHit hit = cloud(centroid(mesh, f));
     bool remove = hit.distance > params.max_support_distance;
-    if (!remove && hit.distance >= params.normal_check_distance) {
+    if (!remove && hit.distance >= params.normal_check_distance && std::isfinite(hit.normal[0])) {
       const Vec3 n = face_normal(mesh, f);
       const double ln = n.norm();
       remove = ln > 0 && std::abs(n | hit.normal) < params.min_normal_cos * ln;

@@ -296,15 +296,15 @@ struct Reconstructor::Impl {
   }
 
   // The input normal of point i, or (without input normals) the normal of a plane fitted to its
-  // 12 nearest points, computed once on first use.
+  // 20 nearest points, computed once on first use; NaN where the neighbourhood is not flat.
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
     Vec3& n = fitted_normal[i];
-    if (n.sqrnorm() > 0) return n;
-    size_t idx[12];
-    double d2[12];
-    const size_t got = tree->knnSearch(&cloud.points[i][0], 12, idx, d2);
+    if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
+    size_t idx[20];
+    double d2[20];
+    const size_t got = tree->knnSearch(&cloud.points[i][0], 20, idx, d2);
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (size_t k = 0; k < got; ++k) c += Eigen::Vector3d(cloud.points[idx[k]][0], cloud.points[idx[k]][1], cloud.points[idx[k]][2]);
     c /= static_cast<double>(got);
@@ -315,8 +315,14 @@ struct Reconstructor::Impl {
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     const Eigen::Vector3d e = eig.eigenvectors().col(0);
+    const Eigen::Vector3d ev = eig.eigenvalues();
+    // Not flat enough (noise comparable to the spacing): no usable normal (marked by a NaN).
+    if (!(ev[0] < 0.05 * ev[1])) {
+      n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+      return n;
+    }
     n = Vec3(e[0], e[1], e[2]);
-    if (!(n.sqrnorm() > 0.5)) n = Vec3(0, 0, 1);
+    if (!(n.sqrnorm() > 0.5)) n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
     return n;
   }
 

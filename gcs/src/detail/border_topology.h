@@ -11,7 +11,8 @@
 
 namespace gcs::detail {
 
-/// The input sample nearest to a point: its distance and its (unoriented) unit normal.
+/// The input sample nearest to a point: its distance and its (unoriented) unit normal, NaN when
+/// unknown.
 struct CloudHit {
   double distance = 0;
   edgefront::Vec3 normal{0, 0, 0};
