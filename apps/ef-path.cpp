@@ -15,6 +15,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -88,8 +89,8 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const edgefront::ConnectionPath path = edgefront::connection_path(mesh, from, to, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::cerr << kAppName << ": " << method << (directed ? " directed" : "") << ", " << number(seconds * 1e3)
-              << " ms, " << path.processed << " elements processed in " << path.searches << " searches\n";
+    std::cerr << kAppName << ": " << method << (directed ? " directed" : "") << ", " << std::fixed
+              << std::setprecision(3) << seconds * 1e3 << " ms, " << path.processed << " elements processed in " << path.searches << " searches\n";
     if (path.status == edgefront::PathStatus::NoPath) {
       std::cout << "no path\n";
       return 0;

@@ -291,43 +291,50 @@ Mesh grid_with_island(int cells) {
 }
 
 TEST(ConnectionPath, NoPathToAnIslandCostsTheSameBesideASmallAndALargeMesh) {
-  for (PathMethod m : kAllMethods) {
-    std::vector<size_t> processed;
-    for (int cells : {100, 300}) {
-      const Mesh mesh = grid_with_island(cells);
-      ASSERT_EQ(mesh.n_faces(), 2u * cells * cells + 10);
-      const VertexHandle on_grid = nearest(mesh, Vec3(0, 0, 0));
-      const VertexHandle on_island(static_cast<int>(mesh.n_vertices()) - 3);
+  std::vector<std::vector<size_t>> processed(2);
+  for (int size = 0; size < 2; ++size) {
+    const int cells = size == 0 ? 100 : 300;
+    const Mesh mesh = grid_with_island(cells);
+    ASSERT_EQ(mesh.n_faces(), 2u * cells * cells + 10);
+    const VertexHandle on_grid = nearest(mesh, Vec3(0, 0, 0));
+    const VertexHandle on_island(static_cast<int>(mesh.n_vertices()) - 3);
+    ConnectionPathFinder finder(mesh);
+    for (PathMethod m : kAllMethods) {
       for (bool flip : {false, true}) {
-        const ConnectionPath p = flip ? connection_path(mesh, on_island, on_grid, {.method = m})
-                                      : connection_path(mesh, on_grid, on_island, {.method = m});
+        const ConnectionPath p =
+            flip ? finder.find(on_island, on_grid, {.method = m}) : finder.find(on_grid, on_island, {.method = m});
         EXPECT_EQ(p.status, PathStatus::NoPath) << name_of(m);
         EXPECT_TRUE(p.vertices.empty());
         EXPECT_LT(p.processed, 200u) << name_of(m) << ": the large component was processed";
-        processed.push_back(p.processed);
+        processed[size].push_back(p.processed);
       }
     }
-    EXPECT_EQ(processed[0], processed[2]) << name_of(m);
-    EXPECT_EQ(processed[1], processed[3]) << name_of(m);
   }
+  EXPECT_EQ(processed[0], processed[1]);
 }
 
 TEST(ConnectionPath, CostDependsOnThePathNotOnTheMesh) {
-  // Equal local triangulation (cell size 0.02), same query, 100x100 and 300x300 cells.
-  for (PathMethod m : kAllMethods) {
-    for (bool polyline : {false, true}) {
-      std::vector<ConnectionPath> results;
-      for (int cells : {100, 300}) {
-        const Mesh mesh = shapes::grid({.cells = cells, .half_size = cells / 100.0});
-        const VertexHandle a = nearest(mesh, Vec3(-0.2, 0.06, 0)), b = nearest(mesh, Vec3(0.24, -0.1, 0));
-        results.push_back(connection_path(mesh, a, b, {.method = m, .polyline = polyline}));
+  // Equal local triangulation (cell size 0.02), the same query on 100x100 and 300x300 cells.
+  std::vector<std::vector<ConnectionPath>> results(2);
+  for (int size = 0; size < 2; ++size) {
+    const int cells = size == 0 ? 100 : 300;
+    const Mesh mesh = shapes::grid({.cells = cells, .half_size = cells / 100.0});
+    const VertexHandle a = nearest(mesh, Vec3(-0.2, 0.06, 0)), b = nearest(mesh, Vec3(0.24, -0.1, 0));
+    ConnectionPathFinder finder(mesh);
+    for (PathMethod m : kAllMethods) {
+      for (bool directed : {false, true}) {
+        results[size].push_back(finder.find(a, b, {.method = m, .polyline = true, .directed = directed}));
       }
-      ASSERT_EQ(results[0].status, PathStatus::Found);
-      EXPECT_EQ(results[0].processed, results[1].processed) << name_of(m);
-      EXPECT_EQ(results[0].edges, results[1].edges) << name_of(m);
-      EXPECT_NEAR(results[0].length, results[1].length, 1e-9) << name_of(m);
-      EXPECT_LT(results[0].processed, 5000u) << name_of(m);
     }
+  }
+  for (size_t i = 0; i < results[0].size(); ++i) {
+    const ConnectionPath &small = results[0][i], &large = results[1][i];
+    SCOPED_TRACE("query " + std::to_string(i));
+    ASSERT_EQ(small.status, PathStatus::Found);
+    EXPECT_EQ(small.processed, large.processed);
+    EXPECT_EQ(small.edges, large.edges);
+    EXPECT_NEAR(small.length, large.length, 1e-9);
+    EXPECT_LT(small.processed, 5000u);
   }
 }
 
