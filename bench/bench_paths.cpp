@@ -15,9 +15,9 @@
 /// Per pair, in this order, each timed separately (steady_clock):
 ///   bidirectional Dijkstra over edge lengths (per-mesh arrays allocated once, reset by a touched
 ///   list; binary heap; stops when the two smallest keys add up to the best meeting),
-///   VF, MEF, MDF connection paths, undirected and directed, MDF with --polyline (undirected and
-///   directed), all through one reused edgefront::ConnectionPathFinder.
-/// The VF, MEF and directed hop counts must agree (the run aborts otherwise).
+///   VF, MEF, MDF connection paths, undirected, directed and confined, MDF with a polyline, all
+///   through one reused edgefront::ConnectionPathFinder.
+/// The hop counts of every VF/MEF variant must agree (the run aborts otherwise).
 /// Then per source: find_many over its T targets against the sum of the single queries.
 ///
 /// --grid-check: the same 5 queries on a 100x100 grid and a LARGExLARGE grid (default 2000) with
@@ -247,6 +247,9 @@ int run_mesh(const Args& a) {
       {"MDF directed (A* edge path)", {.method = PathMethod::MinimalDistance, .directed = true}},
       {"MDF + polyline", {.method = PathMethod::MinimalDistance, .polyline = true}},
       {"MDF directed + polyline", {.method = PathMethod::MinimalDistance, .polyline = true, .directed = true}},
+      {"VF confined", {.method = PathMethod::VertexFront, .confine = true}},
+      {"MEF confined", {.method = PathMethod::MinimalEdgeFront, .confine = true}},
+      {"MDF confined + polyline", {.method = PathMethod::MinimalDistance, .polyline = true, .confine = true}},
   };
   std::vector<Series> series(variants.size());
   Series dijkstra;
@@ -367,6 +370,8 @@ int run_grid_check(const Args& a) {
       {"MEF", {.method = PathMethod::MinimalEdgeFront}},
       {"MDF", {.method = PathMethod::MinimalDistance}},
       {"MDF + polyline", {.method = PathMethod::MinimalDistance, .polyline = true}},
+      {"MEF confined", {.method = PathMethod::MinimalEdgeFront, .confine = true}},
+      {"MDF confined", {.method = PathMethod::MinimalDistance, .confine = true}},
       {"MEF directed", {.method = PathMethod::MinimalEdgeFront, .directed = true}},
       {"MDF directed", {.method = PathMethod::MinimalDistance, .directed = true}}};
   std::map<std::pair<size_t, size_t>, std::vector<size_t>> work;  // (query, method) -> per grid

@@ -126,8 +126,12 @@ struct MeetingPicker {
   MeetingPicker(VertexHandle from, VertexHandle to) : s(from), t(to) {}
   VertexHandle s, t;
   Meeting best;
+  // The ends of the enclosing searches: they are on the path already (MDF distances are not a
+  // metric; without this a half could choose its parent's other end and recurse forever).
+  const std::vector<VertexHandle>* banned = nullptr;
   void consider(VertexHandle v, double a, double b) {
     if (v == s || v == t) return;
+    if (banned && std::find(banned->begin(), banned->end(), v) != banned->end()) return;
     if (!best.found) {
       best = Meeting{true, v, a, b};
       return;
@@ -170,6 +174,8 @@ struct ConnectionPathFinder::Impl {
   detail::FlatMap<double> settled[2];
 
   ConnectionPath* stats = nullptr;  // the result whose counters a search adds to
+  bool recording = false;           // level searches record what they process (confine)
+  std::vector<VertexHandle> banned; // ends of the enclosing searches (see MeetingPicker)
 
   explicit Impl(const Mesh& m) : mesh(m), directed(m) {}
 
@@ -216,7 +222,12 @@ struct ConnectionPathFinder::Impl {
     a.reset(s);
     b.reset(t);
     MeetingPicker pick(s, t);
+    pick.banned = &banned;
     Meeting result;
+    if (recording) {
+      settled[0].clear();
+      settled[1].clear();
+    }
     for (int turn = 0;; turn ^= 1) {
       Side& x = turn == 0 ? a : b;
       const Side& y = turn == 0 ? b : a;
@@ -226,7 +237,10 @@ struct ConnectionPathFinder::Impl {
           else pick.consider(v, *ly, lx);
         }
       };
-      x.on_processed = check;
+      x.on_processed = [&](VertexHandle v, double lx) {
+        if (recording) settled[turn].insert(static_cast<uint32_t>(v.idx()), lx);
+        check(v, lx);
+      };
       const bool grew = x.advance();
       x.on_processed = nullptr;
       if (!grew) break;  // this side's component is exhausted without meeting: no path
@@ -237,7 +251,52 @@ struct ConnectionPathFinder::Impl {
       }
     }
     account(a, b, pa, pb);
+    if (recording) {
+      stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes,
+                                                  settled[0].memory_bytes() + settled[1].memory_bytes());
+    }
     return result;
+  }
+
+  // Confinement: the half of the path from the meeting vertex `m` (value `vm` on `side`) back to
+  // that side's end `e`, traced inside the region the side's front processed (recorded in
+  // `settled[side]`): each step goes to a neighbour one level lower (levels) or to the neighbour
+  // with the smallest distance plus edge length among those with a smaller distance (MDF).
+  // Appends m .. e; false when the region has no way down (the caller then searches).
+  bool trace(int side, bool levels, VertexHandle m, double vm, VertexHandle e, std::vector<VertexHandle>& out) const {
+    out.assign(1, m);
+    VertexHandle v = m;
+    double dv = vm;
+    const size_t limit = settled[side].size() + 2;
+    while (v != e) {
+      if (out.size() > limit) return false;
+      VertexHandle next;
+      double best = std::numeric_limits<double>::infinity(), dnext = 0;
+      for (VertexHandle u : mesh.vv_range(v)) {
+        const double* du = settled[side].find(static_cast<uint32_t>(u.idx()));
+        if (!du) continue;
+        if (levels) {
+          if (*du != dv - 1) continue;
+          if (!next.is_valid() || u.idx() < next.idx()) {
+            next = u;
+            dnext = *du;
+          }
+        } else {
+          if (!(*du < dv)) continue;
+          const double key = *du + (mesh.point(u) - mesh.point(v)).norm();
+          if (key < best) {
+            best = key;
+            next = u;
+            dnext = *du;
+          }
+        }
+      }
+      if (!next.is_valid()) return false;
+      out.push_back(next);
+      v = next;
+      dv = dnext;
+    }
+    return true;
   }
 
   // Two MDFs, the one with the smaller radius grows by one settled vertex, until the radii sum
@@ -249,6 +308,7 @@ struct ConnectionPathFinder::Impl {
     a.reset(s);
     b.reset(t);
     MeetingPicker pick(s, t);
+    pick.banned = &banned;
     // The fronts forget settled vertices once their neighbours are settled; the meeting test
     // remembers the settled distances of both sides so that a vertex met late still pairs two
     // final distances (with the fronts' memory alone the sums came out up to 3% longer).
@@ -294,11 +354,24 @@ struct ConnectionPathFinder::Impl {
       out.push_back(t);
       return;
     }
-    EF_CHECK(depth < kMaxDepth, "connection path recursion too deep");
-    const Meeting mid = meet(m, s, t);
-    EF_CHECK(mid.found, "the halves of a found connection path are not connected");
+    Meeting mid;
+    if (depth < kMaxDepth) mid = meet(m, s, t);
+    if (!mid.found) {
+      // Only MDF halves can get here (every candidate on the path already, or too deep): the
+      // shortest edge path by the directed search closes the gap.
+      const auto d = directed.find(s, t, m != PathMethod::MinimalDistance);
+      EF_CHECK(!d.vertices.empty(), "the halves of a found connection path are not connected");
+      stats->processed += d.processed;
+      ++stats->searches;
+      out.insert(out.end(), d.vertices.begin() + 1, d.vertices.end());
+      return;
+    }
+    banned.push_back(s);
+    banned.push_back(t);
     build(m, s, mid.vertex, depth + 1, out);
     build(m, mid.vertex, t, depth + 1, out);
+    banned.pop_back();
+    banned.pop_back();
   }
 
   void finish(const Mesh& msh, ConnectionPath& r, const ConnectionPathOptions& o, bool length_is_estimate) {
@@ -335,11 +408,27 @@ struct ConnectionPathFinder::Impl {
       finish(mesh, r, o, false);
       return r;
     }
+    banned.clear();
+    recording = o.confine;
     const Meeting top = meet(o.method, from, to);
+    recording = false;
     if (!top.found) return r;
-    r.vertices.push_back(from);
-    build(o.method, from, top.vertex, 1, r.vertices);
-    build(o.method, top.vertex, to, 1, r.vertices);
+    banned = {from, to};
+    const bool levels = o.method != PathMethod::MinimalDistance;
+    std::vector<VertexHandle> half[2];
+    const bool traced[2] = {o.confine && trace(0, levels, top.vertex, top.from_value, from, half[0]),
+                            o.confine && trace(1, levels, top.vertex, top.to_value, to, half[1])};
+    if (traced[0]) {
+      r.vertices.assign(half[0].rbegin(), half[0].rend());  // from .. m
+    } else {
+      r.vertices.push_back(from);
+      build(o.method, from, top.vertex, 1, r.vertices);
+    }
+    if (traced[1]) {
+      r.vertices.insert(r.vertices.end(), half[1].begin() + 1, half[1].end());  // after m .. to
+    } else {
+      build(o.method, top.vertex, to, 1, r.vertices);
+    }
     const bool estimate = o.method == PathMethod::MinimalDistance;
     if (estimate) r.length = top.from_value + top.to_value;
     finish(mesh, r, o, estimate);
@@ -351,6 +440,7 @@ struct ConnectionPathFinder::Impl {
     check_vertex(from, "from");
     for (VertexHandle t : targets) check_vertex(t, "target");
     check_options(o);
+    banned.clear();
     std::vector<ConnectionPath> out(targets.size());
     if (targets.empty()) return out;
     const bool distance = o.method == PathMethod::MinimalDistance;
@@ -390,6 +480,7 @@ struct ConnectionPathFinder::Impl {
       if (!dt) continue;  // not reached: another component
       const Meeting mid = distance ? middle_by_distance(from, t, *dt) : middle_by_levels(o.method, from, t, *dt);
       EF_CHECK(mid.found, "find_many: no middle vertex on a path the source front reached");
+      banned = {from, t};
       r.vertices.push_back(from);
       build(o.method, from, mid.vertex, 1, r.vertices);
       build(o.method, mid.vertex, t, 1, r.vertices);

@@ -42,6 +42,13 @@ struct ConnectionPathOptions {
   /// lengths for the MDF: with `directed` the MDF vertex chain is a shortest *edge* path and
   /// `length` is its edge length; ask for `polyline` to get the geodesic).
   bool directed = false;
+  /// Confinement (paper §3/§4: use the fronts of earlier recursion levels to narrow later ones),
+  /// taken to its limit: the two top-level fronts record the levels / distances of what they
+  /// process (memory follows the processed area instead of the front), and both halves of the
+  /// path are traced inside that region (each step to a neighbour one level lower, or with a
+  /// smaller MDF distance), so no recursive searches run. Edge-wise paths keep the exact hop
+  /// count. Ignored with `directed`.
+  bool confine = false;
   /// Polyline: at most this many corridor changes (flips of the path's side around a vertex)
   /// before the straightening stops (status stays Found; `polyline_converged` says whether it
   /// converged). > 0.
