@@ -42,12 +42,21 @@ class Side {
   double radius = 0.0;  // the last processed value
 };
 
-class VfSide final : public Side {
+// The Vertex Front or the Minimal Edge Front: one level per advance.
+template <class Front>
+class LevelSide final : public Side {
  public:
-  explicit VfSide(const Mesh& mesh) : front_(mesh) {
-    front_.set_enclosed_callback([this](VertexHandle v, int level) { note(v, level); });
+  explicit LevelSide(const Mesh& mesh) : front_(mesh) {
+    front_.set_enclosed_callback([this](VertexHandle v, int level) {
+      ++processed;
+      radius = level;
+      if (on_processed) on_processed(v, level);
+    });
   }
-  void reset(VertexHandle v) override { front_.reset(FrontSource::vertex(v)); radius = 0; }
+  void reset(VertexHandle v) override {
+    front_.reset(FrontSource::vertex(v));
+    radius = 0;
+  }
   bool advance() override { return front_.advance_level(); }
   std::optional<double> known(VertexHandle v) const override {
     const auto l = front_.front_level(v);
@@ -59,37 +68,7 @@ class VfSide final : public Side {
   size_t peak_memory() const override { return front_.peak_working_memory_bytes(); }
 
  private:
-  void note(VertexHandle v, int level) {
-    ++processed;
-    radius = level;
-    if (on_processed) on_processed(v, level);
-  }
-  VertexFront front_;
-};
-
-class MefSide final : public Side {
- public:
-  explicit MefSide(const Mesh& mesh) : front_(mesh) {
-    front_.set_enclosed_callback([this](VertexHandle v, int level) { note(v, level); });
-  }
-  void reset(VertexHandle v) override { front_.reset(FrontSource::vertex(v)); radius = 0; }
-  bool advance() override { return front_.advance_level(); }
-  std::optional<double> known(VertexHandle v) const override {
-    const auto l = front_.front_level(v);
-    return l ? std::optional<double>(*l) : std::nullopt;
-  }
-  void for_each_front(const std::function<void(VertexHandle, double)>& f) const override {
-    for (const auto& [v, l] : front_.front_vertices()) f(v, l);
-  }
-  size_t peak_memory() const override { return front_.peak_working_memory_bytes(); }
-
- private:
-  void note(VertexHandle v, int level) {
-    ++processed;
-    radius = level;
-    if (on_processed) on_processed(v, level);
-  }
-  MinimalEdgeFront front_;
+  Front front_;
 };
 
 class MdfSide final : public Side {
@@ -184,8 +163,8 @@ struct ConnectionPathFinder::Impl {
     auto& slot = sides[i][which];
     if (!slot) {
       switch (m) {
-        case PathMethod::VertexFront: slot = std::make_unique<VfSide>(mesh); break;
-        case PathMethod::MinimalEdgeFront: slot = std::make_unique<MefSide>(mesh); break;
+        case PathMethod::VertexFront: slot = std::make_unique<LevelSide<VertexFront>>(mesh); break;
+        case PathMethod::MinimalEdgeFront: slot = std::make_unique<LevelSide<MinimalEdgeFront>>(mesh); break;
         case PathMethod::MinimalDistance: slot = std::make_unique<MdfSide>(mesh); break;
       }
     }
