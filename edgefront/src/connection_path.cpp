@@ -361,6 +361,21 @@ struct ConnectionPathFinder::Impl {
     if (o.polyline) {
       r.polyline = geodesic_polyline(msh, r.vertices, o.max_polyline_flips, &r.polyline_converged);
       r.polyline_length = polyline_length(r.polyline);
+      if (o.method == PathMethod::MinimalDistance && !o.directed && r.edges >= 2) {
+        // A second corridor: the shortest edge path's (directed search). Straightening converges
+        // to a locally shortest path; starting from two corridors and keeping the shorter misses
+        // the global one less often (elephant: 99.6% instead of 99.0% of pairs within 0.5%).
+        const auto d = directed.find(r.vertices.front(), r.vertices.back(), false);
+        r.processed += d.processed;
+        bool converged = false;
+        auto other = geodesic_polyline(msh, d.vertices, o.max_polyline_flips, &converged);
+        const double len = polyline_length(other);
+        if (len < r.polyline_length) {
+          r.polyline.swap(other);
+          r.polyline_length = len;
+          r.polyline_converged = converged;
+        }
+      }
       r.length = r.polyline_length;
     }
   }

@@ -32,7 +32,9 @@ enum class PathMethod {
 /// Options of a connection path query.
 struct ConnectionPathOptions {
   PathMethod method = PathMethod::MinimalDistance;
-  /// Also compute the geodesic polyline across faces (see `ConnectionPath::polyline`).
+  /// Also compute the geodesic polyline across faces (see `ConnectionPath::polyline`). With the
+  /// undirected MDF, the corridor of the shortest edge path (directed search) is straightened too
+  /// and the shorter polyline kept; its work counts in `processed`.
   bool polyline = false;
   /// Directed search: instead of two fronts that grow in all directions, a bidirectional A*
   /// search over the mesh edges with the straight-line lower bound (hops: straight-line distance
