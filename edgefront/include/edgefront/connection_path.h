@@ -119,7 +119,7 @@ class ConnectionPathFinder {
   /// target, and remembers its levels/distances over the area it covers (memory follows that
   /// area); each target then grows only its own front to the middle of its path, and the halves
   /// are found by the two-front recursion. Results in the order of `targets`; `processed` of the
-  /// first result includes the shared source front. `directed` is ignored here.
+  /// first result includes the shared source front. `directed` and `confine` are ignored here.
   /// \throws InvalidInput as `find`.
   std::vector<ConnectionPath> find_many(VertexHandle from, const std::vector<VertexHandle>& targets,
                                         const ConnectionPathOptions& options = {});
