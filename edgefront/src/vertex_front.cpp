@@ -170,6 +170,17 @@ size_t VertexFront::front_size() const {
 size_t VertexFront::peak_front_size() const { return impl_->peak_front; }
 size_t VertexFront::working_memory_bytes() const { return impl_->memory(); }
 size_t VertexFront::peak_working_memory_bytes() const { return impl_->peak_bytes; }
+std::optional<int> VertexFront::front_level(VertexHandle v) const {
+  const uint8_t* s = impl_->state.find(static_cast<uint32_t>(v.idx()));
+  if (!s) return std::nullopt;
+  const int c = impl_->completed;
+  switch (*s) {
+    case kOld: return c - 1;
+    case kFront: return c;
+    case kNew: return c + 1;
+    default: return 0;  // kBarrier: a loop source vertex
+  }
+}
 std::vector<std::pair<VertexHandle, int>> VertexFront::front_vertices() const {
   const Impl& m = *impl_;
   std::vector<std::pair<VertexHandle, int>> out;

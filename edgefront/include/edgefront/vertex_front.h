@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "edgefront/front_source.h"
@@ -44,6 +45,9 @@ class VertexFront {
   size_t peak_front_size() const;
   size_t working_memory_bytes() const;
   size_t peak_working_memory_bytes() const;
+
+  /// The join level of `v` if the VF still holds it (previous level, current front or next level).
+  std::optional<int> front_level(VertexHandle v) const;
 
   /// Vertices that joined the front but are not processed yet, with their join levels.
   std::vector<std::pair<VertexHandle, int>> front_vertices() const;

@@ -1,0 +1,150 @@
+#pragma once
+/// \file connection_path.h
+/// Connection paths between two vertices (Annuth & Bohn, §2.4), with the improvements the paper
+/// names but leaves open: a geodesic polyline across faces, a directed search, and many targets
+/// from one source.
+///
+/// The paper's algorithm: two fronts grow alternately from the two vertices; a vertex that lies on
+/// both fronts is the middle of the path; the search recurses on both halves until the ends are
+/// adjacent. With the Vertex Front or the Minimal Edge Front the path is an edge-wise shortest path
+/// (exactly the breadth-first hop count); with the Minimal Distance Front it is the vertex chain of
+/// an approximate geodesic, whose length is the sum of the two `d_start` at the top-level meeting
+/// vertex. Working memory follows the fronts (O(front) per recursion level), so the cost depends on
+/// the path, not on the mesh: when the vertices are not connected, the smaller component's front
+/// dies first and the answer is "no path".
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace edgefront {
+
+/// Which front finds the path.
+enum class PathMethod {
+  VertexFront,      ///< edge-wise shortest (hop count), Vertex Front (§2.1)
+  MinimalEdgeFront, ///< edge-wise shortest (hop count), Minimal Edge Front (§2.2)
+  MinimalDistance,  ///< approximate geodesic, Minimal Distance Front (§2.3)
+};
+
+/// Options of a connection path query.
+struct ConnectionPathOptions {
+  PathMethod method = PathMethod::MinimalDistance;
+  /// Also compute the geodesic polyline across faces (see `ConnectionPath::polyline`). With the
+  /// undirected MDF, the corridor of the shortest edge path (directed search) is straightened too
+  /// and the shorter polyline kept; its work counts in `processed`.
+  bool polyline = false;
+  /// Directed search: instead of two fronts that grow in all directions, a bidirectional A*
+  /// search over the mesh edges with the straight-line lower bound (hops: straight-line distance
+  /// over the longest edge of the mesh; lengths: straight-line distance), consistent potentials,
+  /// one search without recursion (it keeps a predecessor per visited vertex: memory follows the
+  /// visited area, not the front). The path metric is that of the method (hops for VF/MEF, edge
+  /// lengths for the MDF: with `directed` the MDF vertex chain is a shortest *edge* path and
+  /// `length` is its edge length; ask for `polyline` to get the geodesic).
+  bool directed = false;
+  /// Confinement (paper §3/§4: use the fronts of earlier recursion levels to narrow later ones),
+  /// taken to its limit: the two top-level fronts record the levels / distances of what they
+  /// process (memory follows the processed area instead of the front), and both halves of the
+  /// path are traced inside that region (each step to a neighbour one level lower, or with a
+  /// smaller MDF distance), so no recursive searches run. Edge-wise paths keep the exact hop
+  /// count. Ignored with `directed`.
+  bool confine = false;
+  /// Polyline: at most this many corridor changes (flips of the path's side around a vertex)
+  /// before the straightening stops (status stays Found; `polyline_converged` says whether it
+  /// converged). > 0.
+  int max_polyline_flips = 10000;
+};
+
+/// Why a query ended.
+enum class PathStatus {
+  Found,   ///< a path was found
+  NoPath,  ///< the two vertices lie in different components (one front died first)
+};
+
+/// A point of a polyline on the surface: on the mesh edge of `halfedge` at parameter `t` from its
+/// from-vertex (0) to its to-vertex (1). Points at mesh vertices have `vertex` set (and `t` 0 or 1).
+struct PathPoint {
+  HalfedgeHandle halfedge;
+  double t = 0.0;
+  Vec3 position = Vec3(0, 0, 0);
+  VertexHandle vertex;  ///< valid when the point is a mesh vertex
+};
+
+/// The answer of a query.
+struct ConnectionPath {
+  PathStatus status = PathStatus::NoPath;
+  /// The vertices from `from` to `to`, each joined to the next by a mesh edge (empty without a path;
+  /// one vertex when from == to).
+  std::vector<VertexHandle> vertices;
+  /// Number of edges of `vertices` (hop count).
+  size_t edges = 0;
+  /// Sum of the Euclidean lengths of the chain's edges.
+  double edge_length = 0.0;
+  /// Geometric length: the MDF's geodesic estimate (sum of the two `d_start` at the top-level
+  /// meeting vertex) for the undirected MDF, the polyline length when a polyline was computed,
+  /// otherwise `edge_length`.
+  double length = 0.0;
+  /// The geodesic polyline from `from` to `to` when `ConnectionPathOptions::polyline` is set:
+  /// first and last points are the end vertices, inner points lie on mesh edges (or at vertices
+  /// where the path wraps around one), consecutive points share a face.
+  std::vector<PathPoint> polyline;
+  double polyline_length = 0.0;
+  bool polyline_converged = false;  ///< the straightening ended because nothing shortened any more
+  /// Elements processed: vertices enclosed/settled by all fronts of all recursion levels (or
+  /// vertices settled by the directed search).
+  size_t processed = 0;
+  /// Number of two-front searches (1 + recursive ones).
+  size_t searches = 0;
+  /// Largest working memory of one front during the query (bytes, capacity).
+  size_t peak_working_memory_bytes = 0;
+};
+
+/// A reusable path finder: keeps its fronts' buffers across queries. The mesh must outlive it and
+/// must not change while it is used.
+class ConnectionPathFinder {
+ public:
+  explicit ConnectionPathFinder(const Mesh& mesh);
+  ~ConnectionPathFinder();
+  ConnectionPathFinder(ConnectionPathFinder&&) noexcept;
+  ConnectionPathFinder& operator=(ConnectionPathFinder&&) noexcept;
+
+  /// One path. from == to gives a one-vertex path of length 0; adjacent vertices the edge.
+  /// \throws InvalidInput for an invalid or deleted vertex or bad options (naming it).
+  /// \throws TopologyError when a front meets a non-manifold vertex.
+  ConnectionPath find(VertexHandle from, VertexHandle to, const ConnectionPathOptions& options = {});
+
+  /// Paths from one source to many targets. The source's front runs once, as far as the farthest
+  /// target, and remembers its levels/distances over the area it covers (memory follows that
+  /// area); each target then grows only its own front to the middle of its path, and the halves
+  /// are found by the two-front recursion. Results in the order of `targets`; `processed` of the
+  /// first result includes the shared source front. `directed` and `confine` are ignored here.
+  /// \throws InvalidInput as `find`.
+  std::vector<ConnectionPath> find_many(VertexHandle from, const std::vector<VertexHandle>& targets,
+                                        const ConnectionPathOptions& options = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// One connection path (see `ConnectionPathFinder::find`).
+ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle to,
+                               const ConnectionPathOptions& options = {});
+
+/// The geodesic polyline along a vertex chain (each vertex joined to the next by an edge): the
+/// faces around the chain form a corridor that is unfolded into the plane and straightened with
+/// the funnel algorithm; wherever the straightened path wraps around a vertex with the corridor on
+/// the wrong side (the other side is shorter), the corridor is moved to that side and the path
+/// straightened again, until no change shortens it or `max_flips` changes were made.
+/// Returns the points (see `ConnectionPath::polyline`); `converged` tells why it stopped.
+/// \throws InvalidInput when the chain is empty, has an invalid vertex or two consecutive
+///         vertices that are not joined by an edge.
+std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain,
+                                         int max_flips = 10000, bool* converged = nullptr);
+
+/// Sum of the distances between consecutive points.
+double polyline_length(const std::vector<PathPoint>& points);
+
+}  // namespace edgefront
