@@ -3,6 +3,7 @@
 /// Distance Front, optionally straightened into a geodesic polyline across faces.
 ///
 ///   ef-path MESH FROM TO [--method vf|mef|mdf] [--polyline] [--directed] [-o FILE.obj|FILE.ply]
+///           [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
 /// Prints "edges E", "length L" (the geometric length: the MDF's geodesic estimate, or the
 /// polyline's length with --polyline, or the chain's edge length), "edge-length L" and
@@ -23,6 +24,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_render.h"
 #include "app_util.h"
 #include "edgefront/connection_path.h"
 #include "edgefront/error.h"
@@ -70,6 +72,7 @@ int main(int argc, char** argv) {
   app.add_flag("--polyline", polyline, "straighten the path into a geodesic polyline across faces");
   app.add_flag("--directed", directed, "directed search (bidirectional A* over the mesh edges)");
   app.add_option("-o,--output", output, "write the path as FILE.obj (v/l records) or FILE.ply (vertex/edge)");
+  edgefront::apps::PngOutput png(app);
   return edgefront::apps::run_app(app, argc, argv, [&] {
     const std::string ext = output.empty() ? std::string() : edgefront::apps::lower_extension(output);
     if (!output.empty() && ext != ".obj" && ext != ".ply") {
@@ -91,8 +94,17 @@ int main(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cerr << kAppName << ": " << method << (directed ? " directed" : "") << ", " << std::fixed
               << std::setprecision(3) << seconds * 1e3 << " ms, " << path.processed << " elements processed in " << path.searches << " searches\n";
+    // The picture: the mesh with the path (red) and its two ends (dark dots).
+    auto picture = [&](const std::vector<edgefront::Vec3>& points) {
+      if (!png.requested()) return;
+      edgefront::render::Scene scene{.mesh = &mesh};
+      if (points.size() >= 2) scene.lines.push_back(edgefront::render::Polyline{.points = points, .width_px = 3.0});
+      scene.points.push_back(edgefront::render::PointSet{.points = {mesh.point(from), mesh.point(to)}, .radius_px = 4.0});
+      png.write(scene);
+    };
     if (path.status == edgefront::PathStatus::NoPath) {
       std::cout << "no path\n";
+      picture({});
       return 0;
     }
     std::string text = "edges " + std::to_string(path.edges) + "\nlength " + number(path.length) +
@@ -102,15 +114,14 @@ int main(int argc, char** argv) {
     if (polyline) text += "polyline-points " + std::to_string(path.polyline.size()) + "\n";
     std::cout << text << std::flush;
     if (!std::cout) throw edgefront::IoError("writing to stdout failed");
-    if (!output.empty()) {
-      std::vector<edgefront::Vec3> points;
-      if (polyline) {
-        for (const edgefront::PathPoint& p : path.polyline) points.push_back(p.position);
-      } else {
-        for (edgefront::VertexHandle v : path.vertices) points.push_back(mesh.point(v));
-      }
-      edgefront::write_polyline(points, output);
+    std::vector<edgefront::Vec3> points;
+    if (polyline) {
+      for (const edgefront::PathPoint& p : path.polyline) points.push_back(p.position);
+    } else {
+      for (edgefront::VertexHandle v : path.vertices) points.push_back(mesh.point(v));
     }
+    if (!output.empty()) edgefront::write_polyline(points, output);
+    picture(points);
     return 0;
   });
 }

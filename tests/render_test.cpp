@@ -586,6 +586,20 @@ TEST_F(RenderApps, EfDistanceAndEfFrontWritePictures) {
   EXPECT_GT(red, 50);
 }
 
+TEST_F(RenderApps, EfPathDrawsThePath) {
+  const eftest::CommandResult r =
+      run("ef-path", data("bumpy-sphere.off") + " 0 300 --polyline --png " + out("p.png") + " --size 400x300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const render::Image image = render::read_png(dir_ / "p.png");
+  EXPECT_EQ(image.width, 400);
+  EXPECT_EQ(image.height, 300);
+  int red = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) red += image.at(x, y) == Rgb{220, 30, 30} ? 1 : 0;
+  }
+  EXPECT_GT(red, 30);  // the visible part of the path, drawn 3 pixels wide
+}
+
 TEST_F(RenderApps, BadPictureOptionsExitWithOneLine) {
   // Zero size and a wrong extension: usage errors (2).
   for (const std::string& bad : {std::string(" --size 0x0"), std::string(" --size 800"), std::string(" --elevation 91")}) {
