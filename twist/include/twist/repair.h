@@ -1,0 +1,105 @@
+#pragma once
+/// \file repair.h
+/// Repairing twisted regions: cut the region off along its sealed border (duplicating the border
+/// vertices on one side, so the mesh stays manifold), grow two face fronts alternately from both
+/// sides of the cut and flip the side that is exhausted first (so the work is at most twice the
+/// flipped side, and the flipped side is at most half of what the two fronts can reach), then
+/// fix the global orientation.
+///
+/// Global orientation convention, per group of components that were one component before the
+/// cuts: with reference normals, each component is flipped when its area-weighted vote against
+/// the nearest reference normals is negative; without them, a closed group gets positive signed
+/// volume (outward normals), and an open group keeps the orientation of its larger side (the
+/// smaller side was the one flipped).
+///
+/// Face handles change (faces of the flipped side are re-added); vertex handles of untouched
+/// vertices stay valid unless `garbage_collect` removes deleted vertices (only those of removed
+/// tiny pieces or cut-out regions); cut vertices get new copies appended at the end.
+
+#include <cstddef>
+#include <vector>
+
+#include "edgefront/mesh.h"
+#include "twist/detect.h"
+
+namespace twist {
+
+struct RepairOptions {
+  DetectOptions detect;              ///< how regions are found (reference normals go here)
+  size_t max_repairs = 16;           ///< at most this many regions are repaired per call, >= 1
+  /// A side smaller than this (in faces) is never left as its own component: it is removed
+  /// instead of flipped. >= 1.
+  size_t min_component_faces = 8;
+  bool global_orientation = true;    ///< apply the global orientation convention at the end
+  bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
+};
+
+/// What one repair did.
+struct RepairRecord {
+  size_t region_faces = 0;       ///< faces of the detected region
+  size_t cut_edges = 0;          ///< interior edges cut along the region's border
+  size_t vertices_duplicated = 0;
+  size_t flipped_faces = 0;      ///< faces of the side flipped (0 when removed)
+  size_t other_side_faces = 0;   ///< faces the other front had expanded when the first was exhausted
+  /// Faces expanded by both fronts together (at most twice the exhausted side: the fronts take
+  /// turns); faces only queued at the other front's rim are not counted.
+  size_t faces_visited = 0;
+  bool flipped_region = false;   ///< the region side was the one flipped (else the other side)
+  bool removed = false;          ///< the exhausted side was smaller than min_component_faces, or cut out
+};
+
+struct RepairReport {
+  size_t regions_found = 0;
+  size_t repairs = 0;                  ///< regions cut and flipped (or removed)
+  bool capped = false;                 ///< more regions than max_repairs were found
+  size_t faces_flipped = 0;            ///< by the repairs (not counting the global orientation)
+  size_t faces_visited = 0;            ///< by the alternating fronts, all repairs together
+  size_t faces_removed = 0;
+  size_t vertices_duplicated = 0;
+  size_t cut_edges = 0;
+  size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
+  size_t components_flipped = 0;       ///< by the global orientation
+  size_t faces_flipped_globally = 0;
+  bool non_orientable = false;         ///< the surface meets itself with opposite orientation
+  size_t seam_edges = 0;               ///< border edges along such seams (left cut open)
+  DetectStats detect_stats;
+  std::vector<RepairRecord> records;
+};
+
+/// Detects and repairs the twisted regions of `mesh` (see the file comment).
+/// A non-orientable surface (a reversed seam, see `reversed_seams`) cannot be oriented: the seam is
+/// left open, `non_orientable` is set, and the rest is repaired.
+/// \throws edgefront::InvalidInput as `detect`, or for options out of range.
+/// \throws edgefront::InternalError if OpenMesh refuses a re-added face (a bug; the mesh may then
+///         be partly modified).
+RepairReport repair(edgefront::Mesh& mesh, const RepairOptions& options = {});
+
+/// Incremental repair for a refinement loop: detection restricted to the faces a batch changed
+/// (plus the audit of `DetectOptions`), repairs as `repair`, and a memory of repaired places: a
+/// region whose centre lies within its own radius of an earlier repair more than `max_retwists`
+/// times is cut out (its faces removed) instead of flipped, so the loop can re-grow it.
+class TwistRepairer {
+ public:
+  explicit TwistRepairer(RepairOptions options = {}, size_t max_retwists = 2);
+
+  /// \param changed faces created or moved since the last call (handles of the current mesh).
+  /// Global orientation is not applied here (call `finish`).
+  RepairReport repair_changed(edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& changed);
+  /// A full `repair` with the global orientation (at the end of a reconstruction).
+  RepairReport finish(edgefront::Mesh& mesh);
+
+  size_t calls() const { return calls_; }
+
+ private:
+  struct Place {
+    edgefront::Vec3 centre;
+    double radius = 0;
+    size_t count = 0;
+  };
+  RepairOptions options_;
+  size_t max_retwists_;
+  size_t calls_ = 0;
+  std::vector<Place> places_;
+};
+
+}  // namespace twist

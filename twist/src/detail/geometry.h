@@ -1,0 +1,64 @@
+#pragma once
+// Private helpers of the twist library: face geometry, a k-d tree over points, triangle-triangle
+// intersection, and the face-set surgery (re-adding faces reversed, with cut vertices duplicated).
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace twist::detail {
+
+using edgefront::FaceHandle;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+std::array<Vec3, 3> face_points(const Mesh& mesh, FaceHandle f);
+/// Unit normal, or zero for a degenerate face.
+Vec3 unit_normal(const std::array<Vec3, 3>& p);
+double area(const std::array<Vec3, 3>& p);
+Vec3 centroid(const std::array<Vec3, 3>& p);
+
+/// True when the two triangles (sharing no vertex) intersect properly: an edge of one crosses
+/// the interior of the other (touching at a border point within a relative tolerance does not
+/// count; coplanar overlaps are not detected).
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
+
+/// A k-d tree over a fixed set of points (nanoflann behind this header).
+class PointIndex {
+ public:
+  explicit PointIndex(std::vector<Vec3> points);
+  ~PointIndex();
+  PointIndex(PointIndex&&) noexcept;
+  PointIndex& operator=(PointIndex&&) noexcept;
+  /// Indices of the points within `radius` of `p` (unordered).
+  void radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const;
+  size_t nearest(const Vec3& p) const;
+  const std::vector<Vec3>& points() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
+/// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`
+/// faces around it, so `side` becomes its own component(s). Faces are re-added in the given
+/// order (pass a breadth-first order). Returns the number of vertices duplicated and appends the
+/// (duplicate, original) pairs to `duplicates`.
+/// \throws edgefront::InternalError if OpenMesh refuses a face.
+size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool reverse,
+                       std::vector<std::pair<VertexHandle, VertexHandle>>* duplicates);
+
+/// Throws InvalidInput when the mesh has no live face or a non-finite coordinate.
+void check_mesh(const Mesh& mesh, const char* what);
+
+/// Mean length of the live edges.
+double mean_edge_length(const Mesh& mesh);
+
+}  // namespace twist::detail

@@ -1,0 +1,550 @@
+#include "twist/detect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <map>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+
+#include "detail/geometry.h"
+#include "edgefront/error.h"
+#include "edgefront/minimal_distance_front.h"
+#include "edgefront/minimal_edge_front.h"
+
+namespace twist {
+
+using edgefront::FaceHandle;
+using edgefront::HalfedgeHandle;
+using edgefront::InvalidInput;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+const char* to_string(EvidenceKind kind) {
+  switch (kind) {
+    case EvidenceKind::Reference: return "reference";
+    case EvidenceKind::FacingLayer: return "facing-layer";
+    case EvidenceKind::FoldedEdge: return "folded-edge";
+    case EvidenceKind::SelfIntersection: return "self-intersection";
+  }
+  return "unknown";
+}
+
+namespace {
+
+void check_range(bool ok, const std::string& what) {
+  if (!ok) throw InvalidInput("twist::detect: option " + what);
+}
+
+void validate_options(const Mesh& mesh, const DetectOptions& o) {
+  check_range(std::isfinite(o.radius) && o.radius >= 0, "radius must be finite and >= 0 (0 = automatic)");
+  check_range(std::isfinite(o.surface_factor) && o.surface_factor >= 1, "surface_factor must be finite and >= 1");
+  check_range(o.parallel_cos >= 0 && o.parallel_cos <= 1, "parallel_cos must lie in [0, 1]");
+  check_range(o.facing_cos > 0 && o.facing_cos <= 1, "facing_cos must lie in (0, 1]");
+  check_range(o.fold_cos >= -1 && o.fold_cos <= 0, "fold_cos must lie in [-1, 0]");
+  check_range(o.grow_levels >= 1 && o.grow_levels <= 64, "grow_levels must lie in [1, 64]");
+  check_range(o.min_flagged_faces >= 1, "min_flagged_faces must be >= 1");
+  check_range(o.reference_cos >= -1 && o.reference_cos <= 1, "reference_cos must lie in [-1, 1]");
+  if (o.restrict_to) {
+    for (FaceHandle f : *o.restrict_to) {
+      if (!edgefront::is_live(mesh, f)) {
+        throw InvalidInput("twist::detect: restrict_to names face " + std::to_string(f.idx()) +
+                           ", which is not a live face of the mesh");
+      }
+    }
+  }
+}
+
+/// Per-face geometry and the evidence tests.
+class Detector {
+ public:
+  Detector(const Mesh& mesh, const DetectOptions& o) : mesh_(mesh), o_(o), mdf_(mesh) {
+    const size_t nf = mesh.n_faces();
+    normal_.assign(nf, Vec3(0, 0, 0));
+    center_.assign(nf, Vec3(0, 0, 0));
+    longest_.assign(nf, 0.0);
+    std::vector<Vec3> centers;
+    for (FaceHandle f : mesh.faces()) {
+      const auto p = detail::face_points(mesh, f);
+      normal_[static_cast<size_t>(f.idx())] = detail::unit_normal(p);
+      center_[static_cast<size_t>(f.idx())] = detail::centroid(p);
+      double l = 0;
+      for (size_t i = 0; i < 3; ++i) l = std::max(l, (p[i] - p[(i + 1) % 3]).norm());
+      longest_[static_cast<size_t>(f.idx())] = l;
+      max_edge_ = std::max(max_edge_, l);
+      live_.push_back(f);
+      centers.push_back(center_[static_cast<size_t>(f.idx())]);
+    }
+    index_ = std::make_unique<detail::PointIndex>(std::move(centers));
+    mean_edge_ = detail::mean_edge_length(mesh);
+    if (!(mean_edge_ > 0)) throw InvalidInput("twist::detect: every edge of the mesh has zero length");
+    radius_ = o.radius > 0 ? o.radius : 2.0 * mean_edge_;
+    mdf_.set_settled_callback([this](VertexHandle v, double d, const Vec3&) {
+      ++stats.vertices_settled;
+      const auto it = cand_of_vertex_.find(v.idx());
+      if (it == cand_of_vertex_.end()) return;
+      for (const auto& [i, limit] : it->second) {
+        if (d <= limit && !near_flag_[i]) {
+          near_flag_[i] = 1;
+          --unresolved_;
+        }
+      }
+    });
+  }
+
+  const std::vector<FaceHandle>& live() const { return live_; }
+  const Vec3& normal(FaceHandle f) const { return normal_[static_cast<size_t>(f.idx())]; }
+
+  /// Evaluates the evidence of one face; returns true and fills `ev` when it is flagged.
+  bool test(FaceHandle f, Evidence& ev) {
+    ++stats.faces_tested;
+    const Vec3& nf = normal(f);
+    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
+    if (nf.sqrnorm() == 0) return false;  // degenerate: no orientation to judge
+    ev = Evidence{EvidenceKind::Reference, f, FaceHandle()};
+    if (o_.reference && OpenMesh::dot(nf, o_.reference->nearest_normal(cf)) < o_.reference_cos) return true;
+    const FaceHandle layer = far_layer(f, 1.0);
+    if (layer.is_valid()) {
+      ev = Evidence{EvidenceKind::FacingLayer, f, layer};
+      return true;
+    }
+    for (HalfedgeHandle h : mesh_.fh_range(f)) {
+      const FaceHandle g = mesh_.opposite_face_handle(h);
+      if (g.is_valid() && OpenMesh::dot(nf, normal(g)) <= o_.fold_cos) {
+        ev = Evidence{EvidenceKind::FoldedEdge, f, g};
+        return true;
+      }
+    }
+    if (o_.self_intersections) {
+      scan_intersections(f);
+      const auto it = si_partner_.find(f.idx());
+      if (it != si_partner_.end()) {
+        ev = Evidence{EvidenceKind::SelfIntersection, f, FaceHandle(it->second)};
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Positive evidence that f is oriented right: it agrees with its reference normal, or (without
+  /// reference) a roughly parallel layer lies right behind it within the radius (back to back, as
+  /// the two sides of a thin wall; near or far along the surface).
+  bool confirmed(FaceHandle f) {
+    const Vec3& nf = normal(f);
+    if (nf.sqrnorm() == 0) return false;
+    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
+    if (o_.reference) return OpenMesh::dot(nf, o_.reference->nearest_normal(cf)) >= -o_.reference_cos;
+    index_->radius_search(cf, radius_, near_);
+    for (size_t k : near_) {
+      const FaceHandle g = live_[k];
+      if (g == f) continue;
+      const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
+      const double dist = d.norm();
+      if (dist > 0 && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && std::abs(OpenMesh::dot(nf, normal(g))) >= o_.parallel_cos &&
+          !shares_vertex(f, g)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  bool shares_vertex(FaceHandle f, FaceHandle g) const {
+    for (VertexHandle a : mesh_.fv_range(f)) {
+      for (VertexHandle b : mesh_.fv_range(g)) {
+        if (a == b) return true;
+      }
+    }
+    return false;
+  }
+
+  /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
+  /// -1: behind) that is far along the surface, or an invalid handle.
+  FaceHandle far_layer(FaceHandle f, double side) {
+    const Vec3& nf = normal(f);
+    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
+    std::array<VertexHandle, 3> fv;
+    {
+      int i = 0;
+      for (VertexHandle v : mesh_.fv_range(f)) fv[static_cast<size_t>(i++)] = v;
+    }
+    index_->radius_search(cf, radius_, near_);
+    layers_.clear();
+    for (size_t k : near_) {
+      const FaceHandle g = live_[k];
+      if (g == f) continue;
+      bool shares = false;
+      for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
+      if (shares) continue;
+      const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
+      const double dist = d.norm();
+      const Vec3& ng = normal(g);
+      if (dist > 0 && dist <= radius_ && side * OpenMesh::dot(nf, d) >= o_.facing_cos * dist &&
+          std::abs(OpenMesh::dot(nf, ng)) >= o_.parallel_cos) {
+        layers_.emplace_back(dist, g);
+      }
+    }
+    if (layers_.empty()) return FaceHandle();
+    // Far along the surface? One bounded distance front from f's centroid answers for all.
+    std::sort(layers_.begin(), layers_.end(), [](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && a.second.idx() < b.second.idx());
+    });
+    double reach = 0;
+    cand_of_vertex_.clear();
+    near_flag_.assign(layers_.size(), 0);
+    for (size_t i = 0; i < layers_.size(); ++i) {
+      const double limit = o_.surface_factor * layers_[i].first + mean_edge_;
+      reach = std::max(reach, limit);
+      for (VertexHandle v : mesh_.fv_range(layers_[i].second)) cand_of_vertex_[v.idx()].emplace_back(i, limit);
+    }
+    unresolved_ = layers_.size();
+    ++stats.distance_queries;
+    edgefront::DistanceOptions dopt;
+    dopt.max_distance = reach;
+    dopt.directions = false;
+    mdf_.reset(std::vector<edgefront::SurfacePoint>{edgefront::SurfacePoint{f, {1.0 / 3, 1.0 / 3, 1.0 / 3}}}, dopt);
+    // Stop as soon as every candidate layer turned out to be near along the surface.
+    while (unresolved_ > 0 && mdf_.step()) {
+    }
+    for (size_t i = 0; i < layers_.size(); ++i) {
+      if (!near_flag_[i]) return layers_[i].second;
+    }
+    return FaceHandle();
+  }
+
+  /// Finds the faces intersecting f that have no longer edge than f (ties: lower index), and
+  /// records both sides: a pair is found from its face with the longer edge, so scanning every
+  /// face finds every pair (in incremental mode, pairs with a longer untested face can be missed).
+  void scan_intersections(FaceHandle f) {
+    if (!scanned_.emplace(f.idx(), 1).second) return;
+    const size_t fi = static_cast<size_t>(f.idx());
+    const double lf = longest_[fi];
+    index_->radius_search(center_[fi], 2 * lf, si_near_);
+    std::array<VertexHandle, 3> fv;
+    {
+      int i = 0;
+      for (VertexHandle v : mesh_.fv_range(f)) fv[static_cast<size_t>(i++)] = v;
+    }
+    std::array<Vec3, 3> pf;
+    bool have_pf = false;
+    for (size_t k : si_near_) {
+      const FaceHandle g = live_[k];
+      const size_t gi = static_cast<size_t>(g.idx());
+      if (g == f || longest_[gi] > lf || (longest_[gi] == lf && g.idx() < f.idx())) continue;
+      if ((center_[gi] - center_[fi]).norm() > lf + longest_[gi]) continue;
+      bool shares = false;
+      for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
+      if (shares) continue;
+      if (!have_pf) {
+        pf = detail::face_points(mesh_, f);
+        have_pf = true;
+      }
+      if (detail::triangles_intersect(pf, detail::face_points(mesh_, g))) {
+        si_partner_.emplace(f.idx(), g.idx());
+        si_partner_.emplace(g.idx(), f.idx());
+      }
+    }
+  }
+
+  DetectStats stats;
+
+ private:
+  std::unordered_map<int, int> si_partner_;
+  std::unordered_map<int, char> scanned_;
+  std::vector<size_t> si_near_;
+  const Mesh& mesh_;
+  const DetectOptions& o_;
+  edgefront::MinimalDistanceFront mdf_;
+  std::vector<Vec3> normal_, center_;
+  std::vector<double> longest_;
+  std::vector<FaceHandle> live_;
+  std::unique_ptr<detail::PointIndex> index_;
+  double mean_edge_ = 0, max_edge_ = 0, radius_ = 0;
+  std::unordered_map<int, std::vector<std::pair<size_t, double>>> cand_of_vertex_;  // candidate, limit
+  std::vector<char> near_flag_;
+  size_t unresolved_ = 0;
+  std::vector<size_t> near_;
+  std::vector<std::pair<double, FaceHandle>> layers_;
+};
+
+
+/// The border of a face set as closed loops of halfedges with the set on their right (the face
+/// of each halfedge lies outside or is missing), and per loop whether it lies on the mesh border.
+std::pair<std::vector<std::vector<HalfedgeHandle>>, std::vector<bool>> border_loops(const Mesh& mesh,
+                                                                                   const std::vector<FaceHandle>& faces) {
+  std::unordered_map<int, char> in_set;
+  for (FaceHandle f : faces) in_set[f.idx()] = 1;
+  std::vector<HalfedgeHandle> starts;
+  std::unordered_map<int, char> unused;  // border halfedges not yet in a loop
+  for (FaceHandle f : faces) {
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      const HalfedgeHandle o = mesh.opposite_halfedge_handle(h);
+      const FaceHandle g = mesh.face_handle(o);
+      if (g.is_valid() && in_set.count(g.idx())) continue;
+      starts.push_back(o);
+      unused[o.idx()] = 1;
+    }
+  }
+  std::sort(starts.begin(), starts.end(), [](HalfedgeHandle a, HalfedgeHandle b) { return a.idx() < b.idx(); });
+  std::vector<std::vector<HalfedgeHandle>> loops;
+  std::vector<bool> on_border;
+  for (HalfedgeHandle s0 : starts) {
+    if (!unused.count(s0.idx())) continue;
+    std::vector<HalfedgeHandle> loop;
+    HalfedgeHandle h = s0;
+    while (h.is_valid() && unused.erase(h.idx())) {
+      loop.push_back(h);
+      // The next border halfedge leaves to_vertex(h): turn around it from h's opposite.
+      HalfedgeHandle next;
+      const HalfedgeHandle back = mesh.opposite_halfedge_handle(h);
+      HalfedgeHandle g = back;
+      do {
+        g = mesh.cw_rotated_halfedge_handle(g);
+        if (unused.count(g.idx()) || g == s0) {
+          next = g;
+          break;
+        }
+      } while (g != back);
+      h = next;
+    }
+    bool all_border = true;
+    for (HalfedgeHandle x : loop) all_border = all_border && mesh.is_boundary(x);
+    loops.push_back(std::move(loop));
+    on_border.push_back(all_border);
+  }
+  return {loops, on_border};
+}
+
+}  // namespace
+
+DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
+  detail::check_mesh(mesh, "twist::detect");
+  validate_options(mesh, options);
+  Detector det(mesh, options);
+  DetectResult result;
+
+  // 1. Evidence on the candidate faces.
+  std::unordered_map<int, Evidence> flagged;
+  std::unordered_map<int, char> tested;
+  std::vector<FaceHandle> order;  // flagged faces in the order found
+  auto run_test = [&](FaceHandle f) -> bool {
+    if (!tested.emplace(f.idx(), 1).second) return flagged.count(f.idx()) > 0;
+    Evidence ev;
+    if (!det.test(f, ev)) return false;
+    flagged.emplace(f.idx(), ev);
+    order.push_back(f);
+    return true;
+  };
+  if (!options.restrict_to) {
+    if (options.self_intersections) {
+      for (FaceHandle f : det.live()) det.scan_intersections(f);
+    }
+    for (FaceHandle f : det.live()) run_test(f);
+  } else {
+    std::vector<FaceHandle> candidates = *options.restrict_to;
+    const auto& live = det.live();
+    const size_t audit = std::min(options.audit_faces, live.size());
+    for (size_t i = 0; i < audit; ++i) {
+      candidates.push_back(live[(options.audit_offset + i * live.size() / audit) % live.size()]);
+    }
+    std::deque<std::pair<FaceHandle, int>> queue;
+    if (options.self_intersections) {
+      for (FaceHandle f : candidates) det.scan_intersections(f);
+    }
+    for (FaceHandle f : candidates) {
+      if (run_test(f)) queue.emplace_back(f, 0);
+    }
+    // Grow the evidence: test faces within grow_levels hops of a flagged face, so a twisted
+    // region is found whole although only changed faces were candidates.
+    while (!queue.empty()) {
+      const auto [f, hops] = queue.front();
+      queue.pop_front();
+      if (hops >= options.grow_levels) continue;
+      for (HalfedgeHandle h : mesh.fh_range(f)) {
+        const FaceHandle g = mesh.opposite_face_handle(h);
+        if (!g.is_valid() || tested.count(g.idx())) continue;
+        queue.emplace_back(g, run_test(g) ? 0 : hops + 1);
+      }
+    }
+  }
+  result.stats = det.stats;
+  result.stats.flagged_faces = flagged.size();
+  if (flagged.empty()) return result;
+
+  // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
+  std::vector<VertexHandle> sources;
+  {
+    std::unordered_map<int, char> seen;
+    for (FaceHandle f : order) {
+      for (VertexHandle v : mesh.fv_range(f)) {
+        if (seen.emplace(v.idx(), 1).second) sources.push_back(v);
+      }
+    }
+    std::sort(sources.begin(), sources.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+  }
+  edgefront::MinimalEdgeFront front(mesh);
+  front.reset(edgefront::FrontSource::from_vertices(sources));
+  front.run(options.grow_levels);
+  const std::vector<edgefront::FrontLoop> loops = front.loops();
+  std::unordered_map<int, char> front_edge;
+  for (const auto& loop : loops) {
+    for (HalfedgeHandle h : loop.halfedges) front_edge[mesh.edge_handle(h).idx()] = 1;
+  }
+
+  // 3. Regions: the surface behind the front, connected without crossing it.
+  std::unordered_map<int, int> region_of;
+  std::vector<FaceHandle> seeds = order;
+  std::sort(seeds.begin(), seeds.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+  std::vector<TwistRegion> regions;
+  for (FaceHandle seed : seeds) {
+    if (region_of.count(seed.idx())) continue;
+    const int id = static_cast<int>(regions.size());
+    regions.emplace_back();
+    TwistRegion& r = regions.back();
+    std::deque<FaceHandle> queue{seed};
+    region_of[seed.idx()] = id;
+    while (!queue.empty()) {
+      const FaceHandle f = queue.front();
+      queue.pop_front();
+      r.faces.push_back(f);
+      r.area += detail::area(detail::face_points(mesh, f));
+      const auto ev = flagged.find(f.idx());
+      if (ev != flagged.end()) r.evidence.push_back(ev->second);
+      for (HalfedgeHandle h : mesh.fh_range(f)) {
+        if (front_edge.count(mesh.edge_handle(h).idx())) continue;
+        const FaceHandle g = mesh.opposite_face_handle(h);
+        if (!g.is_valid() || region_of.count(g.idx())) continue;
+        region_of[g.idx()] = id;
+        queue.push_back(g);
+      }
+    }
+    std::sort(r.faces.begin(), r.faces.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+    std::sort(r.evidence.begin(), r.evidence.end(),
+              [](const Evidence& a, const Evidence& b) { return a.face.idx() < b.face.idx(); });
+    r.flagged_faces = r.evidence.size();
+  }
+  // 4. Fill holes: a piece of the rest enclosed by a region (bounded by one of several border
+  //    loops) and smaller than the region joins it; the largest piece always stays outside.
+  //    Each piece is explored with a budget of the region's size, so this is semi-local.
+  std::unordered_map<int, char> filled;
+  for (size_t id = 0; id < regions.size(); ++id) {
+    TwistRegion& r = regions[id];
+    std::vector<std::vector<FaceHandle>> pieces;
+    std::unordered_map<int, char> explored;
+    bool some_outside = false;
+    for (const auto& loop : loops) {
+      if (loop.halfedges.empty()) continue;
+      const FaceHandle behind = mesh.opposite_face_handle(loop.halfedges.front());
+      const auto it = behind.is_valid() ? region_of.find(behind.idx()) : region_of.end();
+      if (it == region_of.end() || it->second != static_cast<int>(id)) continue;
+      for (HalfedgeHandle h0 : loop.halfedges) {
+        const FaceHandle start = mesh.face_handle(h0);
+        if (!start.is_valid() || region_of.count(start.idx()) || explored.count(start.idx())) continue;
+        std::vector<FaceHandle> piece{start};
+        explored[start.idx()] = 1;
+        bool fits = true;
+        for (size_t q = 0; q < piece.size() && fits; ++q) {
+          for (HalfedgeHandle h : mesh.fh_range(piece[q])) {
+            const FaceHandle g = mesh.opposite_face_handle(h);
+            if (!g.is_valid() || explored.count(g.idx())) continue;
+            const auto owner = region_of.find(g.idx());
+            if (owner != region_of.end()) {
+              if (owner->second != static_cast<int>(id)) fits = false;  // touches another region
+              continue;
+            }
+            explored[g.idx()] = 1;
+            piece.push_back(g);
+            if (piece.size() >= r.faces.size()) fits = false;
+          }
+        }
+        if (fits) {
+          pieces.push_back(std::move(piece));
+        } else {
+          some_outside = true;
+        }
+      }
+    }
+    if (!some_outside && !pieces.empty()) {  // keep the largest piece outside
+      const auto largest = std::max_element(pieces.begin(), pieces.end(),
+                                            [](const auto& a, const auto& b) { return a.size() < b.size(); });
+      pieces.erase(largest);
+    }
+    for (const auto& piece : pieces) {
+      for (FaceHandle f : piece) {
+        filled[f.idx()] = 1;
+        region_of[f.idx()] = static_cast<int>(id);
+        r.faces.push_back(f);
+        r.area += detail::area(detail::face_points(mesh, f));
+      }
+    }
+    std::sort(r.faces.begin(), r.faces.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+  }
+  // 5. Trim: faces added by growing or filling that show positive evidence of being right (a
+  //    back-to-back layer or an agreeing reference normal) leave the region, so the cut runs at
+  //    the twist line and does not flip right faces. Then the border loops of what remains.
+  for (TwistRegion& r : regions) {
+    std::unordered_map<int, char> in_region, right;
+    for (FaceHandle f : r.faces) in_region[f.idx()] = 1;
+    for (FaceHandle f : r.faces) {
+      if (!flagged.count(f.idx()) && det.confirmed(f)) right[f.idx()] = 1;
+    }
+    if (!right.empty()) {
+      std::vector<FaceHandle> kept;
+      for (FaceHandle f : r.faces) {
+        if (!right.count(f.idx())) kept.push_back(f);
+      }
+      r.faces = std::move(kept);
+      r.area = 0;
+      for (FaceHandle f : r.faces) r.area += detail::area(detail::face_points(mesh, f));
+    }
+    std::tie(r.border, r.border_on_mesh_border) = border_loops(mesh, r.faces);
+  }
+  auto orientation_evidence = [&](const TwistRegion& r) {
+    if (!options.require_orientation_evidence) return true;
+    for (const Evidence& e : r.evidence) {
+      if (e.kind == EvidenceKind::Reference || e.kind == EvidenceKind::FacingLayer) return true;
+    }
+    return false;
+  };
+  for (auto& r : regions) {
+    if (r.flagged_faces >= options.min_flagged_faces && orientation_evidence(r)) result.regions.push_back(std::move(r));
+  }
+  std::stable_sort(result.regions.begin(), result.regions.end(), [](const TwistRegion& a, const TwistRegion& b) {
+    return a.faces.size() > b.faces.size();
+  });
+  return result;
+}
+
+std::vector<TwistRegion> detect(const Mesh& mesh, const DetectOptions& options) {
+  return detect_regions(mesh, options).regions;
+}
+
+std::vector<HalfedgeHandle> reversed_seams(const Mesh& mesh) {
+  std::vector<HalfedgeHandle> out;
+  if (mesh.n_vertices() == 0) return out;
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (VertexHandle v : mesh.vertices()) {
+    lo.minimize(mesh.point(v));
+    hi.maximize(mesh.point(v));
+  }
+  const double tol = std::max(1e-300, 1e-9 * (hi - lo).norm());
+  using Key = std::tuple<long long, long long, long long, long long, long long, long long>;
+  auto q = [&](double x) { return static_cast<long long>(std::llround(x / tol)); };
+  std::map<Key, std::vector<HalfedgeHandle>> by_key;
+  for (HalfedgeHandle h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h)) continue;
+    const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
+    const Vec3& b = mesh.point(mesh.to_vertex_handle(h));
+    by_key[Key{q(a[0]), q(a[1]), q(a[2]), q(b[0]), q(b[1]), q(b[2])}].push_back(h);
+  }
+  for (const auto& [key, hs] : by_key) {
+    if (hs.size() >= 2) out.push_back(*std::min_element(hs.begin(), hs.end(), [](auto x, auto y) { return x.idx() < y.idx(); }));
+  }
+  std::sort(out.begin(), out.end(), [](auto x, auto y) { return x.idx() < y.idx(); });
+  return out;
+}
+
+}  // namespace twist

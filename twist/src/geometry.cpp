@@ -1,0 +1,241 @@
+#include "detail/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include <nanoflann.hpp>
+
+#include "edgefront/error.h"
+
+namespace twist::detail {
+
+using edgefront::HalfedgeHandle;
+using edgefront::InternalError;
+using edgefront::InvalidInput;
+
+std::array<Vec3, 3> face_points(const Mesh& mesh, FaceHandle f) {
+  std::array<Vec3, 3> p;
+  int i = 0;
+  for (VertexHandle v : mesh.fv_range(f)) {
+    if (i < 3) p[static_cast<size_t>(i)] = mesh.point(v);
+    ++i;
+  }
+  EF_CHECK(i == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
+  return p;
+}
+
+Vec3 unit_normal(const std::array<Vec3, 3>& p) {
+  const Vec3 n = OpenMesh::cross(p[1] - p[0], p[2] - p[0]);
+  const double len = n.norm();
+  if (!(len > 0) || !std::isfinite(len)) return Vec3(0, 0, 0);
+  return n / len;
+}
+
+double area(const std::array<Vec3, 3>& p) { return 0.5 * OpenMesh::cross(p[1] - p[0], p[2] - p[0]).norm(); }
+
+Vec3 centroid(const std::array<Vec3, 3>& p) { return (p[0] + p[1] + p[2]) / 3.0; }
+
+namespace {
+
+// Does segment p-q cross the interior of triangle t (not merely touch it)?
+bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps) {
+  const Vec3 n = unit_normal(t);
+  if (n.sqrnorm() == 0) return false;
+  const double dp = OpenMesh::dot(p - t[0], n);
+  const double dq = OpenMesh::dot(q - t[0], n);
+  if (!((dp > eps && dq < -eps) || (dp < -eps && dq > eps))) return false;
+  const Vec3 x = p + (q - p) * (dp / (dp - dq));
+  // Barycentric sign test against each edge, with a margin so touching at an edge does not count.
+  for (int i = 0; i < 3; ++i) {
+    const Vec3& a = t[static_cast<size_t>(i)];
+    const Vec3& b = t[static_cast<size_t>((i + 1) % 3)];
+    const Vec3 edge = b - a;
+    const double len = edge.norm();
+    if (!(len > 0)) return false;
+    const double side = OpenMesh::dot(OpenMesh::cross(edge, x - a), n) / len;  // distance inside
+    if (side <= eps) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
+  double scale = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    scale = std::max(scale, (a[i] - a[(i + 1) % 3]).norm());
+    scale = std::max(scale, (b[i] - b[(i + 1) % 3]).norm());
+  }
+  const double eps = 1e-9 * scale;
+  for (size_t i = 0; i < 3; ++i) {
+    if (segment_crosses(a[i], a[(i + 1) % 3], b, eps)) return true;
+    if (segment_crosses(b[i], b[(i + 1) % 3], a, eps)) return true;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// PointIndex
+
+namespace {
+struct PointAdaptor {
+  const std::vector<Vec3>* pts;
+  size_t kdtree_get_point_count() const { return pts->size(); }
+  double kdtree_get_pt(size_t i, size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
+  template <class BBox>
+  bool kdtree_get_bbox(BBox&) const {
+    return false;
+  }
+};
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointAdaptor>, PointAdaptor, 3, size_t>;
+}  // namespace
+
+struct PointIndex::Impl {
+  std::vector<Vec3> points;
+  PointAdaptor adaptor{nullptr};
+  std::unique_ptr<Tree> tree;
+};
+
+PointIndex::PointIndex(std::vector<Vec3> points) : impl_(std::make_unique<Impl>()) {
+  impl_->points = std::move(points);
+  impl_->adaptor.pts = &impl_->points;
+  impl_->tree = std::make_unique<Tree>(3, impl_->adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  impl_->tree->buildIndex();
+}
+PointIndex::~PointIndex() = default;
+PointIndex::PointIndex(PointIndex&&) noexcept = default;
+PointIndex& PointIndex::operator=(PointIndex&&) noexcept = default;
+
+void PointIndex::radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const {
+  out.clear();
+  if (impl_->points.empty()) return;
+  std::vector<std::pair<size_t, double>> matches;
+  const double q[3] = {p[0], p[1], p[2]};
+  nanoflann::SearchParams params;
+  params.sorted = false;
+  impl_->tree->radiusSearch(q, radius * radius, matches, params);
+  out.reserve(matches.size());
+  for (const auto& m : matches) out.push_back(m.first);
+  std::sort(out.begin(), out.end());  // deterministic order
+}
+
+size_t PointIndex::nearest(const Vec3& p) const {
+  EF_CHECK(!impl_->points.empty(), "nearest point of an empty index");
+  size_t index = 0;
+  double dist2 = 0;
+  const double q[3] = {p[0], p[1], p[2]};
+  impl_->tree->knnSearch(q, 1, &index, &dist2);
+  return index;
+}
+
+const std::vector<Vec3>& PointIndex::points() const { return impl_->points; }
+
+// ---------------------------------------------------------------------------------------------
+// Surgery
+
+size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool reverse,
+                       std::vector<std::pair<VertexHandle, VertexHandle>>* duplicates) {
+  std::unordered_set<int> in_side;
+  in_side.reserve(side.size() * 2);
+  for (FaceHandle f : side) in_side.insert(f.idx());
+
+  // Per (face, vertex) corner of a side face at a cut vertex: the vertex copy it gets.
+  std::unordered_map<std::uint64_t, VertexHandle> corner_copy;
+  auto key = [](FaceHandle f, VertexHandle v) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(f.idx())) << 32) |
+           static_cast<std::uint32_t>(v.idx());
+  };
+  std::unordered_set<int> seen_vertex;
+  size_t duplicated = 0;
+  std::vector<FaceHandle> ring;
+  for (FaceHandle f : side) {
+    for (VertexHandle v : mesh.fv_range(f)) {
+      if (!seen_vertex.insert(v.idx()).second) continue;
+      // Faces around v in circulation order (invalid handles at border gaps).
+      ring.clear();
+      bool has_other = false;
+      for (HalfedgeHandle h : mesh.voh_range(v)) {
+        const FaceHandle g = mesh.face_handle(h);
+        ring.push_back(g);
+        if (g.is_valid() && !in_side.count(g.idx())) has_other = true;
+      }
+      if (!has_other) continue;
+      // Rotate so the ring starts just after a face that is not in the side (or a gap).
+      const size_t n = ring.size();
+      size_t start = 0;
+      for (size_t i = 0; i < n; ++i) {
+        const FaceHandle g = ring[i];
+        if (!g.is_valid() || !in_side.count(g.idx())) {
+          start = (i + 1) % n;
+          break;
+        }
+      }
+      VertexHandle copy;
+      for (size_t k = 0; k < n; ++k) {
+        const FaceHandle g = ring[(start + k) % n];
+        if (g.is_valid() && in_side.count(g.idx())) {
+          if (!copy.is_valid()) {
+            copy = mesh.add_vertex(mesh.point(v));
+            ++duplicated;
+            if (duplicates) duplicates->emplace_back(copy, v);
+          }
+          corner_copy[key(g, v)] = copy;
+        } else {
+          copy = VertexHandle();  // a run of side faces ended: the next run gets its own copy
+        }
+      }
+    }
+  }
+
+  std::vector<std::array<VertexHandle, 3>> tris;
+  tris.reserve(side.size());
+  for (FaceHandle f : side) {
+    std::array<VertexHandle, 3> t;
+    int i = 0;
+    for (VertexHandle v : mesh.fv_range(f)) {
+      const auto it = corner_copy.find(key(f, v));
+      t[static_cast<size_t>(i++)] = it == corner_copy.end() ? v : it->second;
+    }
+    if (reverse) std::swap(t[1], t[2]);
+    tris.push_back(t);
+  }
+  for (FaceHandle f : side) mesh.delete_face(f, false);
+  for (const auto& t : tris) {
+    const FaceHandle nf = mesh.add_face(t[0], t[1], t[2]);
+    if (!nf.is_valid()) {
+      throw InternalError("twist: OpenMesh refused to re-add a face (vertices " + std::to_string(t[0].idx()) + ", " +
+                          std::to_string(t[1].idx()) + ", " + std::to_string(t[2].idx()) + ")");
+    }
+    mesh.set_normal(nf, mesh.calc_face_normal(nf));
+  }
+  return duplicated;
+}
+
+void check_mesh(const Mesh& mesh, const char* what) {
+  size_t live = 0;
+  for (FaceHandle f : mesh.faces()) {
+    if (!mesh.status(f).deleted()) ++live;
+  }
+  if (live == 0) throw InvalidInput(std::string(what) + ": the mesh has no faces");
+  for (VertexHandle v : mesh.vertices()) {
+    const Vec3& p = mesh.point(v);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      throw InvalidInput(std::string(what) + ": vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
+    }
+  }
+}
+
+double mean_edge_length(const Mesh& mesh) {
+  double sum = 0;
+  size_t n = 0;
+  for (edgefront::EdgeHandle e : mesh.edges()) {
+    if (mesh.status(e).deleted()) continue;
+    sum += mesh.calc_edge_length(e);
+    ++n;
+  }
+  return n ? sum / static_cast<double>(n) : 0.0;
+}
+
+}  // namespace twist::detail

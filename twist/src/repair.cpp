@@ -1,0 +1,308 @@
+#include "twist/repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <functional>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "detail/geometry.h"
+#include "edgefront/error.h"
+
+namespace twist {
+
+using edgefront::EdgeHandle;
+using edgefront::FaceHandle;
+using edgefront::HalfedgeHandle;
+using edgefront::InvalidInput;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+namespace {
+
+using DupList = std::vector<std::pair<VertexHandle, VertexHandle>>;
+/// Decides, for a region about to be repaired, whether it is cut out instead (re-twist guard).
+using CutOutRule = std::function<bool(const Mesh&, const TwistRegion&)>;
+
+class UnionFind {
+ public:
+  explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), size_t{0}); }
+  size_t find(size_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(size_t a, size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<size_t> parent_;
+};
+
+bool region_is_live(const Mesh& mesh, const TwistRegion& r) {
+  for (FaceHandle f : r.faces) {
+    if (!edgefront::is_live(mesh, f)) return false;
+  }
+  for (const auto& loop : r.border) {
+    for (HalfedgeHandle h : loop) {
+      if (!edgefront::is_live(mesh, h)) return false;
+    }
+  }
+  return true;
+}
+
+void remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces) {
+  for (FaceHandle f : faces) {
+    if (edgefront::is_live(mesh, f)) mesh.delete_face(f, true);
+  }
+}
+
+/// Cuts `region` off along its border, grows two fronts alternately from both sides of the cut,
+/// and flips (or removes, when tiny) the side exhausted first.
+RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOptions& o, DupList& dups) {
+  RepairRecord rec;
+  rec.region_faces = region.faces.size();
+  std::unordered_set<int> in_region;
+  in_region.reserve(region.faces.size() * 2);
+  for (FaceHandle f : region.faces) in_region.insert(f.idx());
+
+  std::unordered_set<int> cut_edge;
+  std::vector<FaceHandle> seeds_in, seeds_out;
+  for (size_t i = 0; i < region.border.size(); ++i) {
+    if (region.border_on_mesh_border[i]) continue;
+    for (HalfedgeHandle h : region.border[i]) {
+      if (mesh.is_boundary(mesh.edge_handle(h))) continue;
+      if (!cut_edge.insert(mesh.edge_handle(h).idx()).second) continue;
+      const FaceHandle ahead = mesh.face_handle(h);
+      const FaceHandle behind = mesh.opposite_face_handle(h);
+      if (behind.is_valid() && in_region.count(behind.idx())) seeds_in.push_back(behind);
+      if (ahead.is_valid() && !in_region.count(ahead.idx())) seeds_out.push_back(ahead);
+    }
+  }
+  rec.cut_edges = cut_edge.size();
+  EF_CHECK(!seeds_in.empty() && !seeds_out.empty(), "twist region border without faces on both sides");
+
+  struct Side {
+    std::deque<FaceHandle> queue;
+    std::unordered_set<int> visited;
+    std::vector<FaceHandle> order;
+    bool inside = false;
+  };
+  Side a, b;
+  a.inside = true;
+  auto seed = [](Side& s, const std::vector<FaceHandle>& fs) {
+    for (FaceHandle f : fs) {
+      if (s.visited.insert(f.idx()).second) s.queue.push_back(f);
+    }
+  };
+  seed(a, seeds_in);
+  seed(b, seeds_out);
+  auto step = [&](Side& s) {
+    const FaceHandle f = s.queue.front();
+    s.queue.pop_front();
+    s.order.push_back(f);
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      if (cut_edge.count(mesh.edge_handle(h).idx())) continue;
+      const FaceHandle g = mesh.opposite_face_handle(h);
+      if (!g.is_valid() || (in_region.count(g.idx()) > 0) != s.inside) continue;
+      if (s.visited.insert(g.idx()).second) s.queue.push_back(g);
+    }
+  };
+  Side* exhausted = nullptr;
+  while (!exhausted) {
+    if (a.queue.empty()) {
+      exhausted = &a;
+      break;
+    }
+    step(a);
+    if (b.queue.empty()) {
+      exhausted = &b;
+      break;
+    }
+    step(b);
+  }
+  // An exhausted side has no queue left, so every face it visited is in `order`.
+  Side& other = exhausted == &a ? b : a;
+  rec.flipped_region = exhausted == &a;
+  rec.other_side_faces = other.order.size();
+  rec.faces_visited = a.order.size() + b.order.size();
+  if (exhausted->order.size() < o.min_component_faces) {
+    remove_faces(mesh, exhausted->order);
+    rec.removed = true;
+    return rec;
+  }
+  const size_t before = dups.size();
+  detail::cut_and_reverse(mesh, exhausted->order, true, &dups);
+  rec.vertices_duplicated = dups.size() - before;
+  rec.flipped_faces = exhausted->order.size();
+  return rec;
+}
+
+/// The global orientation convention (see repair.h).
+void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, RepairReport& report) {
+  const size_t nv = mesh.n_vertices();
+  // Groups: components before the cuts (vertex copies joined to their originals).
+  UnionFind group(nv);
+  UnionFind comp(nv);
+  for (FaceHandle f : mesh.faces()) {
+    auto it = mesh.fv_begin(f);
+    const size_t v0 = static_cast<size_t>((*it).idx());
+    ++it;
+    for (; it.is_valid(); ++it) {
+      group.unite(v0, static_cast<size_t>((*it).idx()));
+      comp.unite(v0, static_cast<size_t>((*it).idx()));
+    }
+  }
+  std::unordered_set<int> cut_vertex;
+  for (const auto& [copy, original] : dups) {
+    if (!edgefront::is_live(mesh, copy) || !edgefront::is_live(mesh, original)) continue;
+    group.unite(static_cast<size_t>(copy.idx()), static_cast<size_t>(original.idx()));
+    cut_vertex.insert(copy.idx());
+    cut_vertex.insert(original.idx());
+  }
+  struct Acc {
+    std::vector<FaceHandle> faces;
+    double volume = 0, vote = 0;
+    size_t group = 0;
+  };
+  std::unordered_map<size_t, Acc> comps;
+  std::unordered_map<size_t, double> group_volume;
+  std::unordered_map<size_t, bool> group_open;
+  for (FaceHandle f : mesh.faces()) {
+    const auto p = detail::face_points(mesh, f);
+    const size_t root = comp.find(static_cast<size_t>((*mesh.fv_begin(f)).idx()));
+    Acc& acc = comps[root];
+    acc.faces.push_back(f);
+    acc.group = group.find(root);
+    const double vol = OpenMesh::dot(p[0], OpenMesh::cross(p[1], p[2])) / 6.0;
+    acc.volume += vol;
+    group_volume[acc.group] += vol;
+    if (o.detect.reference) {
+      const Vec3 n = detail::unit_normal(p);
+      acc.vote += detail::area(p) * OpenMesh::dot(n, o.detect.reference->nearest_normal(detail::centroid(p)));
+    }
+  }
+  for (HalfedgeHandle h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h)) continue;
+    const bool on_cut = cut_vertex.count(mesh.from_vertex_handle(h).idx()) && cut_vertex.count(mesh.to_vertex_handle(h).idx());
+    if (!on_cut) group_open[group.find(static_cast<size_t>(mesh.to_vertex_handle(h).idx()))] = true;
+  }
+  std::vector<size_t> roots;
+  for (const auto& [root, acc] : comps) roots.push_back(root);
+  std::sort(roots.begin(), roots.end());
+  for (size_t root : roots) {
+    Acc& acc = comps[root];
+    bool flip = false;
+    if (o.detect.reference) {
+      flip = acc.vote < 0;
+    } else if (!group_open[acc.group]) {
+      flip = group_volume[acc.group] < 0;
+    }
+    if (!flip) continue;
+    detail::cut_and_reverse(mesh, acc.faces, true, nullptr);
+    ++report.components_flipped;
+    report.faces_flipped_globally += acc.faces.size();
+  }
+}
+
+RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out) {
+  detail::check_mesh(mesh, "twist::repair");
+  if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
+  if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
+  RepairReport report;
+  const auto seams = reversed_seams(mesh);
+  report.non_orientable = !seams.empty();
+  report.seam_edges = seams.size();
+
+  DupList dups;
+  DetectOptions dopt = o.detect;
+  bool first = true;
+  while (report.repairs < o.max_repairs) {
+    DetectResult dr = detect_regions(mesh, dopt);
+    if (first) report.regions_found = dr.regions.size();
+    first = false;
+    report.detect_stats.faces_tested += dr.stats.faces_tested;
+    report.detect_stats.distance_queries += dr.stats.distance_queries;
+    report.detect_stats.vertices_settled += dr.stats.vertices_settled;
+    report.detect_stats.flagged_faces += dr.stats.flagged_faces;
+    bool did_something = false;
+    bool stale = false;
+    for (const TwistRegion& region : dr.regions) {
+      if (report.repairs >= o.max_repairs) {
+        report.capped = true;
+        break;
+      }
+      if (!region_is_live(mesh, region)) {
+        stale = true;  // an earlier repair of this pass changed it: detect again
+        continue;
+      }
+      bool has_cut = false;
+      for (size_t i = 0; i < region.border.size(); ++i) has_cut = has_cut || !region.border_on_mesh_border[i];
+      if (!has_cut) continue;  // a whole component: the global orientation decides its side
+      if (cut_out && cut_out(mesh, region)) {
+        remove_faces(mesh, region.faces);
+        ++report.regions_cut_out;
+        report.faces_removed += region.faces.size();
+        ++report.repairs;
+        did_something = true;
+        continue;
+      }
+      const RepairRecord rec = repair_region(mesh, region, o, dups);
+      report.records.push_back(rec);
+      ++report.repairs;
+      report.faces_flipped += rec.flipped_faces;
+      report.faces_visited += rec.faces_visited;
+      report.vertices_duplicated += rec.vertices_duplicated;
+      report.cut_edges += rec.cut_edges;
+      if (rec.removed) report.faces_removed += rec.faces_visited - rec.other_side_faces;
+      did_something = true;
+    }
+    if (!stale || !did_something) break;
+    // Re-detect on the whole mesh: handles of the restricted set may be gone.
+    dopt.restrict_to.reset();
+  }
+  if (o.global_orientation) orient_globally(mesh, o, dups, report);
+  if (o.garbage_collect) mesh.garbage_collection();
+  return report;
+}
+
+}  // namespace
+
+RepairReport repair(Mesh& mesh, const RepairOptions& options) { return repair_impl(mesh, options, nullptr); }
+
+TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
+    : options_(std::move(options)), max_retwists_(max_retwists) {}
+
+RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHandle>& changed) {
+  ++calls_;
+  RepairOptions o = options_;
+  o.detect.restrict_to = changed;
+  o.detect.audit_offset = calls_ * 7919;  // a different audit sample every call
+  o.global_orientation = false;
+  auto rule = [this](const Mesh& m, const TwistRegion& region) {
+    Vec3 centre(0, 0, 0);
+    for (FaceHandle f : region.faces) centre += detail::centroid(detail::face_points(m, f));
+    centre /= static_cast<double>(region.faces.size());
+    double radius = 0;
+    for (FaceHandle f : region.faces) radius = std::max(radius, (detail::centroid(detail::face_points(m, f)) - centre).norm());
+    for (Place& p : places_) {
+      if ((p.centre - centre).norm() <= std::max(p.radius, radius)) {
+        ++p.count;
+        return p.count > max_retwists_;
+      }
+    }
+    places_.push_back(Place{centre, radius, 1});
+    return false;
+  };
+  return repair_impl(mesh, o, rule);
+}
+
+RepairReport TwistRepairer::finish(Mesh& mesh) { return repair_impl(mesh, options_, nullptr); }
+
+}  // namespace twist
