@@ -1,11 +1,12 @@
-// Tests of twist/detect.h: the detector finds exactly one region on the deterministic twisted
-// meshes, none on correct ones, and rejects bad input clearly.
+// Tests of twist/detect.h: exactly one region on the deterministic twisted meshes, none on
+// correct ones, incremental detection stays local, and bad input throws clearly.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "edgefront/error.h"
 #include "edgefront/shapes.h"
@@ -15,44 +16,208 @@
 namespace {
 
 using edgefront::FaceHandle;
+using edgefront::InvalidInput;
 using edgefront::Mesh;
 using edgefront::Vec3;
 
-// Share of the faces built twisted (truth disagrees) that lie in the region.
-double covered_twisted(const twist::TwistedShape& s, const twist::TwistRegion& r, size_t* twisted_total) {
-  size_t twisted = 0, covered = 0;
+// Faces built twisted (their truth disagrees with their normal), and how many lie in `r`.
+std::pair<size_t, size_t> twisted_covered(const twist::TwistedShape& s, const twist::TwistRegion& r) {
   std::vector<char> in(s.mesh.n_faces(), 0);
   for (FaceHandle f : r.faces) in[static_cast<size_t>(f.idx())] = 1;
+  size_t twisted = 0, covered = 0;
   for (FaceHandle f : s.mesh.faces()) {
     const auto t = s.truth(s.mesh.calc_face_centroid(f));
     if (!t || OpenMesh::dot(s.mesh.calc_face_normal(f), *t) > 0) continue;
     ++twisted;
-    covered += in[static_cast<size_t>(f.idx())];
+    covered += static_cast<size_t>(in[static_cast<size_t>(f.idx())]);
   }
-  if (twisted_total) *twisted_total = twisted;
-  return twisted ? static_cast<double>(covered) / static_cast<double>(twisted) : 0.0;
+  return {twisted, covered};
 }
 
-TEST(TwistDetect, TwistedTubeGivesExactlyOneRegionCoveringTheInvertedHalf) {
-  const twist::TwistedShape s = twist::twisted_tube();
+// Faces of `r` whose truth agrees with them (right faces the region would wrongly flip).
+size_t right_faces_in(const twist::TwistedShape& s, const twist::TwistRegion& r) {
+  size_t n = 0;
+  for (FaceHandle f : r.faces) {
+    const auto t = s.truth(s.mesh.calc_face_centroid(f));
+    if (t && OpenMesh::dot(s.mesh.calc_face_normal(f), *t) > 0) ++n;
+  }
+  return n;
+}
+
+twist::TwistedTubeOptions small_tube() {
+  twist::TwistedTubeOptions o;
+  o.along = 24;
+  o.around = 16;
+  o.length = 1.6;
+  return o;
+}
+
+TEST(TwistDetect, TwistedTubeGivesExactlyOneRegionHoldingTheInvertedHalf) {
+  const twist::TwistedShape s = twist::twisted_tube(small_tube());
   const auto regions = twist::detect(s.mesh);
   ASSERT_EQ(regions.size(), 1u);
-  size_t twisted = 0;
-  EXPECT_EQ(covered_twisted(s, regions[0], &twisted), 1.0);
-  EXPECT_GT(twisted, 0u);
+  const auto [twisted, covered] = twisted_covered(s, regions[0]);
+  EXPECT_GT(twisted, s.mesh.n_faces() / 3);
+  EXPECT_EQ(covered, twisted) << "every inverted face is in the region";
+  EXPECT_EQ(right_faces_in(s, regions[0]), 0u) << "no right face is in the region";
   EXPECT_GT(regions[0].flagged_faces, 0u);
-  EXPECT_FALSE(regions[0].border.empty());
+  ASSERT_FALSE(regions[0].border.empty());
   for (size_t i = 0; i < regions[0].border.size(); ++i) EXPECT_FALSE(regions[0].border_on_mesh_border[i]);
 }
 
-TEST(TwistDetect, FlippedDiskGivesExactlyOneRegionCoveringTheDisk) {
+TEST(TwistDetect, FlippedDiskGivesExactlyOneRegionHoldingTheDisk) {
   const twist::TwistedShape s = twist::flipped_disk_plate();
   const auto regions = twist::detect(s.mesh);
   ASSERT_EQ(regions.size(), 1u);
-  size_t twisted = 0;
-  EXPECT_EQ(covered_twisted(s, regions[0], &twisted), 1.0);
+  const auto [twisted, covered] = twisted_covered(s, regions[0]);
   EXPECT_GT(twisted, 0u);
+  EXPECT_EQ(covered, twisted);
+  EXPECT_EQ(right_faces_in(s, regions[0]), 0u);
   EXPECT_LT(regions[0].faces.size(), s.mesh.n_faces() / 2);
+  bool facing = false;
+  for (const auto& e : regions[0].evidence) facing = facing || e.kind == twist::EvidenceKind::FacingLayer;
+  EXPECT_TRUE(facing) << "the disk faces the bottom layer";
+}
+
+TEST(TwistDetect, BorderLoopsAreClosedWithTheRegionOnTheirRight) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  const auto regions = twist::detect(s.mesh);
+  ASSERT_EQ(regions.size(), 1u);
+  std::vector<char> in(s.mesh.n_faces(), 0);
+  for (FaceHandle f : regions[0].faces) in[static_cast<size_t>(f.idx())] = 1;
+  for (const auto& loop : regions[0].border) {
+    ASSERT_GE(loop.size(), 3u);
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const auto h = loop[i];
+      const auto next = loop[(i + 1) % loop.size()];
+      EXPECT_EQ(s.mesh.to_vertex_handle(h), s.mesh.from_vertex_handle(next));
+      const FaceHandle behind = s.mesh.opposite_face_handle(h);
+      ASSERT_TRUE(behind.is_valid());
+      EXPECT_TRUE(in[static_cast<size_t>(behind.idx())]);
+      const FaceHandle ahead = s.mesh.face_handle(h);
+      EXPECT_TRUE(!ahead.is_valid() || !in[static_cast<size_t>(ahead.idx())]);
+    }
+  }
+}
+
+TEST(TwistDetect, CorrectMeshesGiveNoRegion) {
+  struct Case {
+    std::string name;
+    double thickness;
+  };
+  for (const Case& c : {Case{"icosphere", 0.1}, Case{"torus", 0.1}, Case{"vault-shell", 0.2}, Case{"vault-shell", 0.05},
+                        Case{"vault-shell", 0.02}, Case{"thin-plate", 0.05}, Case{"vault-sheet", 0.1},
+                        Case{"groin-vault", 0.1}, Case{"nested-spheres", 0.1}}) {
+    edgefront::shapes::MeshOptions mo;
+    mo.resolution = 24;
+    mo.shape.thickness = c.thickness;
+    const Mesh m = edgefront::shapes::make(c.name, mo);
+    const auto result = twist::detect_regions(m);
+    EXPECT_EQ(result.regions.size(), 0u) << c.name << " t=" << c.thickness;
+    EXPECT_EQ(result.stats.flagged_faces, 0u) << c.name << " t=" << c.thickness;
+    EXPECT_EQ(result.stats.faces_tested, m.n_faces()) << c.name;
+  }
+}
+
+TEST(TwistDetect, AHairpinGapLooksLikeAnInvertedWallWithoutReference) {
+  // The documented limit: two right surface parts facing each other across a gap narrower than
+  // the radius cannot be told from an inverted thin wall by geometry alone.
+  edgefront::shapes::MeshOptions mo;
+  mo.resolution = 12;
+  const Mesh m = edgefront::shapes::make("hairpin", mo);
+  EXPECT_FALSE(twist::detect(m).empty());
+  twist::DetectOptions o;
+  o.radius = 0.02;  // below the gap (0.05): no layer is found
+  EXPECT_TRUE(twist::detect(m, o).empty());
+}
+
+TEST(TwistDetect, IncrementalDetectionFromAFewChangedFacesFindsTheWholeRegionLocally) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  const auto full = twist::detect(s.mesh);
+  ASSERT_EQ(full.size(), 1u);
+  twist::DetectOptions o;
+  o.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
+  o.audit_faces = 8;
+  const auto local = twist::detect_regions(s.mesh, o);
+  ASSERT_EQ(local.regions.size(), 1u);
+  const auto [twisted, covered] = twisted_covered(s, local.regions[0]);
+  EXPECT_EQ(covered, twisted);
+  EXPECT_EQ(right_faces_in(s, local.regions[0]), 0u);
+  EXPECT_LT(local.stats.faces_tested, s.mesh.n_faces() / 2) << "the detector stays near the region";
+
+  // On a right mesh: nothing found, and only the changed and audited faces are tested.
+  edgefront::shapes::MeshOptions mo;
+  mo.resolution = 24;
+  mo.shape.thickness = 0.05;
+  const Mesh plate = edgefront::shapes::make("thin-plate", mo);
+  o.restrict_to = std::vector<FaceHandle>{FaceHandle(0), FaceHandle(1), FaceHandle(2)};
+  const auto quiet = twist::detect_regions(plate, o);
+  EXPECT_TRUE(quiet.regions.empty());
+  EXPECT_LE(quiet.stats.faces_tested, 3u + o.audit_faces);
+}
+
+TEST(TwistDetect, ReferenceNormalsDecideTheSide) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::PointCloud cloud;
+  for (FaceHandle f : s.mesh.faces()) {
+    const Vec3 c = s.mesh.calc_face_centroid(f);
+    if (const auto t = s.truth(c)) {
+      cloud.points.push_back(c);
+      cloud.normals.push_back(*t);
+    }
+  }
+  const twist::ReferenceNormals ref(cloud);
+  twist::DetectOptions o;
+  o.reference = &ref;
+  const auto regions = twist::detect(s.mesh, o);
+  ASSERT_EQ(regions.size(), 1u);
+  const auto [twisted, covered] = twisted_covered(s, regions[0]);
+  EXPECT_EQ(covered, twisted);
+  EXPECT_EQ(right_faces_in(s, regions[0]), 0u);
+  EXPECT_LT(twist::orientation_consistency(s.mesh, ref), 0.95);
+}
+
+TEST(TwistDetect, ReversedSeamOfACutMobiusStripIsFound) {
+  const Mesh m = edgefront::shapes::mobius_strip(48, 4);
+  EXPECT_EQ(twist::reversed_seams(m).size(), 4u);
+  const Mesh cyl = edgefront::shapes::open_cylinder(16, 4);
+  EXPECT_TRUE(twist::reversed_seams(cyl).empty());
+}
+
+TEST(TwistDetect, BadInputThrowsNamingTheProblem) {
+  Mesh empty;
+  try {
+    twist::detect(empty);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("no faces"), std::string::npos) << e.what();
+  }
+  Mesh m = edgefront::shapes::icosphere(1);
+  auto bad = [&](auto set, const std::string& word) {
+    twist::DetectOptions o;
+    set(o);
+    try {
+      twist::detect(m, o);
+      ADD_FAILURE() << "no exception for " << word;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  bad([](twist::DetectOptions& o) { o.radius = -1; }, "radius");
+  bad([](twist::DetectOptions& o) { o.radius = std::numeric_limits<double>::quiet_NaN(); }, "radius");
+  bad([](twist::DetectOptions& o) { o.surface_factor = 0.5; }, "surface_factor");
+  bad([](twist::DetectOptions& o) { o.grow_levels = 0; }, "grow_levels");
+  bad([](twist::DetectOptions& o) { o.fold_cos = 0.5; }, "fold_cos");
+  bad([](twist::DetectOptions& o) { o.facing_cos = 0; }, "facing_cos");
+  bad([](twist::DetectOptions& o) { o.restrict_to = std::vector<FaceHandle>{FaceHandle(100000)}; }, "restrict_to");
+  m.set_point(edgefront::VertexHandle(3), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  EXPECT_THROW(twist::detect(m), InvalidInput);
+
+  EXPECT_THROW(twist::ReferenceNormals(edgefront::PointCloud{}), InvalidInput);
+  edgefront::PointCloud no_normals;
+  no_normals.points = {Vec3(0, 0, 0)};
+  EXPECT_THROW(twist::ReferenceNormals{no_normals}, InvalidInput);
+  EXPECT_THROW(twist::twisted_tube(twist::TwistedTubeOptions{3, 16, 2.0, 0.5, 0.1, -1}), InvalidInput);
 }
 
 }  // namespace

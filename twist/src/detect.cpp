@@ -48,6 +48,7 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
   check_range(o.fold_cos >= -1 && o.fold_cos <= 0, "fold_cos must lie in [-1, 0]");
   check_range(o.grow_levels >= 1 && o.grow_levels <= 64, "grow_levels must lie in [1, 64]");
   check_range(o.min_flagged_faces >= 1, "min_flagged_faces must be >= 1");
+  check_range(o.min_flagged_share >= 0 && o.min_flagged_share <= 1, "min_flagged_share must lie in [0, 1]");
   check_range(o.reference_cos >= -1 && o.reference_cos <= 1, "reference_cos must lie in [-1, 1]");
   if (o.restrict_to) {
     for (FaceHandle f : *o.restrict_to) {
@@ -102,6 +103,7 @@ class Detector {
   /// Evaluates the evidence of one face; returns true and fills `ev` when it is flagged.
   bool test(FaceHandle f, Evidence& ev) {
     ++stats.faces_tested;
+    tested_.emplace(f.idx(), 1);
     const Vec3& nf = normal(f);
     const Vec3& cf = center_[static_cast<size_t>(f.idx())];
     if (nf.sqrnorm() == 0) return false;  // degenerate: no orientation to judge
@@ -109,8 +111,16 @@ class Detector {
     if (o_.reference && OpenMesh::dot(nf, o_.reference->nearest_normal(cf)) < o_.reference_cos) return true;
     const FaceHandle layer = far_layer(f, 1.0);
     if (layer.is_valid()) {
-      ev = Evidence{EvidenceKind::FacingLayer, f, layer};
-      return true;
+      // Two layers facing each other: a wall turned inside out. Two layers pointing the same
+      // way: f points into the other's back, unless f itself sits back to back with a layer of
+      // its own wall, which makes the layer in front a stray (a fold band left over the face).
+      const Vec3 d = center_[static_cast<size_t>(layer.idx())] - cf;
+      const bool mutual = OpenMesh::dot(normal(layer), d) < 0;
+      if (mutual || !confirmed(f)) {
+        ev = Evidence{EvidenceKind::FacingLayer, f, layer};
+        return true;
+      }
+      ambiguous_.emplace(f.idx(), 1);  // evidence both ways: neither flagged nor confirmed
     }
     for (HalfedgeHandle h : mesh_.fh_range(f)) {
       const FaceHandle g = mesh_.opposite_face_handle(h);
@@ -131,8 +141,8 @@ class Detector {
   }
 
   /// Positive evidence that f is oriented right: it agrees with its reference normal, or (without
-  /// reference) a roughly parallel layer lies right behind it within the radius (back to back, as
-  /// the two sides of a thin wall; near or far along the surface).
+  /// reference) a layer with the opposite normal lies right behind it within the radius (back to
+  /// back, as the two sides of a thin wall; near or far along the surface).
   bool confirmed(FaceHandle f) {
     const Vec3& nf = normal(f);
     if (nf.sqrnorm() == 0) return false;
@@ -144,13 +154,25 @@ class Detector {
       if (g == f) continue;
       const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
       const double dist = d.norm();
-      if (dist > 0 && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && std::abs(OpenMesh::dot(nf, normal(g))) >= o_.parallel_cos &&
+      if (dist > 0 && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.parallel_cos &&
           !shares_vertex(f, g)) {
         return true;
       }
     }
     return false;
   }
+
+  /// Confirmed and without a layer in front: safe to leave out of a region. Faces not tested yet
+  /// are tested here.
+  bool right(FaceHandle f) {
+    if (!tested_.count(f.idx())) {
+      Evidence ev;
+      if (test(f, ev)) return false;
+    }
+    return !ambiguous_.count(f.idx()) && confirmed(f);
+  }
+
+  bool ambiguous(FaceHandle f) const { return ambiguous_.count(f.idx()) > 0; }
 
   bool shares_vertex(FaceHandle f, FaceHandle g) const {
     for (VertexHandle a : mesh_.fv_range(f)) {
@@ -253,6 +275,7 @@ class Detector {
 
  private:
   std::unordered_map<int, int> si_partner_;
+  std::unordered_map<int, char> ambiguous_, tested_;
   std::unordered_map<int, char> scanned_;
   std::vector<size_t> si_near_;
   const Mesh& mesh_;
@@ -366,7 +389,8 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
       for (HalfedgeHandle h : mesh.fh_range(f)) {
         const FaceHandle g = mesh.opposite_face_handle(h);
         if (!g.is_valid() || tested.count(g.idx())) continue;
-        queue.emplace_back(g, run_test(g) ? 0 : hops + 1);
+        // Flagged and ambiguous faces (evidence both ways) carry the search on.
+        queue.emplace_back(g, run_test(g) || det.ambiguous(g) ? 0 : hops + 1);
       }
     }
   }
@@ -489,7 +513,7 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     std::unordered_map<int, char> in_region, right;
     for (FaceHandle f : r.faces) in_region[f.idx()] = 1;
     for (FaceHandle f : r.faces) {
-      if (!flagged.count(f.idx()) && det.confirmed(f)) right[f.idx()] = 1;
+      if (!flagged.count(f.idx()) && det.right(f)) right[f.idx()] = 1;
     }
     if (!right.empty()) {
       std::vector<FaceHandle> kept;
@@ -510,7 +534,9 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     return false;
   };
   for (auto& r : regions) {
-    if (r.flagged_faces >= options.min_flagged_faces && orientation_evidence(r)) result.regions.push_back(std::move(r));
+    const bool enough = r.flagged_faces >= options.min_flagged_faces &&
+                        static_cast<double>(r.flagged_faces) >= options.min_flagged_share * static_cast<double>(r.faces.size());
+    if (enough && orientation_evidence(r)) result.regions.push_back(std::move(r));
   }
   std::stable_sort(result.regions.begin(), result.regions.end(), [](const TwistRegion& a, const TwistRegion& b) {
     return a.faces.size() > b.faces.size();

@@ -150,6 +150,8 @@ size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool rev
   std::unordered_set<int> seen_vertex;
   size_t duplicated = 0;
   std::vector<FaceHandle> ring;
+  std::vector<FaceHandle> others;  // faces outside the side that get a vertex copy too
+  std::unordered_set<int> other_seen;
   for (FaceHandle f : side) {
     for (VertexHandle v : mesh.fv_range(f)) {
       if (!seen_vertex.insert(v.idx()).second) continue;
@@ -162,45 +164,60 @@ size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool rev
         if (g.is_valid() && !in_side.count(g.idx())) has_other = true;
       }
       if (!has_other) continue;
-      // Rotate so the ring starts just after a face that is not in the side (or a gap).
       const size_t n = ring.size();
-      size_t start = 0;
-      for (size_t i = 0; i < n; ++i) {
-        const FaceHandle g = ring[i];
-        if (!g.is_valid() || !in_side.count(g.idx())) {
-          start = (i + 1) % n;
-          break;
+      // Runs of side faces each get a copy of v; of the runs of other faces the first keeps v and
+      // every further one gets a copy too (else v would join several fans: non-manifold).
+      for (int pass = 0; pass < 2; ++pass) {
+        const bool want_side = pass == 0;
+        auto member = [&](FaceHandle g) { return g.is_valid() && (in_side.count(g.idx()) > 0) == want_side; };
+        size_t start = n;  // just after a separator, so no run wraps around
+        for (size_t i = 0; i < n; ++i) {
+          if (!member(ring[i])) {
+            start = (i + 1) % n;
+            break;
+          }
         }
-      }
-      VertexHandle copy;
-      for (size_t k = 0; k < n; ++k) {
-        const FaceHandle g = ring[(start + k) % n];
-        if (g.is_valid() && in_side.count(g.idx())) {
+        if (start == n) continue;  // v is surrounded by this kind only (cannot happen for both)
+        VertexHandle copy;
+        bool first_run = true;
+        bool in_run = false;
+        for (size_t k = 0; k < n; ++k) {
+          const FaceHandle g = ring[(start + k) % n];
+          if (!member(g)) {
+            if (in_run) first_run = false;
+            in_run = false;
+            copy = VertexHandle();
+            continue;
+          }
+          in_run = true;
+          if (!want_side && first_run) continue;  // the first run of other faces keeps v
           if (!copy.is_valid()) {
             copy = mesh.add_vertex(mesh.point(v));
             ++duplicated;
             if (duplicates) duplicates->emplace_back(copy, v);
           }
           corner_copy[key(g, v)] = copy;
-        } else {
-          copy = VertexHandle();  // a run of side faces ended: the next run gets its own copy
+          if (!want_side && other_seen.insert(g.idx()).second) others.push_back(g);
         }
       }
     }
   }
 
   std::vector<std::array<VertexHandle, 3>> tris;
-  tris.reserve(side.size());
-  for (FaceHandle f : side) {
+  tris.reserve(side.size() + others.size());
+  auto record = [&](FaceHandle f, bool rev) {
     std::array<VertexHandle, 3> t;
     int i = 0;
     for (VertexHandle v : mesh.fv_range(f)) {
       const auto it = corner_copy.find(key(f, v));
       t[static_cast<size_t>(i++)] = it == corner_copy.end() ? v : it->second;
     }
-    if (reverse) std::swap(t[1], t[2]);
+    if (rev) std::swap(t[1], t[2]);
     tris.push_back(t);
-  }
+  };
+  for (FaceHandle f : side) record(f, reverse);
+  for (FaceHandle f : others) record(f, false);
+  for (FaceHandle f : others) mesh.delete_face(f, false);
   for (FaceHandle f : side) mesh.delete_face(f, false);
   for (const auto& t : tris) {
     const FaceHandle nf = mesh.add_face(t[0], t[1], t[2]);
@@ -211,6 +228,42 @@ size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool rev
     mesh.set_normal(nf, mesh.calc_face_normal(nf));
   }
   return duplicated;
+}
+
+size_t split_fans(Mesh& mesh, VertexHandle v) {
+  // Fans: runs of faces between border gaps, found by walking the outgoing border halfedges.
+  std::vector<std::vector<FaceHandle>> fans;
+  for (HalfedgeHandle h : mesh.voh_range(v)) {
+    if (!mesh.is_boundary(h)) continue;
+    // Walk from the gap: h is outgoing with no face; rotate until the next gap.
+    std::vector<FaceHandle> fan;
+    HalfedgeHandle g = mesh.cw_rotated_halfedge_handle(h);
+    while (!mesh.is_boundary(g) && g != h) {
+      fan.push_back(mesh.face_handle(g));
+      g = mesh.cw_rotated_halfedge_handle(g);
+    }
+    if (!fan.empty()) fans.push_back(std::move(fan));
+  }
+  if (fans.size() < 2) return 0;
+  std::vector<std::array<VertexHandle, 3>> tris;
+  std::vector<FaceHandle> redo;
+  for (size_t k = 1; k < fans.size(); ++k) {
+    const VertexHandle copy = mesh.add_vertex(mesh.point(v));
+    for (FaceHandle f : fans[k]) {
+      std::array<VertexHandle, 3> t;
+      int i = 0;
+      for (VertexHandle u : mesh.fv_range(f)) t[static_cast<size_t>(i++)] = u == v ? copy : u;
+      tris.push_back(t);
+      redo.push_back(f);
+    }
+  }
+  for (FaceHandle f : redo) mesh.delete_face(f, false);
+  for (const auto& t : tris) {
+    const FaceHandle nf = mesh.add_face(t[0], t[1], t[2]);
+    if (!nf.is_valid()) throw InternalError("twist: OpenMesh refused a face while splitting a non-manifold vertex");
+    mesh.set_normal(nf, mesh.calc_face_normal(nf));
+  }
+  return fans.size() - 1;
 }
 
 void check_mesh(const Mesh& mesh, const char* what) {

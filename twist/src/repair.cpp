@@ -57,9 +57,21 @@ bool region_is_live(const Mesh& mesh, const TwistRegion& r) {
   return true;
 }
 
+/// Removes faces; vertices where the rest then meets in several fans get one copy per extra fan
+/// (so the mesh stays manifold).
 void remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces) {
+  std::vector<VertexHandle> touched;
+  for (FaceHandle f : faces) {
+    if (!edgefront::is_live(mesh, f)) continue;
+    for (VertexHandle v : mesh.fv_range(f)) touched.push_back(v);
+  }
   for (FaceHandle f : faces) {
     if (edgefront::is_live(mesh, f)) mesh.delete_face(f, true);
+  }
+  std::sort(touched.begin(), touched.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (VertexHandle v : touched) {
+    if (edgefront::is_live(mesh, v)) detail::split_fans(mesh, v);
   }
 }
 
@@ -115,17 +127,21 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
     }
   };
   Side* exhausted = nullptr;
+  // Take turns; a side is exhausted when its queue is empty on its turn or right after the other
+  // side's step, so the fronts never expand more than twice the exhausted side.
   while (!exhausted) {
     if (a.queue.empty()) {
       exhausted = &a;
-      break;
-    }
-    step(a);
-    if (b.queue.empty()) {
+    } else if (b.queue.empty()) {
       exhausted = &b;
-      break;
+    } else {
+      step(a);
+      if (b.queue.empty()) {
+        exhausted = &b;
+      } else if (!a.queue.empty()) {
+        step(b);
+      }
     }
-    step(b);
   }
   // An exhausted side has no queue left, so every face it visited is in `order`.
   Side& other = exhausted == &a ? b : a;
@@ -211,7 +227,7 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
   }
 }
 
-RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out) {
+RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups) {
   detail::check_mesh(mesh, "twist::repair");
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
   if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
@@ -220,7 +236,6 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   report.non_orientable = !seams.empty();
   report.seam_edges = seams.size();
 
-  DupList dups;
   DetectOptions dopt = o.detect;
   bool first = true;
   while (report.repairs < o.max_repairs) {
@@ -268,13 +283,20 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     dopt.restrict_to.reset();
   }
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
-  if (o.garbage_collect) mesh.garbage_collection();
+  if (o.garbage_collect) {
+    const size_t before = mesh.n_vertices();
+    mesh.garbage_collection();
+    if (mesh.n_vertices() != before) dups.clear();  // vertex handles were renumbered
+  }
   return report;
 }
 
 }  // namespace
 
-RepairReport repair(Mesh& mesh, const RepairOptions& options) { return repair_impl(mesh, options, nullptr); }
+RepairReport repair(Mesh& mesh, const RepairOptions& options) {
+  DupList dups;
+  return repair_impl(mesh, options, nullptr, dups);
+}
 
 TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
     : options_(std::move(options)), max_retwists_(max_retwists) {}
@@ -300,9 +322,9 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
     places_.push_back(Place{centre, radius, 1});
     return false;
   };
-  return repair_impl(mesh, o, rule);
+  return repair_impl(mesh, o, rule, cuts_);
 }
 
-RepairReport TwistRepairer::finish(Mesh& mesh) { return repair_impl(mesh, options_, nullptr); }
+RepairReport TwistRepairer::finish(Mesh& mesh) { return repair_impl(mesh, options_, nullptr, cuts_); }
 
 }  // namespace twist

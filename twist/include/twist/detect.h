@@ -89,6 +89,10 @@ struct DetectOptions {
   int grow_levels = 2;
   /// Regions with fewer flagged faces are dropped (noise). >= 1.
   size_t min_flagged_faces = 1;
+  /// Regions in which flagged faces are fewer than this share of all faces (after growing,
+  /// filling and trimming) are dropped: mostly unflagged regions are grown around stray evidence,
+  /// such as a fold band left over right faces after a cut. In [0, 1].
+  double min_flagged_share = 0.3;
   /// Keep only regions with at least one face of orientation evidence (reference or facing
   /// layer). Folds and self-intersections alone mark where a twist line runs, not which side is
   /// wrong (a correct surface can fold or intersect itself, e.g. a GCS mesh in transit).

@@ -100,6 +100,9 @@ class TwistRepairer {
   size_t max_retwists_;
   size_t calls_ = 0;
   std::vector<Place> places_;
+  /// Vertex copies made by the cuts so far, with their originals: the global orientation treats
+  /// pieces cut apart as one group. Forgotten when garbage collection renumbers vertices.
+  std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>> cuts_;
 };
 
 }  // namespace twist

@@ -55,6 +55,10 @@ class PointIndex {
 size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool reverse,
                        std::vector<std::pair<VertexHandle, VertexHandle>>* duplicates);
 
+/// Gives every fan of faces around `v` but the first its own copy of `v` (re-adding those faces),
+/// so `v` becomes manifold. Returns the number of copies made.
+size_t split_fans(Mesh& mesh, VertexHandle v);
+
 /// Throws InvalidInput when the mesh has no live face or a non-finite coordinate.
 void check_mesh(const Mesh& mesh, const char* what);
 

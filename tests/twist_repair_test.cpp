@@ -1,0 +1,236 @@
+// Tests of twist/repair.h and twist/orient_soup.h: the deterministic twisted meshes are repaired
+// to full orientation consistency, manifold, flipping at most half and visiting at most twice
+// the flipped side; a Möbius strip terminates and is reported; bad input throws.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
+#include "edgefront/shapes.h"
+#include "twist/orient_soup.h"
+#include "twist/repair.h"
+#include "twist/twisted_shapes.h"
+
+namespace {
+
+using edgefront::FaceHandle;
+using edgefront::InvalidInput;
+using edgefront::Mesh;
+using edgefront::Vec3;
+
+void expect_repaired(twist::TwistedShape s, const std::string& what) {
+  const size_t faces = s.mesh.n_faces();
+  ASSERT_LT(twist::truth_consistency(s.mesh, s), 0.99) << what << ": the input is twisted";
+  const twist::RepairReport r = twist::repair(s.mesh);
+  EXPECT_EQ(r.regions_found, 1u) << what;
+  ASSERT_EQ(r.repairs, 1u) << what;
+  ASSERT_EQ(r.records.size(), 1u) << what;
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0) << what;
+  EXPECT_EQ(s.mesh.n_faces(), faces) << what << ": no face lost";
+  EXPECT_EQ(r.faces_removed, 0u) << what;
+  EXPECT_GT(r.faces_flipped, 0u) << what;
+  EXPECT_LE(2 * r.faces_flipped, faces) << what << ": at most half flipped";
+  EXPECT_LE(r.faces_visited, 2 * r.faces_flipped) << what << ": at most twice the flipped side visited";
+  EXPECT_GT(r.cut_edges, 0u) << what;
+  EXPECT_GT(r.vertices_duplicated, 0u) << what;
+  const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
+  EXPECT_EQ(st.nonmanifold_vertices, 0u) << what;
+  EXPECT_EQ(st.faces, faces) << what;
+  EXPECT_FALSE(r.non_orientable) << what;
+  // Nothing twisted is left but, at most, faces of the twist line itself (which the repair cuts
+  // through but does not move; a refinement loop pulls them onto the surface).
+  for (const auto& region : twist::detect(s.mesh)) {
+    for (FaceHandle f : region.faces) EXPECT_FALSE(s.truth(s.mesh.calc_face_centroid(f)).has_value()) << what;
+  }
+  // Repairing again does not undo anything.
+  twist::repair(s.mesh);
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0) << what;
+}
+
+TEST(TwistRepair, TwistedTubeIsRepairedToFullConsistency) {
+  twist::TwistedTubeOptions o;
+  o.along = 24;
+  o.around = 16;
+  o.length = 1.6;
+  expect_repaired(twist::twisted_tube(o), "tube");
+}
+
+TEST(TwistRepair, TwistedTubeWithTheTwistOffCentreFlipsTheSmallerSide) {
+  twist::TwistedTubeOptions o;
+  o.along = 24;
+  o.around = 16;
+  o.length = 1.6;
+  o.twist_segment = 6;  // the inverted part is the larger one: the fronts flip the right part
+  expect_repaired(twist::twisted_tube(o), "off-centre tube");
+}
+
+TEST(TwistRepair, FlippedDiskIsRepairedToFullConsistency) { expect_repaired(twist::flipped_disk_plate(), "disk"); }
+
+TEST(TwistRepair, ReferenceNormalsGiveTheSameResult) {
+  twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::PointCloud cloud;
+  for (FaceHandle f : s.mesh.faces()) {
+    const Vec3 c = s.mesh.calc_face_centroid(f);
+    if (const auto t = s.truth(c)) {
+      cloud.points.push_back(c);
+      cloud.normals.push_back(*t);
+    }
+  }
+  const twist::ReferenceNormals ref(cloud);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  const auto r = twist::repair(s.mesh, o);
+  EXPECT_EQ(r.repairs, 1u);
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
+}
+
+TEST(TwistRepair, CorrectMeshIsLeftAlone) {
+  Mesh m = edgefront::shapes::vault_shell(16, 1.0, 0.05);
+  const size_t faces = m.n_faces();
+  const auto r = twist::repair(m);
+  EXPECT_EQ(r.regions_found, 0u);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.components_flipped, 0u);
+  EXPECT_EQ(m.n_faces(), faces);
+}
+
+TEST(TwistRepair, InsideOutClosedMeshIsTurnedOutward) {
+  Mesh m = edgefront::shapes::icosphere(2);
+  std::vector<std::array<edgefront::VertexHandle, 3>> tris;
+  for (FaceHandle f : m.faces()) {
+    std::array<edgefront::VertexHandle, 3> t;
+    int i = 0;
+    for (auto v : m.fv_range(f)) t[static_cast<size_t>(i++)] = v;
+    tris.push_back({t[0], t[2], t[1]});
+  }
+  Mesh inside_out;
+  for (auto v : m.vertices()) inside_out.add_vertex(m.point(v));
+  for (const auto& t : tris) inside_out.add_face(t[0], t[1], t[2]);
+  const auto r = twist::repair(inside_out);
+  EXPECT_EQ(r.components_flipped, 1u);
+  double volume = 0;
+  for (FaceHandle f : inside_out.faces()) {
+    auto it = inside_out.fv_begin(f);
+    const Vec3 a = inside_out.point(*it++), b = inside_out.point(*it++), c = inside_out.point(*it);
+    volume += OpenMesh::dot(a, OpenMesh::cross(b, c)) / 6;
+  }
+  EXPECT_GT(volume, 0);
+}
+
+TEST(TwistRepair, IncrementalRepairerFindsTheRegionFromAChangedFace) {
+  twist::TwistedShape s = twist::flipped_disk_plate();
+  const auto regions = twist::detect(s.mesh);
+  ASSERT_EQ(regions.size(), 1u);
+  twist::RepairOptions o;
+  o.detect.audit_faces = 0;
+  twist::TwistRepairer repairer(o);
+  const auto r = repairer.repair_changed(s.mesh, {regions[0].faces.back()});
+  EXPECT_EQ(r.repairs, 1u);
+  EXPECT_LT(r.detect_stats.faces_tested, s.mesh.n_faces() / 2);
+  repairer.finish(s.mesh);
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
+}
+
+TEST(TwistRepair, ARegionThatReTwistsIsCutOut) {
+  twist::RepairOptions o;
+  twist::TwistRepairer repairer(o, 1);
+  twist::TwistedShape a = twist::flipped_disk_plate();
+  const auto first = repairer.repair_changed(a.mesh, {FaceHandle(0)});
+  EXPECT_EQ(first.repairs, 1u);
+  EXPECT_EQ(first.regions_cut_out, 0u);
+  twist::TwistedShape b = twist::flipped_disk_plate();  // the same twist again, same place
+  const auto again = repairer.repair_changed(b.mesh, {FaceHandle(0)});
+  EXPECT_EQ(again.repairs, 0u + 1u);
+  EXPECT_EQ(again.regions_cut_out, 1u);
+  EXPECT_GT(again.faces_removed, 0u);
+  EXPECT_EQ(edgefront::compute_stats(b.mesh).nonmanifold_vertices, 0u);
+}
+
+TEST(TwistRepair, CutMobiusStripTerminatesAndIsReportedNonOrientable) {
+  Mesh m = edgefront::shapes::mobius_strip(48, 4);
+  const size_t faces = m.n_faces();
+  const auto r = twist::repair(m);
+  EXPECT_TRUE(r.non_orientable);
+  EXPECT_EQ(r.seam_edges, 4u);
+  EXPECT_EQ(m.n_faces(), faces);
+  EXPECT_EQ(edgefront::compute_stats(m).nonmanifold_vertices, 0u);
+}
+
+TEST(TwistRepair, MobiusSoupIsCutOpenAndReportedNonOrientable) {
+  // A real Möbius band as a triangle soup: the last column of quads is glued to the first with
+  // the width reversed. OpenMesh cannot hold it; orient_soup cuts it.
+  const int around = 24, across = 3;
+  const double pi = 3.14159265358979323846;
+  std::vector<Vec3> pts;
+  for (int i = 0; i < around; ++i) {
+    const double u = 2 * pi * i / around;
+    for (int j = 0; j <= across; ++j) {
+      const double v = -0.25 + 0.5 * j / across;
+      pts.emplace_back((1 + v * std::cos(u / 2)) * std::cos(u), (1 + v * std::cos(u / 2)) * std::sin(u), v * std::sin(u / 2));
+    }
+  }
+  auto id = [&](int i, int j) {
+    if (i == around) return j == across - j ? j : (across - j);  // u = 2 pi is u = 0 with v reversed
+    return i * (across + 1) + j;
+  };
+  std::vector<std::array<int, 3>> tris;
+  for (int i = 0; i < around; ++i) {
+    for (int j = 0; j < across; ++j) {
+      tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  const twist::SoupOrientation o = twist::orient_soup(pts, tris);
+  EXPECT_TRUE(o.non_orientable);
+  EXPECT_GT(o.cut_edges, 0u);
+  EXPECT_GT(o.vertices_duplicated, 0u);
+  EXPECT_EQ(o.faces_dropped, 0u);
+  EXPECT_EQ(o.mesh.n_faces(), tris.size());
+  const auto st = edgefront::compute_stats(o.mesh);
+  EXPECT_EQ(st.nonmanifold_vertices, 0u);
+  EXPECT_EQ(st.components, 1u);
+
+  // The same soup with every other face wound the wrong way, but orientable (an annulus): fixed
+  // without any cut.
+  std::vector<std::array<int, 3>> annulus;
+  auto aid = [&](int i, int j) { return (i % around) * (across + 1) + j; };
+  for (int i = 0; i < around; ++i) {
+    for (int j = 0; j < across; ++j) {
+      annulus.push_back({aid(i, j), aid(i + 1, j), aid(i + 1, j + 1)});
+      annulus.push_back({aid(i, j), aid(i, j + 1), aid(i + 1, j + 1)});  // reversed winding
+    }
+  }
+  const twist::SoupOrientation a = twist::orient_soup(pts, annulus);
+  EXPECT_FALSE(a.non_orientable);
+  EXPECT_EQ(a.cut_edges, 0u);
+  EXPECT_EQ(a.faces_reversed, annulus.size() / 2);
+  EXPECT_EQ(a.mesh.n_faces(), annulus.size());
+  EXPECT_EQ(edgefront::compute_stats(a.mesh).border_loops, 2u);
+}
+
+TEST(TwistRepair, BadInputThrowsNamingTheProblem) {
+  Mesh empty;
+  EXPECT_THROW(twist::repair(empty), InvalidInput);
+  Mesh m = edgefront::shapes::icosphere(1);
+  twist::RepairOptions o;
+  o.max_repairs = 0;
+  try {
+    twist::repair(m, o);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("max_repairs"), std::string::npos) << e.what();
+  }
+  o = {};
+  o.detect.grow_levels = 100;
+  EXPECT_THROW(twist::repair(m, o), InvalidInput);
+  EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0)}, {}), InvalidInput);
+  EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 3}}), InvalidInput);
+  EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 1}}), InvalidInput);
+}
+
+}  // namespace
