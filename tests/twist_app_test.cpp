@@ -1,0 +1,85 @@
+// Tests of the ef-twist tool: a real process repairs a twisted mesh file and writes it; errors
+// are one line with exit code 1 (2 for usage).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "app_test_util.h"
+#include "edgefront/mesh_io.h"
+#include "edgefront/mesh_stats.h"
+#include "edgefront/point_cloud_io.h"
+#include "twist/twisted_shapes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class TwistApp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    app_ = fs::path(EDGEFRONT_APP_DIR) / "ef-twist";
+    if (!fs::exists(app_)) GTEST_SKIP() << "ef-twist is not built at " << app_;
+    dir_ = fs::temp_directory_path() /
+           ("edgefront_twist_app_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!dir_.empty()) fs::remove_all(dir_, ec);
+  }
+  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path app_, dir_;
+};
+
+TEST_F(TwistApp, RepairsAFlippedDiskAndWritesTheResult) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::write_mesh(s.mesh, path("twisted.off"));
+  const auto r = run(eftest::shell_quoted(path("twisted.off")) + " -o " + eftest::shell_quoted(path("fixed.ply")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("regions found:      1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("repairs:            1"), std::string::npos) << r.out;
+  const edgefront::Mesh fixed = edgefront::load_mesh(path("fixed.ply"));
+  EXPECT_EQ(fixed.n_faces(), s.mesh.n_faces());
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(fixed, s), 1.0);
+  EXPECT_EQ(edgefront::compute_stats(fixed).nonmanifold_vertices, 0u);
+}
+
+TEST_F(TwistApp, UsesOrientedPointsAndReportsConsistency) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::write_mesh(s.mesh, path("twisted.off"));
+  edgefront::PointCloud cloud;
+  for (edgefront::FaceHandle f : s.mesh.faces()) {
+    const edgefront::Vec3 c = s.mesh.calc_face_centroid(f);
+    if (const auto t = s.truth(c)) {
+      cloud.points.push_back(c);
+      cloud.normals.push_back(*t);
+    }
+  }
+  edgefront::write_points(cloud, path("cloud.ply"));
+  const auto r = run(eftest::shell_quoted(path("twisted.off")) + " --points " + eftest::shell_quoted(path("cloud.ply")) +
+                     " -o " + eftest::shell_quoted(path("fixed.off")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("consistency:"), std::string::npos) << r.out;
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(edgefront::load_mesh(path("fixed.off")), s), 1.0);
+}
+
+TEST_F(TwistApp, ErrorsAreOneLine) {
+  const auto missing = run(eftest::shell_quoted(path("missing.off")) + " -o " + eftest::shell_quoted(path("x.off")));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err.rfind("ef-twist: error: ", 0), 0u) << missing.err;
+  EXPECT_FALSE(fs::exists(path("x.off")));
+  const auto usage = run(eftest::shell_quoted(path("missing.off")));
+  EXPECT_EQ(usage.exit_code, 2) << usage.err;
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::write_mesh(s.mesh, path("twisted.off"));
+  const auto bad = run(eftest::shell_quoted(path("twisted.off")) + " -o " + eftest::shell_quoted(path("out.xyz")));
+  EXPECT_EQ(bad.exit_code, 1) << bad.err;
+  EXPECT_NE(bad.err.find("xyz"), std::string::npos) << bad.err;
+}
+
+}  // namespace
