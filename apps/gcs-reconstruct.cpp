@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
 #include "gcs/reconstructor.h"
+#include "gcs/twist_operation.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Reconstruct a triangle mesh from a point cloud (.xyz, .ply, .off, .obj) with growing cell structures.",
@@ -36,9 +38,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")->required();
   app.add_option("--vertices", vertices, "target vertex count (default 5000)")->check(CLI::Range(4, 50000000));
   app.add_option("--seed", seed, "random seed; the same seed gives the same mesh (default 1)");
-  app.add_flag("--no-twist", no_twist,
-               "disable the twist repair operation (currently no effect: the twist repair is not part of this "
-               "build yet)");
+  app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default)");
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
                "shells such as the bundled vault are torn apart by the border creation otherwise)");
@@ -50,7 +50,6 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.progress_interval = 50;
     options.create_borders = options.merge_borders = !no_borders;
-    (void)no_twist;
     const bool bar = !quiet && isatty(fileno(stderr));
     gcs::ProgressCallback progress;
     if (bar) {
@@ -64,13 +63,27 @@ int main(int argc, char** argv) {
         return true;
       };
     }
-    const gcs::ReconstructResult r = gcs::reconstruct(cloud, options, progress);
+    gcs::Reconstructor reconstructor(cloud, options);
+    std::shared_ptr<gcs::TwistOperation> twist_op;
+    if (!no_twist) {
+      twist_op = std::make_shared<gcs::TwistOperation>();
+      reconstructor.add_operation(twist_op);
+    }
+    const gcs::ReconstructResult r = reconstructor.run(progress);
     if (bar) std::fprintf(stderr, "\n");
     edgefront::write_mesh(r.mesh, output);
     const edgefront::MeshStats s = edgefront::compute_stats(r.mesh);
     std::cout << "gcs-reconstruct: " << s.vertices << " vertices, " << s.faces << " faces, " << s.components
               << " component(s), " << s.border_loops << " border loop(s), " << gcs::to_string(r.stop_reason) << ", "
-              << r.seconds_total << " s -> " << output << "\n";
+              << r.seconds_total << " s -> " << output;
+    if (twist_op) {  // on the same summary line
+      const gcs::TwistOperationStats& t = twist_op->stats();
+      std::cout << "; twist-repair: " << t.regions_found << " twisted region(s) found, " << t.repairs << " repaired ("
+                << t.faces_flipped << " faces flipped, " << t.regions_cut_out << " cut out), " << t.components_flipped
+                << " component(s) flipped globally" << (t.non_orientable ? ", non-orientable" : "") << ", "
+                << r.seconds_operations << " s";
+    }
+    std::cout << "\n";
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");
     return 0;

@@ -1,0 +1,53 @@
+#pragma once
+/// \file twist_operation.h
+/// The twist repair as a hook of the GCS loop (see `operation.h` and `twist/repair.h`): after
+/// each batch, twisted regions are searched near the changed faces (plus a small audit sample),
+/// cut off and flipped; a place that re-twists repeatedly is cut out so the loop re-grows it; the
+/// final call repairs the whole mesh and applies the global orientation. When the input points
+/// have normals, they decide which side is right.
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "gcs/operation.h"
+#include "twist/repair.h"
+
+namespace gcs {
+
+struct TwistOperationOptions {
+  twist::RepairOptions repair;       ///< detection and repair settings (garbage collection is forced off)
+  std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
+  std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
+  bool use_point_normals = true;     ///< use the input normals as reference when the cloud has them
+};
+
+/// Totals over all calls.
+struct TwistOperationStats {
+  std::size_t calls = 0;
+  std::size_t regions_found = 0;
+  std::size_t repairs = 0;
+  std::size_t regions_cut_out = 0;
+  std::size_t faces_flipped = 0;
+  std::size_t faces_removed = 0;
+  std::size_t components_flipped = 0;  ///< by the global orientation of the final call
+  bool non_orientable = false;
+};
+
+class TwistOperation : public Operation {
+ public:
+  explicit TwistOperation(TwistOperationOptions options = {});
+  ~TwistOperation() override;
+  std::string name() const override { return "twist-repair"; }
+  OperationResult apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) override;
+  const TwistOperationStats& stats() const { return stats_; }
+
+ private:
+  TwistOperationOptions options_;
+  std::unique_ptr<twist::ReferenceNormals> reference_;
+  bool reference_checked_ = false;
+  std::unique_ptr<twist::TwistRepairer> repairer_;
+  TwistOperationStats stats_;
+};
+
+}  // namespace gcs

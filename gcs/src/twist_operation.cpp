@@ -1,0 +1,47 @@
+#include "gcs/twist_operation.h"
+
+#include <string>
+
+namespace gcs {
+
+TwistOperation::TwistOperation(TwistOperationOptions options) : options_(std::move(options)) {
+  options_.repair.garbage_collect = false;  // the loop's handles are indices
+}
+
+TwistOperation::~TwistOperation() = default;
+
+OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) {
+  OperationResult result;
+  ++stats_.calls;
+  if (!reference_checked_) {
+    reference_checked_ = true;
+    if (options_.use_point_normals && context.points.has_normals()) {
+      reference_ = std::make_unique<twist::ReferenceNormals>(context.points);
+    }
+  }
+  if (!repairer_) {
+    twist::RepairOptions o = options_.repair;
+    o.detect.reference = reference_.get();
+    repairer_ = std::make_unique<twist::TwistRepairer>(o, options_.max_retwists);
+  }
+  if (context.live_vertices < options_.min_vertices && !context.final_call) return result;
+  if (changed.faces.empty() && !context.final_call) return result;
+  const twist::RepairReport r =
+      context.final_call ? repairer_->finish(mesh) : repairer_->repair_changed(mesh, changed.faces);
+  stats_.regions_found += r.regions_found;
+  stats_.repairs += r.repairs;
+  stats_.regions_cut_out += r.regions_cut_out;
+  stats_.faces_flipped += r.faces_flipped;
+  stats_.faces_removed += r.faces_removed;
+  stats_.components_flipped += r.components_flipped;
+  stats_.non_orientable = stats_.non_orientable || r.non_orientable;
+  result.mesh_changed = r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;
+  if (result.mesh_changed) {
+    result.summary = std::to_string(r.repairs) + " twist(s) repaired (" + std::to_string(r.faces_flipped) + " faces flipped, " +
+                     std::to_string(r.regions_cut_out) + " cut out), " + std::to_string(r.components_flipped) +
+                     " component(s) flipped globally";
+  }
+  return result;
+}
+
+}  // namespace gcs
