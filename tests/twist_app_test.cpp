@@ -52,14 +52,7 @@ TEST_F(TwistApp, RepairsAFlippedDiskAndWritesTheResult) {
 TEST_F(TwistApp, UsesOrientedPointsAndReportsConsistency) {
   const twist::TwistedShape s = twist::flipped_disk_plate();
   edgefront::write_mesh(s.mesh, path("twisted.off"));
-  edgefront::PointCloud cloud;
-  for (edgefront::FaceHandle f : s.mesh.faces()) {
-    const edgefront::Vec3 c = s.mesh.calc_face_centroid(f);
-    if (const auto t = s.truth(c)) {
-      cloud.points.push_back(c);
-      cloud.normals.push_back(*t);
-    }
-  }
+  const edgefront::PointCloud cloud = twist::truth_points(s);
   edgefront::write_points(cloud, path("cloud.ply"));
   const auto r = run(eftest::shell_quoted(path("twisted.off")) + " --points " + eftest::shell_quoted(path("cloud.ply")) +
                      " -o " + eftest::shell_quoted(path("fixed.off")));

@@ -158,14 +158,7 @@ TEST(TwistDetect, IncrementalDetectionFromAFewChangedFacesFindsTheWholeRegionLoc
 
 TEST(TwistDetect, ReferenceNormalsDecideTheSide) {
   const twist::TwistedShape s = twist::flipped_disk_plate();
-  edgefront::PointCloud cloud;
-  for (FaceHandle f : s.mesh.faces()) {
-    const Vec3 c = s.mesh.calc_face_centroid(f);
-    if (const auto t = s.truth(c)) {
-      cloud.points.push_back(c);
-      cloud.normals.push_back(*t);
-    }
-  }
+  const edgefront::PointCloud cloud = twist::truth_points(s);
   const twist::ReferenceNormals ref(cloud);
   twist::DetectOptions o;
   o.reference = &ref;

@@ -41,14 +41,7 @@ TEST(TwistOperation, RepairsFromTheChangeSetWithoutGarbageCollection) {
 
 TEST(TwistOperation, WaitsForEnoughVerticesAndUsesPointNormals) {
   twist::TwistedShape s = twist::flipped_disk_plate();
-  edgefront::PointCloud cloud;
-  for (FaceHandle f : s.mesh.faces()) {
-    const auto c = s.mesh.calc_face_centroid(f);
-    if (const auto t = s.truth(c)) {
-      cloud.points.push_back(c);
-      cloud.normals.push_back(*t);
-    }
-  }
+  const edgefront::PointCloud cloud = twist::truth_points(s);
   gcs::OperationContext ctx{cloud};
   ctx.live_vertices = 10;  // below min_vertices: nothing happens
   gcs::TwistOperation op;

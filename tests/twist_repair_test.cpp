@@ -73,14 +73,7 @@ TEST(TwistRepair, FlippedDiskIsRepairedToFullConsistency) { expect_repaired(twis
 
 TEST(TwistRepair, ReferenceNormalsGiveTheSameResult) {
   twist::TwistedShape s = twist::flipped_disk_plate();
-  edgefront::PointCloud cloud;
-  for (FaceHandle f : s.mesh.faces()) {
-    const Vec3 c = s.mesh.calc_face_centroid(f);
-    if (const auto t = s.truth(c)) {
-      cloud.points.push_back(c);
-      cloud.normals.push_back(*t);
-    }
-  }
+  const edgefront::PointCloud cloud = twist::truth_points(s);
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;

@@ -147,6 +147,18 @@ TwistedShape flipped_disk_plate(const FlippedDiskOptions& o) {
   return s;
 }
 
+edgefront::PointCloud truth_points(const TwistedShape& shape) {
+  edgefront::PointCloud cloud;
+  for (edgefront::FaceHandle f : shape.mesh.faces()) {
+    const Vec3 c = shape.mesh.calc_face_centroid(f);
+    if (const auto t = shape.truth(c)) {
+      cloud.points.push_back(c);
+      cloud.normals.push_back(*t);
+    }
+  }
+  return cloud;
+}
+
 double truth_consistency(const Mesh& mesh, const TwistedShape& shape) {
   double total = 0, agree = 0;
   for (edgefront::FaceHandle f : mesh.faces()) {

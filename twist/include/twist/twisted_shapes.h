@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "edgefront/mesh.h"
+#include "edgefront/point_cloud.h"
 
 namespace twist {
 
@@ -53,6 +54,10 @@ struct FlippedDiskOptions {
 /// by a twisted fold band. The truth is the pillbox; the band has none.
 /// \throws edgefront::InvalidInput for options out of range.
 TwistedShape flipped_disk_plate(const FlippedDiskOptions& options = {});
+
+/// Oriented reference points of the intended surface: the centroid of every face that has a
+/// truth, with the truth normal (for reference-normal detection and tests).
+edgefront::PointCloud truth_points(const TwistedShape& shape);
 
 /// Area-weighted share of the faces with a truth (see `TwistedShape::truth`) whose normal agrees
 /// with it. \throws edgefront::InvalidInput when no face has a truth.
