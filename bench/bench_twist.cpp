@@ -102,8 +102,8 @@ int main(int argc, char** argv) {
   }
   std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds 1-%zu\n\n", vertices, points,
               normals ? " with exact normals" : " without normals", seeds);
-  std::printf("| shape | seed | no repair: abs / comp | twisted left | with repair: abs / comp | twisted left | found | repaired | cut out | twist time share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| shape | seed | no repair: abs / comp | twisted left | borders | with repair: abs / comp | twisted left | borders | found | repaired | cut out | faces removed | twist time share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     edgefront::shapes::SampleOptions dense;
     dense.points = 200000;
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
       ro.target_vertices = vertices;
       ro.seed = seed;
       Consistency cons[2];
-      size_t left[2] = {0, 0};
+      size_t left[2] = {0, 0}, borders[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0;
       for (int with = 0; with < 2; ++with) {
@@ -134,14 +134,15 @@ int main(int argc, char** argv) {
         const gcs::ReconstructResult r = rec.run();
         cons[with] = consistency(r.mesh, truth);
         left[with] = twist::detect(r.mesh).size();
+        borders[with] = edgefront::compute_stats(r.mesh).border_loops;
         if (with) {
           stats = op->stats();
           share = r.seconds_total > 0 ? r.seconds_operations / r.seconds_total : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %zu | %.4f / %.4f | %zu | %zu | %zu | %zu | %.1f%% |\n", c.label.c_str(), seed,
-                  cons[0].absolute, cons[0].per_component, left[0], cons[1].absolute, cons[1].per_component, left[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, 100 * share);
+      std::printf("| %s | %zu | %.4f / %.4f | %zu | %zu | %.4f / %.4f | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n", c.label.c_str(),
+                  seed, cons[0].absolute, cons[0].per_component, left[0], borders[0], cons[1].absolute, cons[1].per_component,
+                  left[1], borders[1], stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share);
       std::fflush(stdout);
     }
   }
