@@ -23,6 +23,7 @@
 
 #include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
+#include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
 #include "twist/detect.h"
@@ -102,14 +103,15 @@ int main(int argc, char** argv) {
   }
   std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds 1-%zu\n\n", vertices, points,
               normals ? " with exact normals" : " without normals", seeds);
-  std::printf("| shape | seed | no repair: abs / comp | twisted left | borders | with repair: abs / comp | twisted left | borders | found | repaired | cut out | faces removed | twist time share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| shape | seed | no repair: abs / comp | gcs-eval raw / comp | twisted left | borders | with repair: abs / comp | gcs-eval raw / comp | twisted left | borders | found | repaired | cut out | faces removed | twist time share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     edgefront::shapes::SampleOptions dense;
     dense.points = 200000;
     dense.seed = 999;
     dense.shape.thickness = c.thickness;
-    const twist::ReferenceNormals truth(edgefront::shapes::sample(c.shape, dense));
+    const edgefront::PointCloud dense_cloud = edgefront::shapes::sample(c.shape, dense);
+    const twist::ReferenceNormals truth(dense_cloud);
     for (size_t seed = 1; seed <= seeds; ++seed) {
       edgefront::shapes::SampleOptions so;
       so.points = points;
@@ -121,6 +123,7 @@ int main(int argc, char** argv) {
       ro.target_vertices = vertices;
       ro.seed = seed;
       Consistency cons[2];
+      gcs::OrientationConsistency eval[2];
       size_t left[2] = {0, 0}, borders[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0;
@@ -133,6 +136,7 @@ int main(int argc, char** argv) {
         }
         const gcs::ReconstructResult r = rec.run();
         cons[with] = consistency(r.mesh, truth);
+        eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
         left[with] = twist::detect(r.mesh).size();
         borders[with] = edgefront::compute_stats(r.mesh).border_loops;
         if (with) {
@@ -140,9 +144,10 @@ int main(int argc, char** argv) {
           share = r.seconds_total > 0 ? r.seconds_operations / r.seconds_total : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %zu | %zu | %.4f / %.4f | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n", c.label.c_str(),
-                  seed, cons[0].absolute, cons[0].per_component, left[0], borders[0], cons[1].absolute, cons[1].per_component,
-                  left[1], borders[1], stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share);
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f / %.4f | %zu | %zu | %.4f / %.4f | %.4f / %.4f | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n",
+                  c.label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].raw, eval[0].per_component, left[0],
+                  borders[0], cons[1].absolute, cons[1].per_component, eval[1].raw, eval[1].per_component, left[1], borders[1],
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share);
       std::fflush(stdout);
     }
   }
