@@ -40,8 +40,11 @@ class GcsCli : public ::testing::Test {
 
 TEST_F(GcsCli, WritesTheMeshAndASummary) {
   const fs::path out = dir_ / "vault.ply";
-  const eftest::CommandResult r = run(q(vault()) + " -o " + q(out) + " --vertices 300");
+  // --no-twist: the plain loop, whose vertex count is exactly the target (the twist repair may
+  // duplicate vertices along a cut or remove tiny pieces).
+  const eftest::CommandResult r = run(q(vault()) + " -o " + q(out) + " --vertices 300 --no-twist");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("twist-repair"), std::string::npos) << r.out;
   EXPECT_EQ(r.err, "");  // stderr is a file here: no progress bar
   EXPECT_NE(r.out.find("300 vertices"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("target reached"), std::string::npos) << r.out;
@@ -55,10 +58,16 @@ TEST_F(GcsCli, WritesTheMeshAndASummary) {
 TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
   const fs::path a = dir_ / "a.off", b = dir_ / "b.off", c = dir_ / "c.off";
   ASSERT_EQ(run(q(vault()) + " -o " + q(a) + " --vertices 150 --seed 7 --quiet").exit_code, 0);
-  ASSERT_EQ(run(q(vault()) + " -o " + q(b) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
+  const eftest::CommandResult rb = run(q(vault()) + " -o " + q(b) + " --vertices 150 --seed 7");
+  ASSERT_EQ(rb.exit_code, 0);
+  EXPECT_NE(rb.out.find("twist-repair"), std::string::npos) << rb.out;  // on by default, reported
   ASSERT_EQ(run(q(vault()) + " -o " + q(c) + " --vertices 150 --seed 8").exit_code, 0);
   EXPECT_EQ(eftest::slurp(a), eftest::slurp(b));
   EXPECT_NE(eftest::slurp(a), eftest::slurp(c));
+  const fs::path d = dir_ / "d.off", e = dir_ / "e.off";
+  ASSERT_EQ(run(q(vault()) + " -o " + q(d) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
+  ASSERT_EQ(run(q(vault()) + " -o " + q(e) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
+  EXPECT_EQ(eftest::slurp(d), eftest::slurp(e));
 }
 
 TEST_F(GcsCli, ErrorsAndUsage) {
@@ -85,7 +94,7 @@ TEST_F(GcsCli, ErrorsAndUsage) {
   r = run("--help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--no-twist"), std::string::npos);
-  EXPECT_NE(r.out.find("no effect"), std::string::npos);
+  EXPECT_NE(r.out.find("twist repair"), std::string::npos);
 }
 
 }  // namespace
