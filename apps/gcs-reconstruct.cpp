@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")->required();
   app.add_option("--vertices", vertices, "target vertex count (default 5000)")->check(CLI::Range(4, 50000000));
   app.add_option("--seed", seed, "random seed; the same seed gives the same mesh (default 1)");
-  app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default)");
+  app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default; off with --no-borders)");
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
                "shells such as the bundled vault are torn apart by the border creation otherwise)");
@@ -65,7 +65,9 @@ int main(int argc, char** argv) {
     }
     gcs::Reconstructor reconstructor(cloud, options);
     std::shared_ptr<gcs::TwistOperation> twist_op;
-    if (!no_twist) {
+    // The repair cuts twisted regions off and relies on the loop's border merging to heal the
+    // cuts: without borders (--no-borders) the cuts would stay open, so it is off then too.
+    if (!no_twist && !no_borders) {
       twist_op = std::make_shared<gcs::TwistOperation>();
       reconstructor.add_operation(twist_op);
     }

@@ -232,9 +232,18 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
   if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
   RepairReport report;
-  const auto seams = reversed_seams(mesh);
-  report.non_orientable = !seams.empty();
-  report.seam_edges = seams.size();
+  // Reversed seams, except those of our own earlier cuts (a flipped side meets its old
+  // neighbours with opposite orientation along the cut: that is the repair, not the input).
+  std::unordered_set<int> cut_vertices;
+  for (const auto& [copy, original] : dups) {
+    cut_vertices.insert(copy.idx());
+    cut_vertices.insert(original.idx());
+  }
+  for (HalfedgeHandle h : reversed_seams(mesh)) {
+    if (cut_vertices.count(mesh.from_vertex_handle(h).idx()) && cut_vertices.count(mesh.to_vertex_handle(h).idx())) continue;
+    ++report.seam_edges;
+  }
+  report.non_orientable = report.seam_edges > 0;
 
   DetectOptions dopt = o.detect;
   bool first = true;
