@@ -34,6 +34,8 @@ std::string to_string(StopReason reason) {
       return "cancelled";
     case StopReason::step_limit:
       return "step limit";
+    case StopReason::shrunk_by_operations:
+      return "below the target: the operations removed parts again after regrowing";
   }
   return "unknown";
 }
@@ -816,6 +818,12 @@ struct Reconstructor::Impl {
       return progress(p);
     };
     StopReason reason = StopReason::target_reached;
+    // Operations on the final call (e.g. the twist repair cutting out a region) can shrink the
+    // mesh below the target: then the loop grows it back and calls them again, a few times.
+    // (The final border pass trims a few unsupported triangles: that much is not shrinking.)
+    constexpr int kRegrowRounds = 3;
+    auto shrunk = [&] { return static_cast<double>(live) < 0.9 * static_cast<double>(opt.target_vertices); };
+    for (int round = 0;; ++round) {
     while (live < opt.target_vertices) {
       if (steps >= step_limit) {
         reason = StopReason::step_limit;
@@ -838,8 +846,12 @@ struct Reconstructor::Impl {
         }
       }
     }
+    if (reason == StopReason::cancelled) break;
+    end_batch(true);
+    if (reason != StopReason::target_reached || !shrunk() || round + 1 >= kRegrowRounds) break;
+    }
+    if (reason == StopReason::target_reached && shrunk()) reason = StopReason::shrunk_by_operations;
     if (reason != StopReason::cancelled) {
-      end_batch(true);
       finished = true;
       finished_reason = reason;
       report();

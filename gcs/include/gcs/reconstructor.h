@@ -91,10 +91,13 @@ struct ReconstructOptions {
 enum class StopReason {
   target_reached,  ///< the mesh has target_vertices live vertices
   cancelled,       ///< the progress callback returned false
-  step_limit       ///< max_steps_per_vertex * target_vertices basic steps were done
+  step_limit,      ///< max_steps_per_vertex * target_vertices basic steps were done
+  shrunk_by_operations  ///< the target was reached, but the operations' final calls removed parts
+                        ///< (e.g. twisted regions cut out) and 3 rounds of regrowing left the mesh
+                        ///< below 90% of the target
 };
 
-/// "target reached", "cancelled", "step limit".
+/// "target reached", "cancelled", "step limit", or what shrunk_by_operations means.
 std::string to_string(StopReason reason);
 
 /// Passed to the progress callback.
