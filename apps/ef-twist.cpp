@@ -1,6 +1,9 @@
 /// ef-twist: find and repair twisted (inconsistently oriented) regions of a mesh.
 ///
-///   ef-twist MESH [--points CLOUD] [--radius R] [--max-repairs N] -o FIXED
+///   ef-twist MESH [--points CLOUD] [--radius R] [--max-repairs N] -o FIXED [--png FILE.png ...]
+///
+/// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input with the twisted
+/// regions found in red and their sealed borders in purple); back faces are tinted orange.
 ///
 /// Detects regions whose orientation disagrees with the side of the surface they approximate
 /// (facing layers of a thin structure, or disagreement with the oriented points of CLOUD), cuts
@@ -15,10 +18,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_render.h"
 #include "app_util.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
+#include "twist/detect.h"
 #include "twist/repair.h"
 
 int main(int argc, char** argv) {
@@ -31,6 +36,7 @@ int main(int argc, char** argv) {
   app.add_option("--points", points, "oriented point cloud whose normals decide the right side (.xyz, .ply, .off, .obj)");
   app.add_option("--radius", radius, "layer search radius (0: twice the mean edge length)")->check(CLI::NonNegativeNumber);
   app.add_option("--max-repairs", max_repairs, "most regions repaired")->check(CLI::PositiveNumber);
+  edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     edgefront::MeshReadResult read = edgefront::read_mesh(input);
@@ -48,6 +54,24 @@ int main(int argc, char** argv) {
     options.detect.reference = reference.get();
     options.max_repairs = max_repairs;
     const size_t faces_before = read.mesh.n_faces();
+    if (png.requested()) {
+      // The input with what the detector finds: twisted regions in red, their sealed borders as lines.
+      edgefront::render::Scene before{.mesh = &read.mesh};
+      edgefront::render::FaceHighlight regions;
+      for (const twist::TwistRegion& region : twist::detect(read.mesh, options.detect)) {
+        regions.faces.insert(regions.faces.end(), region.faces.begin(), region.faces.end());
+        for (const auto& loop : region.border) {
+          edgefront::render::Polyline line = edgefront::render::polyline_from_halfedges(read.mesh, loop);
+          line.color = {150, 0, 150};
+          before.lines.push_back(std::move(line));
+        }
+      }
+      before.highlights.push_back(std::move(regions));
+      std::string before_path = png.path();
+      before_path.insert(before_path.size() - 4, "-before");
+      edgefront::render::render_png(before, png.options(), before_path);
+      std::cerr << "ef-twist: picture " << before_path << " (the input, twisted regions red)\n";
+    }
     const twist::RepairReport r = twist::repair(read.mesh, options);
     std::cout << "input:              " << input << " (" << faces_before << " faces)\n";
     std::cout << "regions found:      " << r.regions_found << (r.capped ? " (more than --max-repairs)" : "") << "\n";
@@ -68,6 +92,7 @@ int main(int argc, char** argv) {
               << " bounded distance fronts, " << r.detect_stats.flagged_faces << " faces flagged\n";
     if (reference) std::cout << "consistency:        " << twist::orientation_consistency(read.mesh, *reference) << " of the area agrees with --points\n";
     edgefront::write_mesh(read.mesh, output);
+    if (png.requested()) png.write(edgefront::render::Scene{.mesh = &read.mesh});
     std::cout << "written:            " << output << "\n";
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");

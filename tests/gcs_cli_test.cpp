@@ -12,6 +12,7 @@
 #include <string>
 
 #include "app_test_util.h"
+#include "render/image.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 
@@ -68,6 +69,33 @@ TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
   ASSERT_EQ(run(q(vault()) + " -o " + q(d) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
   ASSERT_EQ(run(q(vault()) + " -o " + q(e) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
   EXPECT_EQ(eftest::slurp(d), eftest::slurp(e));
+}
+
+TEST_F(GcsCli, PictureAndSnapshots) {
+  const fs::path snaps = dir_ / "snaps";
+  fs::create_directories(snaps);
+  const eftest::CommandResult r = run(q(vault()) + " -o " + q(dir_ / "v.ply") + " --vertices 200 --quiet --png " +
+                                      q(dir_ / "v.png") + " --size 160x120 --snapshots " + q(snaps) +
+                                      " --snapshot-every 50");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const edgefront::render::Image image = edgefront::render::read_png(dir_ / "v.png");
+  EXPECT_EQ(image.width, 160);
+  EXPECT_EQ(image.height, 120);
+  EXPECT_NE(image.at(80, 60), (edgefront::render::Rgb{255, 255, 255}));  // the vault covers the centre
+  // Growth from the start box to 200 vertices in steps of 50: at least 3 snapshots, all readable.
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(snaps)) {
+    EXPECT_EQ(edgefront::render::read_png(entry.path()).width, 160) << entry.path();
+    ++n;
+  }
+  EXPECT_GE(n, 3);
+  EXPECT_NE(r.out.find(std::to_string(n) + " snapshot(s)"), std::string::npos) << r.out;
+  // A snapshot directory that does not exist: an error naming it.
+  const eftest::CommandResult bad = run(q(vault()) + " -o " + q(dir_ / "w.ply") + " --vertices 100 --snapshots " +
+                                        q(dir_ / "absent"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("absent"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "w.ply"));
 }
 
 TEST_F(GcsCli, ErrorsAndUsage) {

@@ -11,6 +11,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
+#include "render/image.h"
 #include "twist/twisted_shapes.h"
 
 namespace {
@@ -47,6 +48,31 @@ TEST_F(TwistApp, RepairsAFlippedDiskAndWritesTheResult) {
   EXPECT_EQ(fixed.n_faces(), s.mesh.n_faces());
   EXPECT_DOUBLE_EQ(twist::truth_consistency(fixed, s), 1.0);
   EXPECT_EQ(edgefront::compute_stats(fixed).nonmanifold_vertices, 0u);
+}
+
+TEST_F(TwistApp, PicturesShowTheRegionBeforeAndNoBackFacesAfter) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  edgefront::write_mesh(s.mesh, path("twisted.off"));
+  const auto r = run(eftest::shell_quoted(path("twisted.off")) + " -o " + eftest::shell_quoted(path("fixed.ply")) +
+                     " --png " + eftest::shell_quoted(path("t.png")) + " --size 200x200 --elevation 0 --azimuth 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const edgefront::render::Image before = edgefront::render::read_png(dir_ / "t-before.png");
+  const edgefront::render::Image after = edgefront::render::read_png(dir_ / "t.png");
+  EXPECT_EQ(after.width, 200);
+  EXPECT_EQ(after.height, 200);
+  // The region is highlighted (red family: strong red, weak green and blue) before, not after.
+  auto reddish = [](const edgefront::render::Image& im) {
+    int n = 0;
+    for (int y = 0; y < im.height; ++y) {
+      for (int x = 0; x < im.width; ++x) {
+        const auto c = im.at(x, y);
+        n += c[0] > 120 && c[1] < 80 && c[2] < 80 ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  EXPECT_GT(reddish(before), 50);
+  EXPECT_LT(reddish(after), reddish(before) / 4);
 }
 
 TEST_F(TwistApp, UsesOrientedPointsAndReportsConsistency) {
