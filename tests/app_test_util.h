@@ -1,7 +1,9 @@
 #pragma once
 // Running the built command-line tools from tests: a real process, its exit code and output.
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -45,5 +47,29 @@ inline CommandResult run_command(const std::filesystem::path& app, const std::st
   r.err = slurp(err);
   return r;
 }
+
+/// A fixture that runs one built app (EDGEFRONT_APP_DIR/<name>) in a fresh temporary directory
+/// `dir_`, removed after the test. Derive: `class T : public AppTest { T() : AppTest("ef-x") {} };`
+class AppTest : public ::testing::Test {
+ protected:
+  explicit AppTest(std::string name) : name_(std::move(name)) {}
+  void SetUp() override {
+    app_ = std::filesystem::path(EDGEFRONT_APP_DIR) / name_;
+    ASSERT_TRUE(std::filesystem::exists(app_)) << name_ << " is not built at " << app_;
+    dir_ = std::filesystem::temp_directory_path() /
+           ("edgefront_" + name_ + "_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    if (!dir_.empty()) std::filesystem::remove_all(dir_, ec);
+  }
+  CommandResult run(const std::string& args) const { return run_command(app_, args, dir_); }
+  std::filesystem::path app_, dir_;
+
+ private:
+  std::string name_;
+};
 
 }  // namespace eftest

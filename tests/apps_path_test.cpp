@@ -21,21 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 using namespace edgefront;
 
-class AppsPathTest : public ::testing::Test {
+class AppsPathTest : public eftest::AppTest {
  protected:
-  void SetUp() override {
-    app_ = fs::path(EDGEFRONT_APP_DIR) / "ef-path";
-    if (!fs::exists(app_)) GTEST_SKIP() << "ef-path is not built at " << app_;
-    dir_ = fs::temp_directory_path() / ("edgefront_apps_path_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!dir_.empty()) fs::remove_all(dir_, ec);
-  }
-  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
-  fs::path app_, dir_;
+  AppsPathTest() : AppTest("ef-path") {}
 };
 
 std::string data_file(const std::string& name) { return (fs::path(EDGEFRONT_DATA_DIR) / name).string(); }

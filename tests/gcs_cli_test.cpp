@@ -20,23 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class GcsCli : public ::testing::Test {
+class GcsCli : public eftest::AppTest {
  protected:
-  void SetUp() override {
-    app_ = fs::path(EDGEFRONT_APP_DIR) / "gcs-reconstruct";
-    if (!fs::exists(app_)) GTEST_SKIP() << "gcs-reconstruct is not built at " << app_;
-    dir_ = fs::temp_directory_path() / ("edgefront_gcs_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!dir_.empty()) fs::remove_all(dir_, ec);
-  }
-  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
+  GcsCli() : AppTest("gcs-reconstruct") {}
   std::string q(const fs::path& p) const { return eftest::shell_quoted(p.string()); }
   static std::string vault() { return (fs::path(EDGEFRONT_DATA_DIR) / "vault-sheet.xyz").string(); }
-  fs::path app_, dir_;
 };
 
 TEST_F(GcsCli, WritesTheMeshAndASummary) {

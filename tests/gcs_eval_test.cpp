@@ -442,20 +442,9 @@ TEST(GcsEval, SameSeedSameFiguresOtherSeedClose) {
 // ---------------------------------------------------------------------------------------------
 // The gcs-eval tool
 
-class GcsEvalApp : public ::testing::Test {
+class GcsEvalApp : public eftest::AppTest {
  protected:
-  void SetUp() override {
-    app_ = fs::path(EDGEFRONT_APP_DIR) / "gcs-eval";
-    if (!fs::exists(app_)) GTEST_SKIP() << "gcs-eval is not built at " << app_;
-    dir_ = fs::temp_directory_path() / ("edgefront_gcs_eval_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!dir_.empty()) fs::remove_all(dir_, ec);
-  }
-  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
+  GcsEvalApp() : AppTest("gcs-eval") {}
   std::string file(const std::string& name) const { return eftest::shell_quoted((dir_ / name).string()); }
   void expect_error(const std::string& args, int code, const std::string& hint) const {
     const eftest::CommandResult r = run(args);
@@ -473,7 +462,6 @@ class GcsEvalApp : public ::testing::Test {
     }
     return std::stod(m[1].str());
   }
-  fs::path app_, dir_;
 };
 
 TEST_F(GcsEvalApp, TableAndJsonAgreeWithTheLibrary) {

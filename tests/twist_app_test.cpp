@@ -18,23 +18,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TwistApp : public ::testing::Test {
+class TwistApp : public eftest::AppTest {
  protected:
-  void SetUp() override {
-    app_ = fs::path(EDGEFRONT_APP_DIR) / "ef-twist";
-    if (!fs::exists(app_)) GTEST_SKIP() << "ef-twist is not built at " << app_;
-    dir_ = fs::temp_directory_path() /
-           ("edgefront_twist_app_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!dir_.empty()) fs::remove_all(dir_, ec);
-  }
-  eftest::CommandResult run(const std::string& args) const { return eftest::run_command(app_, args, dir_); }
+  TwistApp() : AppTest("ef-twist") {}
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path app_, dir_;
 };
 
 TEST_F(TwistApp, RepairsAFlippedDiskAndWritesTheResult) {
