@@ -192,7 +192,7 @@ size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool rev
           in_run = true;
           if (!want_side && first_run) continue;  // the first run of other faces keeps v
           if (!copy.is_valid()) {
-            copy = mesh.add_vertex(mesh.point(v));
+            copy = mesh.add_vertex(edgefront::Vec3(mesh.point(v)));  // a copy: add_vertex may reallocate the points
             ++duplicated;
             if (duplicates) duplicates->emplace_back(copy, v);
           }
@@ -248,7 +248,7 @@ size_t split_fans(Mesh& mesh, VertexHandle v) {
   std::vector<std::array<VertexHandle, 3>> tris;
   std::vector<FaceHandle> redo;
   for (size_t k = 1; k < fans.size(); ++k) {
-    const VertexHandle copy = mesh.add_vertex(mesh.point(v));
+    const VertexHandle copy = mesh.add_vertex(edgefront::Vec3(mesh.point(v)));  // a copy: add_vertex may reallocate the points
     for (FaceHandle f : fans[k]) {
       std::array<VertexHandle, 3> t;
       int i = 0;
