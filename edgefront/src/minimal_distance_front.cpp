@@ -220,15 +220,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     double e = 0;  // |xc|
   };
 
-  // Lays out rx's source for the edge x-c in the face after (after = true) or before the edge.
-  bool lay_out(const DRec& rx, int x, int c, bool after, Layout& L) {
+  // Lays out rx's source for the edge x-c (c = ring[ic].v) in the face after (after = true) or
+  // before the edge; jf is the ray whose face_after is rx.face.
+  bool lay_out(const DRec& rx, int x, int ic, int jf, bool after, Layout& L) {
     const int m = static_cast<int>(ring.size());
-    int ic = -1, jf = -1;
-    for (int i = 0; i < m; ++i) {
-      if (ring[i].v == c && ic < 0) ic = i;
-      if (ring[i].face_after == rx.face) jf = i;
-    }
-    if (ic < 0 || jf < 0) return false;
+    const int c = ring[ic].v;
     auto wrap = [&](int i) { return ((i % m) + m) % m; };
     if (!ring_closed && !after && ic == 0) return false;
     const int t0_ray = after ? ic : wrap(ic - 1);  // the ray whose face_after is t0
@@ -370,11 +366,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // (2) x's virtual source, unfolded into either face at x-c, when the straight line crosses
     // x's faces in between.
     const double euclid_bound = rx.offset + (pc - rx.origin).norm();
+    // Where c and x's source face lie in x's ring (the same for both faces at x-c).
+    int ic = -1, jf = -1;
+    for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
+      if (ring[i].v == c && ic < 0) ic = i;
+      if (ring[i].face_after == rx.face) jf = i;
+    }
+    if (ic < 0 || jf < 0) return;
     Candidate best;
     Layout L;
     for (const bool after : {true, false}) {
       const int t0 = after ? f_left : f_right;
-      if (t0 < 0 || !lay_out(rx, x, c, after, L)) continue;
+      if (t0 < 0 || !lay_out(rx, x, ic, jf, after, L)) continue;
       const double d = rx.offset + std::sqrt((L.e - L.s.x) * (L.e - L.s.x) + L.s.y * L.s.y);
       // Causality, and never below the straight line from where the source really is (an
       // unfolding is exact only along the faces it went through; a line that strays from them can
