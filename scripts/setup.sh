@@ -16,7 +16,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 BUILD_DIR=${EDGEFRONT_BUILD_DIR:-build}
 
-# Libraries, tests and apps. libpng-dev: image output (coming).
+# Libraries, tests and apps. libpng-dev: PNG pictures (render/).
 PACKAGES=(build-essential cmake libopenmesh-dev libnanoflann-dev libeigen3-dev
           libgtest-dev libgmock-dev libcli11-dev libpng-dev)
 CGAL_PACKAGES=(libcgal-dev)
