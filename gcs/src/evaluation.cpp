@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include <nanoflann.hpp>
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/point_index.h"
 
 namespace gcs {
 namespace {
@@ -25,6 +25,7 @@ using edgefront::FaceHandle;
 using edgefront::InvalidInput;
 using edgefront::Mesh;
 using edgefront::PointCloud;
+using edgefront::PointIndex;
 using edgefront::Vec3;
 
 constexpr std::size_t kMaxSamples = 100000000;
@@ -359,39 +360,6 @@ Samples sample_triangles(const std::vector<Triangle>& tris, std::size_t count, s
   }
   return s;
 }
-
-// ---------------------------------------------------------------------------------------------
-// Nearest point of a point set (nanoflann)
-
-struct CloudAdaptor {
-  const std::vector<Vec3>* pts;
-  std::size_t kdtree_get_point_count() const { return pts->size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
-  template <class B>
-  bool kdtree_get_bbox(B&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
-                                                   CloudAdaptor, 3, std::uint32_t>;
-
-class PointIndex {
- public:
-  explicit PointIndex(const std::vector<Vec3>& pts)
-      : adaptor_{&pts}, tree_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
-  // Nearest point: (index, distance).
-  std::pair<std::size_t, double> nearest(const Vec3& x) const {
-    std::uint32_t index = 0;
-    double d2 = 0;
-    const double q[3] = {x[0], x[1], x[2]};
-    tree_.knnSearch(q, 1, &index, &d2);
-    return {index, std::sqrt(d2)};
-  }
-
- private:
-  CloudAdaptor adaptor_;
-  KdTree tree_;
-};
 
 // ---------------------------------------------------------------------------------------------
 // Metrics from distances
@@ -757,7 +725,7 @@ OrientationConsistency orientation_consistency(const Mesh& mesh, const PointClou
   const PointIndex index(oriented_gt.points);
   std::vector<Vec3> gt_normal(s.points.size());
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    gt_normal[i] = oriented_gt.normals[index.nearest(s.points[i]).first].normalized();
+    gt_normal[i] = oriented_gt.normals[index.nearest(s.points[i]).index].normalized();
   }
   return orientation_of(mesh, face_of, s, gt_normal);
 }
@@ -817,9 +785,9 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
       d_result[i] = std::sqrt(h.dist2);
       n_gt_at[i] = gt_bvh->triangles()[static_cast<std::size_t>(h.tri)].unit_normal();
     } else {
-      const auto [k, d] = gt_index->nearest(rs.points[i]);
-      d_result[i] = d;
-      if (!gt_point_normals.empty()) n_gt_at[i] = gt_point_normals[k];
+      const PointIndex::Neighbor nb = gt_index->nearest(rs.points[i]);
+      d_result[i] = std::sqrt(nb.distance2);
+      if (!gt_point_normals.empty()) n_gt_at[i] = gt_point_normals[nb.index];
     }
   }
   // Ground truth -> result.
@@ -830,7 +798,7 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
       d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
   } else {
     const PointIndex result_index(rs.points);
-    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = result_index.nearest(gt_points[i]).second;
+    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_index.nearest(gt_points[i]).distance2);
   }
 
   for (const double t : options.fscore_thresholds) {

@@ -10,11 +10,11 @@
 #include <utility>
 
 #include <Eigen/Dense>
-#include <nanoflann.hpp>
 
 #include "detail/border_topology.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
+#include "edgefront/point_index.h"
 
 namespace gcs {
 
@@ -23,6 +23,7 @@ using edgefront::FaceHandle;
 using edgefront::HalfedgeHandle;
 using edgefront::InvalidInput;
 using edgefront::Mesh;
+using edgefront::PointIndex;
 using edgefront::Vec3;
 using edgefront::VertexHandle;
 
@@ -44,19 +45,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// nanoflann over the (static) input points: distance from a point to the cloud.
-struct CloudAdaptor {
-  const std::vector<Vec3>* pts;
-  size_t kdtree_get_point_count() const { return pts->size(); }
-  double kdtree_get_pt(size_t i, size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
-  template <class BBox>
-  bool kdtree_get_bbox(BBox&) const {
-    return false;
-  }
-};
-using CloudTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
-                                                      CloudAdaptor, 3, size_t>;
 
 Vec3 face_normal_of(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
 
@@ -91,8 +79,8 @@ struct Reconstructor::Impl {
   Vec3 offset{0, 0, 0};
   double bbox_diagonal = 0;
   double sample_spacing = 0;
-  CloudAdaptor adaptor;
-  std::unique_ptr<CloudTree> tree;
+  std::unique_ptr<PointIndex> tree;  // over the (static, centred) input points
+  std::vector<PointIndex::Neighbor> knn;  // query scratch
   // Faces whose centroid is at least this many mean edge lengths from the nearest sample are
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
@@ -167,9 +155,7 @@ struct Reconstructor::Impl {
     if (!(ev[1] > 1e-14 * ev[2]))
       throw InvalidInput("gcs: all points lie on one line: there is no surface to reconstruct");
 
-    adaptor.pts = &cloud.points;
-    tree = std::make_unique<CloudTree>(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    tree->buildIndex();
+    tree = std::make_unique<PointIndex>(cloud.points);
     // Sample spacing: mean distance to the nearest other (distinct) point over up to 1000 points.
     {
       const size_t n = cloud.size(), m = std::min<size_t>(n, 1000);
@@ -177,12 +163,10 @@ struct Reconstructor::Impl {
       size_t cnt = 0;
       for (size_t k = 0; k < m; ++k) {
         const size_t i = k * n / m;
-        size_t idx[8];
-        double d2[8];
-        const size_t got = tree->knnSearch(&cloud.points[i][0], 8, idx, d2);
-        for (size_t j = 0; j < got; ++j) {
-          if (d2[j] > 0) {
-            sum += std::sqrt(d2[j]);
+        tree->k_nearest(cloud.points[i], 8, knn);
+        for (const PointIndex::Neighbor& nb : knn) {
+          if (nb.distance2 > 0) {
+            sum += std::sqrt(nb.distance2);
             ++cnt;
             break;
           }
@@ -304,15 +288,13 @@ struct Reconstructor::Impl {
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
     Vec3& n = fitted_normal[i];
     if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
-    size_t idx[20];
-    double d2[20];
-    const size_t got = tree->knnSearch(&cloud.points[i][0], 20, idx, d2);
+    tree->k_nearest(cloud.points[i], 20, knn);
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < got; ++k) c += Eigen::Vector3d(cloud.points[idx[k]][0], cloud.points[idx[k]][1], cloud.points[idx[k]][2]);
-    c /= static_cast<double>(got);
+    for (const PointIndex::Neighbor& nb : knn) c += Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]);
+    c /= static_cast<double>(knn.size());
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (size_t k = 0; k < got; ++k) {
-      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[idx[k]][0], cloud.points[idx[k]][1], cloud.points[idx[k]][2]) - c;
+    for (const PointIndex::Neighbor& nb : knn) {
+      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]) - c;
       cov += q * q.transpose();
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
@@ -329,10 +311,8 @@ struct Reconstructor::Impl {
   }
 
   detail::CloudHit cloud_query(const Vec3& p) {
-    size_t idx = 0;
-    double d2 = 0;
-    tree->knnSearch(&p[0], 1, &idx, &d2);
-    return {std::sqrt(d2), point_normal(idx)};
+    const PointIndex::Neighbor nb = tree->nearest(p);
+    return {std::sqrt(nb.distance2), point_normal(nb.index)};
   }
 
   // ---------------------------------------------------------------- geometry helpers

@@ -14,6 +14,7 @@
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
+#include "edgefront/point_index.h"
 
 namespace twist {
 
@@ -80,7 +81,7 @@ class Detector {
       live_.push_back(f);
       centers.push_back(center_[static_cast<size_t>(f.idx())]);
     }
-    index_ = std::make_unique<detail::PointIndex>(std::move(centers));
+    index_ = std::make_unique<edgefront::PointIndex>(std::move(centers));
     mean_edge_ = detail::mean_edge_length(mesh);
     if (!(mean_edge_ > 0)) throw InvalidInput("twist::detect: every edge of the mesh has zero length");
     radius_ = o.radius > 0 ? o.radius : 2.0 * mean_edge_;
@@ -284,7 +285,7 @@ class Detector {
   std::vector<Vec3> normal_, center_;
   std::vector<double> longest_;
   std::vector<FaceHandle> live_;
-  std::unique_ptr<detail::PointIndex> index_;
+  std::unique_ptr<edgefront::PointIndex> index_;
   double mean_edge_ = 0, max_edge_ = 0, radius_ = 0;
   std::unordered_map<int, std::vector<std::pair<size_t, double>>> cand_of_vertex_;  // candidate, limit
   std::vector<char> near_flag_;

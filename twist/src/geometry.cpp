@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <string>
 
-#include <nanoflann.hpp>
-
 #include "edgefront/error.h"
 
 namespace twist::detail {
@@ -75,62 +73,6 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
   }
   return false;
 }
-
-// ---------------------------------------------------------------------------------------------
-// PointIndex
-
-namespace {
-struct PointAdaptor {
-  const std::vector<Vec3>* pts;
-  size_t kdtree_get_point_count() const { return pts->size(); }
-  double kdtree_get_pt(size_t i, size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
-  template <class BBox>
-  bool kdtree_get_bbox(BBox&) const {
-    return false;
-  }
-};
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointAdaptor>, PointAdaptor, 3, size_t>;
-}  // namespace
-
-struct PointIndex::Impl {
-  std::vector<Vec3> points;
-  PointAdaptor adaptor{nullptr};
-  std::unique_ptr<Tree> tree;
-};
-
-PointIndex::PointIndex(std::vector<Vec3> points) : impl_(std::make_unique<Impl>()) {
-  impl_->points = std::move(points);
-  impl_->adaptor.pts = &impl_->points;
-  impl_->tree = std::make_unique<Tree>(3, impl_->adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  impl_->tree->buildIndex();
-}
-PointIndex::~PointIndex() = default;
-PointIndex::PointIndex(PointIndex&&) noexcept = default;
-PointIndex& PointIndex::operator=(PointIndex&&) noexcept = default;
-
-void PointIndex::radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const {
-  out.clear();
-  if (impl_->points.empty()) return;
-  std::vector<std::pair<size_t, double>> matches;
-  const double q[3] = {p[0], p[1], p[2]};
-  nanoflann::SearchParams params;
-  params.sorted = false;
-  impl_->tree->radiusSearch(q, radius * radius, matches, params);
-  out.reserve(matches.size());
-  for (const auto& m : matches) out.push_back(m.first);
-  std::sort(out.begin(), out.end());  // deterministic order
-}
-
-size_t PointIndex::nearest(const Vec3& p) const {
-  EF_CHECK(!impl_->points.empty(), "nearest point of an empty index");
-  size_t index = 0;
-  double dist2 = 0;
-  const double q[3] = {p[0], p[1], p[2]};
-  impl_->tree->knnSearch(q, 1, &index, &dist2);
-  return index;
-}
-
-const std::vector<Vec3>& PointIndex::points() const { return impl_->points; }
 
 // ---------------------------------------------------------------------------------------------
 // Surgery

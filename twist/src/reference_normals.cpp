@@ -5,6 +5,7 @@
 
 #include "detail/geometry.h"
 #include "edgefront/error.h"
+#include "edgefront/point_index.h"
 
 namespace twist {
 
@@ -13,7 +14,7 @@ using edgefront::Vec3;
 
 struct ReferenceNormals::Impl {
   edgefront::PointCloud cloud;
-  detail::PointIndex index;
+  edgefront::PointIndex index;
   explicit Impl(edgefront::PointCloud c) : cloud(std::move(c)), index(cloud.points) {}
 };
 
@@ -45,7 +46,7 @@ ReferenceNormals::~ReferenceNormals() = default;
 ReferenceNormals::ReferenceNormals(ReferenceNormals&&) noexcept = default;
 ReferenceNormals& ReferenceNormals::operator=(ReferenceNormals&&) noexcept = default;
 
-size_t ReferenceNormals::nearest(const Vec3& p) const { return impl_->index.nearest(p); }
+size_t ReferenceNormals::nearest(const Vec3& p) const { return impl_->index.nearest(p).index; }
 Vec3 ReferenceNormals::nearest_normal(const Vec3& p) const { return impl_->cloud.normals[nearest(p)]; }
 const edgefront::PointCloud& ReferenceNormals::cloud() const { return impl_->cloud; }
 

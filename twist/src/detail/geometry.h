@@ -1,5 +1,5 @@
 #pragma once
-// Private helpers of the twist library: face geometry, a k-d tree over points, triangle-triangle
+// Private helpers of the twist library: face geometry, triangle-triangle
 // intersection, and the face-set surgery (re-adding faces reversed, with cut vertices duplicated).
 
 #include <array>
@@ -28,23 +28,6 @@ Vec3 centroid(const std::array<Vec3, 3>& p);
 /// the interior of the other (touching at a border point within a relative tolerance does not
 /// count; coplanar overlaps are not detected).
 bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
-
-/// A k-d tree over a fixed set of points (nanoflann behind this header).
-class PointIndex {
- public:
-  explicit PointIndex(std::vector<Vec3> points);
-  ~PointIndex();
-  PointIndex(PointIndex&&) noexcept;
-  PointIndex& operator=(PointIndex&&) noexcept;
-  /// Indices of the points within `radius` of `p` (unordered).
-  void radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const;
-  size_t nearest(const Vec3& p) const;
-  const std::vector<Vec3>& points() const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
 
 /// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
 /// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`

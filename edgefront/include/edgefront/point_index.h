@@ -1,0 +1,50 @@
+#pragma once
+/// \file point_index.h
+/// A k-d tree over a fixed set of points: nearest, k nearest and radius queries. One index for
+/// the whole project (the reconstructor's cloud, the evaluation's samples, the twist detector's
+/// face centres); nanoflann stays behind this header, so users need not find it.
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace edgefront {
+
+class PointIndex {
+ public:
+  /// Builds the tree over `points` (kept inside; read them back with points()). An empty set is
+  /// allowed: nearest() then throws, k_nearest() and radius_search() find nothing.
+  /// \throws InvalidInput if a coordinate is NaN or infinite (naming the point).
+  explicit PointIndex(std::vector<Vec3> points);
+  ~PointIndex();
+  PointIndex(PointIndex&&) noexcept;
+  PointIndex& operator=(PointIndex&&) noexcept;
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
+
+  /// One query result: the point's index and its squared distance to the query.
+  struct Neighbor {
+    size_t index = 0;
+    double distance2 = 0;
+  };
+
+  /// The nearest point (ties: any of them). \throws InvalidInput on an empty index.
+  Neighbor nearest(const Vec3& p) const;
+  /// The min(k, size()) nearest points, nearest first, written to `out` (cleared first).
+  void k_nearest(const Vec3& p, size_t k, std::vector<Neighbor>& out) const;
+  /// Indices of the points closer than `radius` to `p` (strictly), in increasing index order
+  /// (deterministic whatever the tree's traversal), written to `out` (cleared first).
+  void radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const;
+
+  const std::vector<Vec3>& points() const;
+  size_t size() const;
+  bool empty() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace edgefront
