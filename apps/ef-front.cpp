@@ -35,7 +35,6 @@
 #include "app_output.h"
 #include "app_render.h"
 #include "app_util.h"
-#include "edgefront/atomic_write.h"
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
@@ -239,13 +238,7 @@ int main(int argc, char** argv) {
       std::string text;
       text.reserve(n * 4);
       for (const int l : level) text.append(std::to_string(l)).push_back('\n');
-      if (output.empty()) {
-        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
-        std::cout.flush();
-        if (!std::cout) throw edgefront::IoError("cannot write to standard output");
-      } else {
-        edgefront::write_file_atomically(output, [&text](std::ostream& os) { os << text; }, false);
-      }
+      edgefront::apps::write_text(output, text);
     }
 
     if (png.requested()) {

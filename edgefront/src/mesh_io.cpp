@@ -209,6 +209,16 @@ struct Compacted {
   std::vector<std::array<int, 3>> faces;
 };
 
+/// Appends "<prefix>a b c\n" with the face's indices plus `base` (OFF/PLY: "3 ", 0; OBJ: "f ", 1).
+void append_face_line(std::string& b, const char* prefix, const std::array<int, 3>& f, int base) {
+  b += prefix;
+  for (int k = 0; k < 3; ++k) {
+    if (k) b += ' ';
+    detail::append_int(b, f[k] + base);
+  }
+  b += '\n';
+}
+
 Compacted compact(const Mesh& mesh) {
   Compacted c;
   std::vector<int> new_of_old(mesh.n_vertices(), -1);
@@ -316,13 +326,7 @@ void write_off(std::ostream& os, const Mesh& mesh, const Compacted& c, const Mes
     w.maybe_flush();
   }
   for (const auto& f : c.faces) {
-    b += "3 ";
-    detail::append_int(b, f[0]);
-    b += ' ';
-    detail::append_int(b, f[1]);
-    b += ' ';
-    detail::append_int(b, f[2]);
-    b += '\n';
+    append_face_line(b, "3 ", f, 0);
     w.maybe_flush();
   }
   w.flush();
@@ -341,13 +345,7 @@ void write_obj(std::ostream& os, const Mesh& mesh, const Compacted& c) {
     w.maybe_flush();
   }
   for (const auto& f : c.faces) {
-    b += "f ";
-    detail::append_int(b, f[0] + 1);
-    b += ' ';
-    detail::append_int(b, f[1] + 1);
-    b += ' ';
-    detail::append_int(b, f[2] + 1);
-    b += '\n';
+    append_face_line(b, "f ", f, 1);
     w.maybe_flush();
   }
   w.flush();
@@ -393,13 +391,7 @@ void write_ply(std::ostream& os, const Mesh& mesh, const Compacted& c, const Mes
       detail::append_le<uint8_t>(b, 3);
       for (int k = 0; k < 3; ++k) detail::append_le<int32_t>(b, f[k]);
     } else {
-      b += "3 ";
-      detail::append_int(b, f[0]);
-      b += ' ';
-      detail::append_int(b, f[1]);
-      b += ' ';
-      detail::append_int(b, f[2]);
-      b += '\n';
+      append_face_line(b, "3 ", f, 0);
     }
     w.maybe_flush();
   }
