@@ -378,11 +378,14 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     for (const bool after : {true, false}) {
       const int t0 = after ? f_left : f_right;
       if (t0 < 0 || !lay_out(rx, x, ic, jf, after, L)) continue;
-      const double d = rx.offset + std::sqrt((L.e - L.s.x) * (L.e - L.s.x) + L.s.y * L.s.y);
-      // Causality, and never below the straight line from where the source really is (an
-      // unfolding is exact only along the faces it went through; a line that strays from them can
-      // come out too short).
-      if (d < rx.d * (1 - 1e-12) || d < euclid_bound * (1 - 1e-12) || !(d < best.d)) continue;
+      // Causality: c may lie nearer the source than x (a vertex whose neighbours are all farther,
+      // reached across a long edge); it cannot be settled before x any more, so it gets x's
+      // distance, the nearest to the truth that keeps the settle order, and keeps the unfolded
+      // source for its own neighbours. Rejecting the line would leave c the path around x.
+      const double d = std::max(rx.d, rx.offset + std::sqrt((L.e - L.s.x) * (L.e - L.s.x) + L.s.y * L.s.y));
+      // Never below the straight line from where the source really is (an unfolding is exact
+      // only along the faces it went through; a line that strays from them can come out too short).
+      if (d < euclid_bound * (1 - 1e-12) || !(d < best.d)) continue;
       Candidate cand;
       // Back to 3D in t0's plane: c's edge direction and the in-plane perpendicular toward y.
       const Vec3 uc = (pc - px) / e;
