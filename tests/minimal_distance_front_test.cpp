@@ -57,6 +57,35 @@ TEST(Mdf, PlanarConvexRegionsAreExact) {
   }
 }
 
+// A vertex nearer the source than all its neighbours (reached across a long edge) cannot be
+// settled before them: it gets the distance of its first settled neighbour, not the path around
+// that neighbour, and keeps the true source (its direction and everything beyond it stay exact).
+TEST(Mdf, VertexNearerThanAllItsNeighboursTakesTheFirstNeighboursDistance) {
+  // Planar and convex: s, then c behind the long edge a-b, then d. c's neighbours are a, b, d.
+  Mesh mesh;
+  const VertexHandle s = mesh.add_vertex(Vec3(0, 0, 0));
+  const VertexHandle b = mesh.add_vertex(Vec3(0.5, -4, 0));
+  const VertexHandle d = mesh.add_vertex(Vec3(4, 0.5, 0));
+  const VertexHandle a = mesh.add_vertex(Vec3(0.5, 4, 0));
+  const VertexHandle c = mesh.add_vertex(Vec3(1, 0, 0));
+  mesh.add_face(s, b, a);
+  mesh.add_face(a, b, c);
+  mesh.add_face(b, d, c);
+  mesh.add_face(d, a, c);
+  const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
+  ASSERT_EQ(f.stop, DistanceStop::Exhausted);
+  double nearest_neighbour = kInf;
+  for (VertexHandle v : {a, b, d}) {
+    const double exact = (mesh.point(v) - mesh.point(s)).norm();
+    EXPECT_NEAR(f.distance[v.idx()], exact, 1e-9 * exact) << "vertex " << v.idx();
+    nearest_neighbour = std::min(nearest_neighbour, f.distance[v.idx()]);
+  }
+  // Euclidean 1 is out of reach in settle order; the path around a neighbour would be 8.06.
+  EXPECT_GE(f.distance[c.idx()], 1.0);
+  EXPECT_NEAR(f.distance[c.idx()], nearest_neighbour, 1e-12 * nearest_neighbour);
+  EXPECT_NEAR(OpenMesh::dot(f.direction[c.idx()], Vec3(-1, 0, 0)), 1.0, 1e-12);
+}
+
 // Property 4: developable surfaces. On the polyhedral cylinder the exact distance is the
 // straight line in the unrolled strip of the polygonal cross-section.
 TEST(Mdf, OpenCylinderUnrollsExactly) {
