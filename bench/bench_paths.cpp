@@ -4,7 +4,7 @@
 /// check on two grids of equal local triangulation.
 ///
 ///   bench_paths --mesh FILE [--subdiv N] [--reference PREFIX] [--sources a,b,...]
-///               [--random-sources K] [--targets T] [--seed S]
+///               [--random-sources K] [--targets T] [--seed S] [--only NAME,NAME,...] [--no-many]
 ///   bench_paths --grid-check [--large CELLS]
 ///
 /// Pairs: for each source vertex, T random target vertices (std::mt19937_64(S)). With --reference,
@@ -18,7 +18,8 @@
 ///   VF, MEF, MDF connection paths, undirected, directed and confined, MDF with a polyline, all
 ///   through one reused edgefront::ConnectionPathFinder.
 /// The hop counts of every VF/MEF variant must agree (the run aborts otherwise).
-/// Then per source: find_many over its T targets against the sum of the single queries.
+/// Then per source: find_many over its T targets against the sum of the single queries (skipped with
+/// --no-many). --only runs just the named variants (names as in the table's first column).
 ///
 /// --grid-check: the same 5 queries on a 100x100 grid and a LARGExLARGE grid (default 2000) with
 /// cell size 0.02, elements processed per method (must be equal), and a 10-triangle island query.
@@ -74,8 +75,9 @@ class BidirectionalDijkstra {
     for (auto& d : dist_) d.assign(mesh.n_vertices(), kInf);
     for (auto& c : closed_) c.assign(mesh.n_vertices(), 0);
   }
-  // Shortest edge-path length, +inf when not connected. `settled` counts closed vertices.
-  double run(VertexHandle s, VertexHandle t, size_t& settled) {
+  // Shortest edge-path length, +inf when not connected. `settled` counts closed vertices. With
+  // `one_sided`, only the front from s grows, until t settles (plain Dijkstra with a target).
+  double run(VertexHandle s, VertexHandle t, size_t& settled, bool one_sided = false) {
     for (int side = 0; side < 2; ++side) {
       for (int v : touched_[side]) {
         dist_[side][v] = kInf;
@@ -90,18 +92,15 @@ class BidirectionalDijkstra {
       dist_[side][v] = d;
       q[side].push({d, v});
     };
-    label(0, s.idx(), 0);
-    label(1, t.idx(), 0);
-    double best = s == t ? 0 : kInf;
-    settled = 0;
     auto top = [&](int side) {
       while (!q[side].empty() && closed_[side][q[side].top().second]) q[side].pop();
       return q[side].empty() ? kInf : q[side].top().first;
     };
-    while (true) {
-      const double k0 = top(0), k1 = top(1);
-      if (k0 == kInf || k1 == kInf || k0 + k1 >= best) break;
-      const int side = k0 <= k1 ? 0 : 1;
+    label(0, s.idx(), 0);
+    if (!one_sided) label(1, t.idx(), 0);
+    double best = s == t ? 0 : kInf;
+    settled = 0;
+    auto settle = [&](int side) {  // the top of `side` (after `top`)
       const int x = q[side].top().second;
       q[side].pop();
       closed_[side][x] = 1;
@@ -112,6 +111,15 @@ class BidirectionalDijkstra {
         if (d < dist_[side][y.idx()]) label(side, y.idx(), d);
         best = std::min(best, d + dist_[1 - side][y.idx()]);
       }
+    };
+    if (one_sided) {
+      while (top(0) < kInf && !closed_[0][t.idx()]) settle(0);
+      return dist_[0][t.idx()];
+    }
+    while (true) {
+      const double k0 = top(0), k1 = top(1);
+      if (k0 == kInf || k1 == kInf || k0 + k1 >= best) break;
+      settle(k0 <= k1 ? 0 : 1);
     }
     return best;
   }
@@ -128,6 +136,7 @@ class BidirectionalDijkstra {
 
 struct Series {
   std::vector<double> time, processed, rel_error;
+  std::vector<double> front, front_bytes, region_bytes;  // peak front size, its bytes, area values' bytes
   void add(double t, double p) {
     time.push_back(t);
     processed.push_back(static_cast<double>(p));
@@ -180,6 +189,8 @@ struct Args {
   uint64_t seed = 1;
   bool grid_check = false;
   int large = 2000;
+  std::vector<std::string> only;  // --only: variant names to run (default: all)
+  bool many = true;               // --no-many: skip the find_many comparison
 };
 
 Args parse(int argc, char** argv) {
@@ -201,6 +212,10 @@ Args parse(int argc, char** argv) {
     else if (f == "--seed") a.seed = std::stoull(value());
     else if (f == "--grid-check") a.grid_check = true;
     else if (f == "--large") a.large = std::stoi(value());
+    else if (f == "--only") {
+      std::stringstream ss(value());
+      for (std::string tok; std::getline(ss, tok, ',');) a.only.push_back(tok);
+    } else if (f == "--no-many") a.many = false;
     else throw InvalidInput("unknown flag " + f + " (see the comment at the top of bench/bench_paths.cpp)");
   }
   if (!a.grid_check && a.mesh.empty()) throw InvalidInput("--mesh FILE or --grid-check is required");
@@ -238,7 +253,7 @@ int run_mesh(const Args& a) {
             << ")\n\n";
   (void)v0;
 
-  const std::vector<Variant> variants = {
+  std::vector<Variant> variants = {
       {"VF", {.method = PathMethod::VertexFront}},
       {"VF directed", {.method = PathMethod::VertexFront, .directed = true}},
       {"MEF", {.method = PathMethod::MinimalEdgeFront}},
@@ -249,15 +264,22 @@ int run_mesh(const Args& a) {
       {"MDF directed + polyline", {.method = PathMethod::MinimalDistance, .polyline = true, .directed = true}},
       {"VF confined", {.method = PathMethod::VertexFront, .confine = true}},
       {"MEF confined", {.method = PathMethod::MinimalEdgeFront, .confine = true}},
-      {"MDF confined + polyline", {.method = PathMethod::MinimalDistance, .polyline = true, .confine = true}},
+      {"MDF recursive (paper's halves)", {.method = PathMethod::MinimalDistance, .mdf_recursion = true}},
   };
+  if (!a.only.empty()) {
+    std::erase_if(variants, [&](const Variant& v) {
+      return std::find(a.only.begin(), a.only.end(), v.name) == a.only.end();
+    });
+    EF_CHECK(!variants.empty(), "--only names no variant");
+  }
   std::vector<Series> series(variants.size());
-  Series dijkstra;
+  Series dijkstra, one_sided;
   ConnectionPathFinder finder(mesh);
   BidirectionalDijkstra bd(mesh);
   size_t pairs = 0, no_path = 0, unconverged = 0;
   double many_time[2] = {0, 0}, single_time[2] = {0, 0};
   size_t many_work[2] = {0, 0}, single_work[2] = {0, 0};
+  std::vector<double> many_error[2];  // MDF lengths vs exact: find_many, single queries
   for (int s : sources) {
     std::vector<double> exact;
     if (!a.reference.empty()) exact = read_doubles(a.reference + ".exact." + std::to_string(s) + ".bin", n);
@@ -279,6 +301,10 @@ int run_mesh(const Args& a) {
       }
       const double ref = exact.empty() ? std::nan("") : exact[vt.idx()];
       dijkstra.add(t_dij, static_cast<double>(settled));
+      t0 = Clock::now();
+      const double one = bd.run(vs, vt, settled, true);
+      one_sided.add(since(t0), static_cast<double>(settled));
+      EF_CHECK(std::abs(one - dij) <= 1e-9 * dij, "one- and two-sided Dijkstra disagree");
       if (std::isfinite(ref) && ref > 0) dijkstra.rel_error.push_back(std::abs(dij - ref) / ref);
       long hops = -1;
       for (size_t i = 0; i < variants.size(); ++i) {
@@ -287,6 +313,9 @@ int run_mesh(const Args& a) {
         const double t = since(t0);
         EF_CHECK(p.status == PathStatus::Found, "Dijkstra found a path, " + variants[i].name + " did not");
         series[i].add(t, static_cast<double>(p.processed));
+        series[i].front.push_back(static_cast<double>(p.peak_front_size));
+        series[i].front_bytes.push_back(static_cast<double>(p.peak_front_memory_bytes));
+        series[i].region_bytes.push_back(static_cast<double>(p.region_memory_bytes));
         if (variants[i].options.method != PathMethod::MinimalDistance) {
           if (hops < 0) hops = static_cast<long>(p.edges);
           EF_CHECK(hops == static_cast<long>(p.edges), variants[i].name + " hop count differs");
@@ -297,14 +326,28 @@ int run_mesh(const Args& a) {
     }
     // Many targets from one source vs the same queries one by one.
     int k = 0;
+    if (!a.many) continue;
     for (PathMethod m : {PathMethod::MinimalEdgeFront, PathMethod::MinimalDistance}) {
       auto t0 = Clock::now();
       const auto many = finder.find_many(vs, targets, {.method = m});
       many_time[k] += since(t0);
-      for (const auto& p : many) many_work[k] += p.processed;
+      std::vector<ConnectionPath> single;
       t0 = Clock::now();
-      for (VertexHandle vt : targets) single_work[k] += finder.find(vs, vt, {.method = m}).processed;
+      for (VertexHandle vt : targets) single.push_back(finder.find(vs, vt, {.method = m}));
       single_time[k] += since(t0);
+      for (size_t i = 0; i < targets.size(); ++i) {
+        many_work[k] += many[i].processed;
+        single_work[k] += single[i].processed;
+        EF_CHECK(many[i].status == single[i].status, "find_many and find disagree on a path's existence");
+        if (m != PathMethod::MinimalDistance) {
+          EF_CHECK(many[i].edges == single[i].edges, "find_many's hop count differs from find's");
+          continue;
+        }
+        const double ref = exact.empty() ? std::nan("") : exact[targets[i].idx()];
+        if (!(std::isfinite(ref) && ref > 0) || many[i].status != PathStatus::Found) continue;
+        many_error[0].push_back(std::abs(many[i].length - ref) / ref);
+        many_error[1].push_back(std::abs(single[i].length - ref) / ref);
+      }
       ++k;
     }
   }
@@ -325,15 +368,27 @@ int run_mesh(const Args& a) {
               << pct(*std::max_element(s.rel_error.begin(), s.rel_error.end())) << " | " << pct(within) << " |\n";
   };
   row("bidirectional Dijkstra (edge lengths)", dijkstra);
+  row("Dijkstra, one front to the target", one_sided);
   for (size_t i = 0; i < variants.size(); ++i) {
     const bool hop = variants[i].options.method != PathMethod::MinimalDistance;
     Series s = series[i];
     if (hop) s.rel_error.clear();  // hop paths: no geodesic length to compare
     row(variants[i].name, s);
   }
+  std::cout << "\nWorking memory per query (means): the fronts follow the front; the per-vertex values of "
+               "the processed area (MDF: both fronts' settled distances, for the meeting test and the traced "
+               "halves; confine; the directed search's tables) follow the area.\n\n| method | elements processed "
+               "| largest front (elements) | its memory | area values' memory |\n|---|---:|---:|---:|---:|\n";
+  for (size_t i = 0; i < variants.size(); ++i) {
+    const Series& x = series[i];
+    std::cout << "| " << variants[i].name << " | " << fixed(mean(x.processed), 0) << " | " << fixed(mean(x.front), 0)
+              << " | " << fixed(mean(x.front_bytes) / 1024, 1) << " KiB | " << fixed(mean(x.region_bytes) / 1024, 1)
+              << " KiB |\n";
+  }
   std::cout << "\n" << pairs << " pairs, " << no_path << " without a path (skipped); polylines not converged: "
             << unconverged << ". Errors are |length - exact| / exact (VF/MEF are hop-count paths: no error column).\n\n";
   const char* names[2] = {"MEF", "MDF"};
+  if (!a.many) return 0;
   std::cout << "Many targets from one source (find_many over each source's " << a.targets << " targets vs the same "
             << "queries one by one):\n\n| method | find_many time | single queries time | elements processed "
                "(many / single) |\n|---|---:|---:|---:|\n";
@@ -341,6 +396,16 @@ int run_mesh(const Args& a) {
     std::cout << "| " << names[k] << " | " << fixed(many_time[k], 3) << " s | " << fixed(single_time[k], 3) << " s | "
               << many_work[k] << " / " << single_work[k] << " (" << fixed(100.0 * many_work[k] / single_work[k], 1)
               << "%) |\n";
+  }
+  if (!many_error[0].empty()) {
+    auto within = [](const std::vector<double>& e) {
+      return static_cast<double>(std::count_if(e.begin(), e.end(), [](double x) { return x <= 0.005; })) /
+             static_cast<double>(e.size());
+    };
+    std::cout << "\nMDF lengths vs exact (MEF hop counts are checked equal): find_many (source front's distance) "
+              << pct(mean(many_error[0])) << " mean, " << pct(within(many_error[0])) << " within 0.5%; single queries "
+              << "(meeting sum) " << pct(mean(many_error[1])) << " mean, " << pct(within(many_error[1]))
+              << " within 0.5%.\n";
   }
   std::cout << "\n";
   return 0;

@@ -125,9 +125,9 @@ TEST_P(PathOnShape, MdfPathsAreChainsNoLongerThanDijkstraAndPolylinesLieOnTheSur
     const auto vs = eftest::random_vertices(mesh, rng, 2);
     const DistanceField dij = dijkstra_distance(mesh, FrontSource::vertex(vs[0]), {.directions = false});
     SCOPED_TRACE("from " + std::to_string(vs[0].idx()) + " to " + std::to_string(vs[1].idx()));
-    for (bool confine : {false, true}) {
-    const ConnectionPath p =
-        finder.find(vs[0], vs[1], {.method = PathMethod::MinimalDistance, .polyline = true, .confine = confine});
+    for (int variant = 0; variant < 3; ++variant) {
+    const ConnectionPath p = finder.find(vs[0], vs[1], {.method = PathMethod::MinimalDistance, .polyline = true,
+                                                        .confine = variant == 1, .mdf_recursion = variant == 2});
     const double dd = dij.distance[vs[1].idx()];
     if (!std::isfinite(dd)) {
       EXPECT_EQ(p.status, PathStatus::NoPath);
@@ -351,7 +351,8 @@ TEST(ConnectionPath, ConfinementAndDirectionProcessFewerElementsOnTheSamePairs) 
     size_t plain = 0, confined = 0, directed = 0;
     for (int k = 0; k < 10; ++k) {
       const auto vs = eftest::random_vertices(mesh, rng, 2);
-      const ConnectionPath a = finder.find(vs[0], vs[1], {.method = m});
+      // Plain: the paper's recursion (for the MDF an option; its default traces like `confine`).
+      const ConnectionPath a = finder.find(vs[0], vs[1], {.method = m, .mdf_recursion = true});
       const ConnectionPath c = finder.find(vs[0], vs[1], {.method = m, .confine = true});
       const ConnectionPath d = finder.find(vs[0], vs[1], {.method = m, .directed = true});
       ASSERT_EQ(a.status, PathStatus::Found);
@@ -360,6 +361,13 @@ TEST(ConnectionPath, ConfinementAndDirectionProcessFewerElementsOnTheSamePairs) 
         EXPECT_EQ(d.edges, a.edges);
       }
       expect_chain(mesh, c, vs[0], vs[1]);
+      if (m == PathMethod::MinimalDistance) {
+        // Tracing or recursing: the same top-level meeting, so the same length.
+        EXPECT_DOUBLE_EQ(c.length, a.length);
+        const ConnectionPath t = finder.find(vs[0], vs[1], {.method = m});
+        EXPECT_EQ(t.vertices, c.vertices);
+        EXPECT_EQ(t.processed, c.processed);
+      }
       // Confinement runs only the top-level search: never more work than with recursion.
       EXPECT_LE(c.processed, a.processed);
       EXPECT_LE(c.searches, 1u);
@@ -381,9 +389,11 @@ TEST(ConnectionPath, MdfPathsOnACurvedMeshAreAlwaysFound) {
   ConnectionPathFinder finder(mesh);
   for (int k = 0; k < 60; ++k) {
     const auto vs = eftest::random_vertices(mesh, rng, 2);
-    const ConnectionPath p = finder.find(vs[0], vs[1]);
-    ASSERT_EQ(p.status, PathStatus::Found);
-    expect_chain(mesh, p, vs[0], vs[1]);
+    for (bool recursion : {false, true}) {
+      const ConnectionPath p = finder.find(vs[0], vs[1], {.mdf_recursion = recursion});
+      ASSERT_EQ(p.status, PathStatus::Found);
+      expect_chain(mesh, p, vs[0], vs[1]);
+    }
   }
 }
 
@@ -412,11 +422,43 @@ TEST(ConnectionPath, ManyTargetsMatchSingleQueriesAndShareTheSourceFront) {
       many_work += many[i].processed;
       single_work += one.processed;
     }
-    // The shared source front saves work for the level fronts; for the MDF the halves' recursion
-    // dominates and the saving is within noise (bench/results/paths.md), so only VF/MEF are held to it.
-    if (m != PathMethod::MinimalDistance) {
-      EXPECT_LT(many_work, single_work) << name_of(m);
+    EXPECT_LT(many_work, single_work) << name_of(m);
+  }
+}
+
+TEST(ConnectionPath, ManyTargetsGrowOneSourceFrontOnlyAsFarAsTheTargetsNeed) {
+  const Mesh mesh = shapes::grid({.cells = 30, .variant = GridVariant::jittered, .seed = 2});
+  const VertexHandle s = nearest(mesh, Vec3(0, 0, 0));
+  // Far, near, then farther again: the near one needs no growth, the last one only the rest.
+  const std::vector<VertexHandle> targets = {nearest(mesh, Vec3(0.5, 0.1, 0)), nearest(mesh, Vec3(-0.1, 0.05, 0)),
+                                             nearest(mesh, Vec3(0.9, -0.9, 0))};
+  for (PathMethod m : kAllMethods) {
+    SCOPED_TRACE(name_of(m));
+    ConnectionPathFinder finder(mesh);
+    const auto many = finder.find_many(s, targets, {.method = m});
+    ASSERT_EQ(many.size(), 3u);
+    size_t total = 0;
+    for (size_t i = 0; i < 3; ++i) {
+      ASSERT_EQ(many[i].status, PathStatus::Found);
+      expect_chain(mesh, many[i], s, targets[i]);
+      const ConnectionPath one = finder.find(s, targets[i], {.method = m});
+      if (m == PathMethod::MinimalDistance) {
+        // On a plane the MDF is exact: the source front's distance at the target is the straight
+        // line. The meeting sum of two fronts passes a vertex in the middle, so it is never
+        // shorter (two hops: up to 40% longer).
+        const double line = (mesh.point(targets[i]) - mesh.point(s)).norm();
+        EXPECT_NEAR(many[i].length, line, 1e-9 * line) << "target " << i;
+        EXPECT_GE(one.length, line * (1 - 1e-9)) << "target " << i;
+      } else {
+        EXPECT_EQ(many[i].edges, one.edges);
+      }
+      total += many[i].processed;
     }
+    EXPECT_GT(many[0].processed, 0u);
+    EXPECT_EQ(many[1].processed, 0u);  // inside the front grown for the first target
+    EXPECT_GT(many[2].processed, 0u);
+    // One front, never restarted: no vertex is processed twice.
+    EXPECT_LE(total, mesh.n_vertices());
   }
 }
 

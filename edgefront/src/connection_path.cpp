@@ -36,6 +36,7 @@ class Side {
   // Level-based fronts: the vertices on the front now, with their levels.
   virtual void for_each_front(const std::function<void(VertexHandle, double)>& f) const = 0;
   virtual size_t peak_memory() const = 0;
+  virtual size_t peak_front() const = 0;
   // Called for every vertex the front processes (encloses / settles), with its level / distance.
   std::function<void(VertexHandle, double)> on_processed;
   size_t processed = 0;
@@ -66,6 +67,7 @@ class LevelSide final : public Side {
     for (const auto& [v, l] : front_.front_vertices()) f(v, l);
   }
   size_t peak_memory() const override { return front_.peak_working_memory_bytes(); }
+  size_t peak_front() const override { return front_.peak_front_size(); }
 
  private:
   Front front_;
@@ -88,6 +90,7 @@ class MdfSide final : public Side {
   std::optional<double> known(VertexHandle v) const override { return front_.distance(v); }
   void for_each_front(const std::function<void(VertexHandle, double)>&) const override {}
   size_t peak_memory() const override { return front_.peak_working_memory_bytes(); }
+  size_t peak_front() const override { return front_.peak_front_size(); }
 
  private:
   MinimalDistanceFront front_;
@@ -145,7 +148,7 @@ double edge_length_of(const Mesh& mesh, const std::vector<VertexHandle>& chain) 
 
 struct ConnectionPathFinder::Impl {
   const Mesh& mesh;
-  std::unique_ptr<Side> sides[3][2];  // per method, the two fronts
+  std::unique_ptr<Side> sides[3][3];  // per method: the two fronts of a search, find_many's source
   detail::DirectedPathSearch directed;
   // find_many: the source's levels / distances over the area its front covered.
   detail::FlatMap<double> source_values;
@@ -184,10 +187,17 @@ struct ConnectionPathFinder::Impl {
     }
   }
 
+  // Working memory: `fronts` bytes of fronts plus `region` bytes of per-vertex values at once.
+  void note_memory(size_t fronts, size_t region) {
+    stats->region_memory_bytes = std::max(stats->region_memory_bytes, region);
+    stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes, fronts + region);
+  }
+
   void account(const Side& a, const Side& b, size_t before_a, size_t before_b) {
     stats->processed += (a.processed - before_a) + (b.processed - before_b);
-    stats->peak_working_memory_bytes =
-        std::max({stats->peak_working_memory_bytes, a.peak_memory(), b.peak_memory()});
+    stats->peak_front_size = std::max({stats->peak_front_size, a.peak_front(), b.peak_front()});
+    stats->peak_front_memory_bytes = std::max({stats->peak_front_memory_bytes, a.peak_memory(), b.peak_memory()});
+    note_memory(a.peak_memory() + b.peak_memory(), 0);
     ++stats->searches;
   }
 
@@ -231,8 +241,7 @@ struct ConnectionPathFinder::Impl {
     }
     account(a, b, pa, pb);
     if (recording) {
-      stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes,
-                                                  settled[0].memory_bytes() + settled[1].memory_bytes());
+      note_memory(a.peak_memory() + b.peak_memory(), settled[0].memory_bytes() + settled[1].memory_bytes());
     }
     return result;
   }
@@ -243,16 +252,20 @@ struct ConnectionPathFinder::Impl {
   // with the smallest distance plus edge length among those with a smaller distance (MDF).
   // Appends m .. e; false when the region has no way down (the caller then searches).
   bool trace(int side, bool levels, VertexHandle m, double vm, VertexHandle e, std::vector<VertexHandle>& out) const {
+    return trace_in(settled[side], levels, m, vm, e, out);
+  }
+  bool trace_in(const detail::FlatMap<double>& values, bool levels, VertexHandle m, double vm, VertexHandle e,
+                std::vector<VertexHandle>& out) const {
     out.assign(1, m);
     VertexHandle v = m;
     double dv = vm;
-    const size_t limit = settled[side].size() + 2;
+    const size_t limit = values.size() + 2;
     while (v != e) {
       if (out.size() > limit) return false;
       VertexHandle next;
       double best = std::numeric_limits<double>::infinity(), dnext = 0;
       for (VertexHandle u : mesh.vv_range(v)) {
-        const double* du = settled[side].find(static_cast<uint32_t>(u.idx()));
+        const double* du = values.find(static_cast<uint32_t>(u.idx()));
         if (!du) continue;
         if (levels) {
           if (*du != dv - 1) continue;
@@ -317,8 +330,7 @@ struct ConnectionPathFinder::Impl {
     a.on_processed = nullptr;
     b.on_processed = nullptr;
     account(a, b, pa, pb);
-    stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes,
-                                                settled[0].memory_bytes() + settled[1].memory_bytes());
+    note_memory(a.peak_memory() + b.peak_memory(), settled[0].memory_bytes() + settled[1].memory_bytes());
     return pick.best;
   }
 
@@ -396,7 +408,7 @@ struct ConnectionPathFinder::Impl {
       const auto d = directed.find(from, to, hops);
       r.processed = d.processed;
       r.searches = 1;
-      r.peak_working_memory_bytes = d.memory_bytes;
+      r.peak_working_memory_bytes = r.region_memory_bytes = d.memory_bytes;
       if (d.vertices.empty()) return r;
       r.vertices = d.vertices;
       finish(mesh, r, o, false);
@@ -409,9 +421,12 @@ struct ConnectionPathFinder::Impl {
     if (!top.found) return r;
     banned = {from, to};
     const bool levels = o.method != PathMethod::MinimalDistance;
+    // The MDF's meeting test keeps both sides' settled distances anyway: tracing the halves down
+    // them is free of new searches (the default); level fronts record them only with `confine`.
+    const bool tracing = o.confine || (!levels && !o.mdf_recursion);
     std::vector<VertexHandle> half[2];
-    const bool traced[2] = {o.confine && trace(0, levels, top.vertex, top.from_value, from, half[0]),
-                            o.confine && trace(1, levels, top.vertex, top.to_value, to, half[1])};
+    const bool traced[2] = {tracing && trace(0, levels, top.vertex, top.from_value, from, half[0]),
+                            tracing && trace(1, levels, top.vertex, top.to_value, to, half[1])};
     if (traced[0]) {
       r.vertices.assign(half[0].rbegin(), half[0].rend());  // from .. m
     } else {
@@ -439,93 +454,60 @@ struct ConnectionPathFinder::Impl {
     if (targets.empty()) return out;
     const bool distance = o.method == PathMethod::MinimalDistance;
 
-    // The source's front, once, until every target is processed (levels: to the end of that level).
-    Side& src = side(o.method, 0);
-    const size_t p0 = src.processed;
+    // One source front for all targets, grown only when a target is not processed yet, and kept
+    // between targets; it records the levels / distances of what it processes. Each path is then
+    // traced from its target down those values to the source: no front per target.
+    Side& src = side(o.method, 2);
     source_values.clear();
-    detail::FlatMap<char> pending;
-    for (VertexHandle t : targets) pending.insert(static_cast<uint32_t>(t.idx()), 0);
-    size_t left = pending.size();
     src.reset(from);
-    src.on_processed = [&](VertexHandle v, double d) {
-      source_values.insert(static_cast<uint32_t>(v.idx()), d);
-      if (char* p = pending.find(static_cast<uint32_t>(v.idx())); p && *p == 0) {
-        *p = 1;
-        --left;
-      }
-    };
-    while (left > 0 && src.advance()) {
-    }
-    if (!distance) src.advance();  // complete one more level: every vertex nearer than a target
-    src.on_processed = nullptr;
-    out[0].processed += src.processed - p0;
-    out[0].peak_working_memory_bytes = src.peak_memory() + source_values.memory_bytes();
-
+    src.on_processed = [&](VertexHandle v, double d) { source_values.insert(static_cast<uint32_t>(v.idx()), d); };
+    bool alive = true;
+    std::vector<VertexHandle> chain;
     for (size_t i = 0; i < targets.size(); ++i) {
       ConnectionPath& r = out[i];
       stats = &r;
       const VertexHandle t = targets[i];
+      const size_t p0 = src.processed;
+      const uint32_t key = static_cast<uint32_t>(t.idx());
+      while (alive && !source_values.contains(key)) alive = src.advance();
+      r.processed += src.processed - p0;
+      r.searches = src.processed > p0 ? 1 : 0;
+      r.peak_front_size = src.peak_front();
+      r.peak_front_memory_bytes = src.peak_memory();
+      note_memory(src.peak_memory(), source_values.memory_bytes());
       if (t == from || adjacent(mesh, from, t)) {
         r.vertices = t == from ? std::vector<VertexHandle>{from} : std::vector<VertexHandle>{from, t};
         finish(mesh, r, o, false);
         continue;
       }
-      const double* dt = source_values.find(static_cast<uint32_t>(t.idx()));
-      if (!dt) continue;  // not reached: another component
-      const Meeting mid = distance ? middle_by_distance(from, t, *dt) : middle_by_levels(o.method, from, t, *dt);
-      EF_CHECK(mid.found, "find_many: no middle vertex on a path the source front reached");
-      banned = {from, t};
-      r.vertices.push_back(from);
-      build(o.method, from, mid.vertex, 1, r.vertices);
-      build(o.method, mid.vertex, t, 1, r.vertices);
-      if (distance) r.length = mid.from_value + mid.to_value;
-      finish(mesh, r, o, distance);
-    }
-    return out;
-  }
-
-  // The target's front grows floor(D/2) levels; a vertex at that level whose source level is the
-  // rest of D is the middle (it exists: the shortest path's vertex at that level).
-  Meeting middle_by_levels(PathMethod m, VertexHandle s, VertexHandle t, double dt) {
-    Side& b = side(m, 1);
-    const size_t pb = b.processed;
-    const double half = std::floor(dt / 2);
-    MeetingPicker pick(s, t);
-    auto check = [&](VertexHandle v, double lb) {
-      if (lb != half) return;
-      if (const double* da = source_values.find(static_cast<uint32_t>(v.idx())); da && *da + lb == dt) {
-        pick.consider(v, *da, lb);
+      const double* dt = source_values.find(key);
+      if (!dt) continue;  // the source's component is exhausted without it: no path
+      const double length = *dt;
+      if (trace_in(source_values, !distance, t, length, from, chain)) {
+        r.vertices.assign(chain.rbegin(), chain.rend());
+        if (distance) r.length = length;
+        finish(mesh, r, o, distance);
+      } else {
+        // Only MDF ties (a vertex without a strictly nearer processed neighbour) get here.
+        src.on_processed = nullptr;
+        ConnectionPathOptions single_options = o;
+        single_options.directed = single_options.confine = false;
+        const ConnectionPath single = find(from, t, single_options);
+        src.on_processed = [&](VertexHandle v, double d) {
+          source_values.insert(static_cast<uint32_t>(v.idx()), d);
+        };
+        ConnectionPath merged = single;
+        merged.processed += r.processed;
+        merged.peak_front_size = std::max(r.peak_front_size, single.peak_front_size);
+        merged.peak_front_memory_bytes = std::max(r.peak_front_memory_bytes, single.peak_front_memory_bytes);
+        merged.region_memory_bytes = std::max(r.region_memory_bytes, single.region_memory_bytes);
+        merged.peak_working_memory_bytes = std::max(r.peak_working_memory_bytes,
+                                                    single.peak_working_memory_bytes + r.peak_working_memory_bytes);
+        r = std::move(merged);
       }
-    };
-    b.reset(t);
-    b.on_processed = check;
-    for (int level = 0; level < static_cast<int>(half) && b.advance(); ++level) {
     }
-    b.on_processed = nullptr;
-    b.for_each_front(check);
-    stats->processed += b.processed - pb;
-    stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes, b.peak_memory());
-    ++stats->searches;
-    return pick.best;
-  }
-
-  // The target's MDF grows to half the source distance; the settled vertex with the smallest sum
-  // of both distances is the middle.
-  Meeting middle_by_distance(VertexHandle s, VertexHandle t, double dt) {
-    Side& b = side(PathMethod::MinimalDistance, 1);
-    const size_t pb = b.processed;
-    MeetingPicker pick(s, t);
-    b.reset(t);
-    b.on_processed = [&](VertexHandle v, double d) {
-      if (const double* da = source_values.find(static_cast<uint32_t>(v.idx()))) pick.consider(v, *da, d);
-    };
-    while (b.radius < dt / 2 && b.advance()) {
-    }
-    b.on_processed = nullptr;
-    stats->processed += b.processed - pb;
-    stats->peak_working_memory_bytes = std::max(stats->peak_working_memory_bytes, b.peak_memory());
-    ++stats->searches;
-    return pick.best;
+    src.on_processed = nullptr;
+    return out;
   }
 };
 

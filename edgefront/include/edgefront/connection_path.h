@@ -51,6 +51,12 @@ struct ConnectionPathOptions {
   /// smaller MDF distance), so no recursive searches run. Edge-wise paths keep the exact hop
   /// count. Ignored with `directed`.
   bool confine = false;
+  /// MDF only: find the two halves of the path with the paper's recursion (two new fronts per half,
+  /// down to adjacent ends; working memory O(front) per level) instead of the default, which traces
+  /// them down the distances the two top-level fronts settled (each step to the neighbour with the
+  /// smallest distance plus edge length among those with a smaller distance; no further searches).
+  /// The length (meeting sum) is the same either way.
+  bool mdf_recursion = false;
   /// Polyline: at most this many corridor changes (flips of the path's side around a vertex)
   /// before the straightening stops (status stays Found; `polyline_converged` says whether it
   /// converged). > 0.
@@ -97,8 +103,17 @@ struct ConnectionPath {
   size_t processed = 0;
   /// Number of two-front searches (1 + recursive ones).
   size_t searches = 0;
-  /// Largest working memory of one front during the query (bytes, capacity).
+  /// Largest working memory during the query (bytes, capacity): the fronts of one search plus the
+  /// per-vertex values kept for the processed area (`region_memory_bytes`).
   size_t peak_working_memory_bytes = 0;
+  /// Largest front of one search (front elements: halfedges for MEF/MDF, vertices for the VF) and
+  /// the largest working memory of one front (bytes). These follow the front.
+  size_t peak_front_size = 0;
+  size_t peak_front_memory_bytes = 0;
+  /// Largest memory of the per-vertex values kept for the processed area (bytes): the MDF's
+  /// settled distances of both fronts (meeting test and tracing), the level fronts' values with
+  /// `confine`, find_many's source values, the directed search's tables. These follow the area.
+  size_t region_memory_bytes = 0;
 };
 
 /// A reusable path finder: keeps its fronts' buffers across queries. The mesh must outlive it and
@@ -115,11 +130,14 @@ class ConnectionPathFinder {
   /// \throws TopologyError when a front meets a non-manifold vertex.
   ConnectionPath find(VertexHandle from, VertexHandle to, const ConnectionPathOptions& options = {});
 
-  /// Paths from one source to many targets. The source's front runs once, as far as the farthest
-  /// target, and remembers its levels/distances over the area it covers (memory follows that
-  /// area); each target then grows only its own front to the middle of its path, and the halves
-  /// are found by the two-front recursion. Results in the order of `targets`; `processed` of the
-  /// first result includes the shared source front. `directed` and `confine` are ignored here.
+  /// Paths from one source to many targets. One source front serves all targets: it grows only
+  /// while the next target is not processed yet and is kept between targets (memory follows the
+  /// area it covers: it remembers the levels / distances it processed). Each path is traced from its
+  /// target down those values to the source (VF/MEF: one level lower per step, the exact hop
+  /// count; MDF: as the default halves of `find`), so no front runs per target. The MDF length is
+  /// the source front's distance at the target (one front, not a meeting sum). Results in the
+  /// order of `targets`; `processed` of a result counts the source front's growth it caused (plus
+  /// its polyline's directed search). `directed`, `confine` and `mdf_recursion` are ignored here.
   /// \throws InvalidInput as `find`.
   std::vector<ConnectionPath> find_many(VertexHandle from, const std::vector<VertexHandle>& targets,
                                         const ConnectionPathOptions& options = {});
