@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "edgefront/error.h"
@@ -367,6 +368,11 @@ TEST(ConnectionPath, ConfinementAndDirectionProcessFewerElementsOnTheSamePairs) 
         const ConnectionPath t = finder.find(vs[0], vs[1], {.method = m});
         EXPECT_EQ(t.vertices, c.vertices);
         EXPECT_EQ(t.processed, c.processed);
+        // Memory: the fronts stay small; the meeting test and the tracing remember every settled
+        // vertex of both fronts (key + distance).
+        EXPECT_EQ(t.region_memory_bytes, t.processed * (sizeof(uint32_t) + sizeof(double)));
+        EXPECT_GT(t.peak_front_size, 0u);
+        EXPECT_GE(t.peak_working_memory_bytes, t.region_memory_bytes + t.peak_front_memory_bytes);
       }
       // Confinement runs only the top-level search: never more work than with recursion.
       EXPECT_LE(c.processed, a.processed);

@@ -187,6 +187,10 @@ struct ConnectionPathFinder::Impl {
     }
   }
 
+  // The bytes of the values a map holds (key and value per vertex; the table's spare capacity,
+  // kept across queries, is not counted).
+  static size_t values_bytes(const detail::FlatMap<double>& m) { return m.size() * (sizeof(uint32_t) + sizeof(double)); }
+
   // Working memory: `fronts` bytes of fronts plus `region` bytes of per-vertex values at once.
   void note_memory(size_t fronts, size_t region) {
     stats->region_memory_bytes = std::max(stats->region_memory_bytes, region);
@@ -241,7 +245,7 @@ struct ConnectionPathFinder::Impl {
     }
     account(a, b, pa, pb);
     if (recording) {
-      note_memory(a.peak_memory() + b.peak_memory(), settled[0].memory_bytes() + settled[1].memory_bytes());
+      note_memory(a.peak_memory() + b.peak_memory(), values_bytes(settled[0]) + values_bytes(settled[1]));
     }
     return result;
   }
@@ -330,7 +334,7 @@ struct ConnectionPathFinder::Impl {
     a.on_processed = nullptr;
     b.on_processed = nullptr;
     account(a, b, pa, pb);
-    note_memory(a.peak_memory() + b.peak_memory(), settled[0].memory_bytes() + settled[1].memory_bytes());
+    note_memory(a.peak_memory() + b.peak_memory(), values_bytes(settled[0]) + values_bytes(settled[1]));
     return pick.best;
   }
 
@@ -474,7 +478,7 @@ struct ConnectionPathFinder::Impl {
       r.searches = src.processed > p0 ? 1 : 0;
       r.peak_front_size = src.peak_front();
       r.peak_front_memory_bytes = src.peak_memory();
-      note_memory(src.peak_memory(), source_values.memory_bytes());
+      note_memory(src.peak_memory(), values_bytes(source_values));
       if (t == from || adjacent(mesh, from, t)) {
         r.vertices = t == from ? std::vector<VertexHandle>{from} : std::vector<VertexHandle>{from, t};
         finish(mesh, r, o, false);

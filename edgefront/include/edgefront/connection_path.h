@@ -110,9 +110,10 @@ struct ConnectionPath {
   /// the largest working memory of one front (bytes). These follow the front.
   size_t peak_front_size = 0;
   size_t peak_front_memory_bytes = 0;
-  /// Largest memory of the per-vertex values kept for the processed area (bytes): the MDF's
+  /// Largest memory of the per-vertex values kept for the processed area, in bytes (the MDF's
   /// settled distances of both fronts (meeting test and tracing), the level fronts' values with
-  /// `confine`, find_many's source values, the directed search's tables. These follow the area.
+  /// `confine`, find_many's source values: 12 bytes per remembered vertex, without the hash table's
+  /// spare capacity; the directed search: its tables' capacity). These follow the area.
   size_t region_memory_bytes = 0;
 };
 
