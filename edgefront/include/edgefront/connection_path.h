@@ -9,9 +9,12 @@
 /// adjacent. With the Vertex Front or the Minimal Edge Front the path is an edge-wise shortest path
 /// (exactly the breadth-first hop count); with the Minimal Distance Front it is the vertex chain of
 /// an approximate geodesic, whose length is the sum of the two `d_start` at the top-level meeting
-/// vertex. Working memory follows the fronts (O(front) per recursion level), so the cost depends on
-/// the path, not on the mesh: when the vertices are not connected, the smaller component's front
-/// dies first and the answer is "no path".
+/// vertex; by default its halves are traced down the distances the two MDFs settled instead of
+/// recursing (`ConnectionPathOptions::mdf_recursion`). VF/MEF working memory follows the fronts
+/// (O(front) per recursion level); the MDF's meeting test and tracing also remember the settled
+/// distances (12 bytes per settled vertex, see `ConnectionPath::region_memory_bytes`). The cost
+/// depends on the path, not on the mesh: when the vertices are not connected, the smaller
+/// component's front dies first and the answer is "no path".
 
 #include <cstddef>
 #include <memory>
