@@ -51,6 +51,8 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
   check_range(o.min_flagged_faces >= 1, "min_flagged_faces must be >= 1");
   check_range(o.min_flagged_share >= 0 && o.min_flagged_share <= 1, "min_flagged_share must lie in [0, 1]");
   check_range(o.reference_cos >= -1 && o.reference_cos <= 1, "reference_cos must lie in [-1, 1]");
+  check_range(o.reference_side_weight == 0 || (o.reference_side_weight >= 1 && o.reference_side_weight <= 100),
+              "reference_side_weight must be 0 or lie in [1, 100]");
   if (o.restrict_to) {
     for (FaceHandle f : *o.restrict_to) {
       if (!edgefront::is_live(mesh, f)) {
@@ -109,7 +111,7 @@ class Detector {
     const Vec3& cf = center_[static_cast<size_t>(f.idx())];
     if (nf.sqrnorm() == 0) return false;  // degenerate: no orientation to judge
     ev = Evidence{EvidenceKind::Reference, f, FaceHandle()};
-    if (o_.reference && OpenMesh::dot(nf, o_.reference->nearest_normal(cf)) < o_.reference_cos) return true;
+    if (o_.reference && OpenMesh::dot(nf, reference_normal(*o_.reference, o_, cf, nf)) < o_.reference_cos) return true;
     const FaceHandle layer = far_layer(f, 1.0);
     if (layer.is_valid()) {
       // Two layers facing each other: a wall turned inside out. Two layers pointing the same
@@ -148,7 +150,7 @@ class Detector {
     const Vec3& nf = normal(f);
     if (nf.sqrnorm() == 0) return false;
     const Vec3& cf = center_[static_cast<size_t>(f.idx())];
-    if (o_.reference) return OpenMesh::dot(nf, o_.reference->nearest_normal(cf)) >= -o_.reference_cos;
+    if (o_.reference) return OpenMesh::dot(nf, reference_normal(*o_.reference, o_, cf, nf)) >= -o_.reference_cos;
     index_->radius_search(cf, radius_, near_);
     for (size_t k : near_) {
       const FaceHandle g = live_[k];
@@ -186,7 +188,7 @@ class Detector {
 
   /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
   /// -1: behind) that is far along the surface, or an invalid handle.
-  FaceHandle far_layer(FaceHandle f, double side) {
+  FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false) {
     const Vec3& nf = normal(f);
     const Vec3& cf = center_[static_cast<size_t>(f.idx())];
     std::array<VertexHandle, 3> fv;
@@ -205,8 +207,9 @@ class Detector {
       const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
       const double dist = d.norm();
       const Vec3& ng = normal(g);
+      const double cos_ng = OpenMesh::dot(nf, ng);
       if (dist > 0 && dist <= radius_ && side * OpenMesh::dot(nf, d) >= o_.facing_cos * dist &&
-          std::abs(OpenMesh::dot(nf, ng)) >= o_.parallel_cos) {
+          (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.parallel_cos) {
         layers_.emplace_back(dist, g);
       }
     }
@@ -343,6 +346,11 @@ std::pair<std::vector<std::vector<HalfedgeHandle>>, std::vector<bool>> border_lo
 }
 
 }  // namespace
+
+Vec3 reference_normal(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal) {
+  return options.reference_side_weight > 0 ? reference.side_normal(centre, normal, 16, options.reference_side_weight)
+                                           : reference.nearest_normal(centre);
+}
 
 DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   detail::check_mesh(mesh, "twist::detect");
@@ -543,6 +551,18 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     return a.faces.size() > b.faces.size();
   });
   return result;
+}
+
+size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options) {
+  detail::check_mesh(mesh, "twist::count_same_orientation_layers");
+  validate_options(mesh, options);
+  Detector det(mesh, options);
+  size_t count = 0;
+  for (FaceHandle f : det.live()) {
+    if (det.normal(f).sqrnorm() == 0) continue;
+    if (det.far_layer(f, 1.0, true).is_valid() || det.far_layer(f, -1.0, true).is_valid()) ++count;
+  }
+  return count;
 }
 
 std::vector<TwistRegion> detect(const Mesh& mesh, const DetectOptions& options) {

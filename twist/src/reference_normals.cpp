@@ -1,6 +1,8 @@
 #include "twist/reference_normals.h"
 
 #include <cmath>
+#include <limits>
+#include <vector>
 #include <string>
 
 #include "detail/geometry.h"
@@ -49,6 +51,30 @@ ReferenceNormals& ReferenceNormals::operator=(ReferenceNormals&&) noexcept = def
 size_t ReferenceNormals::nearest(const Vec3& p) const { return impl_->index.nearest(p).index; }
 Vec3 ReferenceNormals::nearest_normal(const Vec3& p) const { return impl_->cloud.normals[nearest(p)]; }
 const edgefront::PointCloud& ReferenceNormals::cloud() const { return impl_->cloud; }
+
+Vec3 ReferenceNormals::side_normal(const Vec3& centre, const Vec3& normal, size_t candidates, double normal_weight) const {
+  if (candidates == 0) throw InvalidInput("reference normals: side_normal needs at least one candidate");
+  if (!(normal_weight >= 1) || !std::isfinite(normal_weight)) {
+    throw InvalidInput("reference normals: side_normal's normal_weight must be finite and >= 1");
+  }
+  if (normal.sqrnorm() == 0) return nearest_normal(centre);
+  thread_local std::vector<edgefront::PointIndex::Neighbor> near;
+  impl_->index.k_nearest(centre, candidates, near);
+  const double w2 = normal_weight * normal_weight;
+  size_t best = near.front().index;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (const auto& nb : near) {
+    const size_t i = nb.index;
+    const Vec3 d = impl_->cloud.points[i] - centre;
+    const double along = OpenMesh::dot(d, normal);
+    const double cost = d.sqrnorm() + (w2 - 1) * along * along;
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = i;
+    }
+  }
+  return impl_->cloud.normals[best];
+}
 
 double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {
   double total = 0;

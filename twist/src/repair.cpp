@@ -1,6 +1,7 @@
 #include "twist/repair.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <functional>
@@ -73,6 +74,64 @@ void remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces) {
   for (VertexHandle v : touched) {
     if (edgefront::is_live(mesh, v)) detail::split_fans(mesh, v);
   }
+}
+
+/// Replaces the faces of `region` by one fan per border loop (a new vertex at the loop's mean
+/// position joined to every loop edge), wound like the faces outside: the region is cut out and
+/// re-grown as a patch consistent with its surroundings, which the refinement loop then fits to
+/// the samples, instead of leaving a hole. Loops entirely on the mesh border stay border; loops
+/// that are not simple (a vertex twice, or in two loops) or have fewer than 3 edges make the
+/// whole region fall back to plain removal (a hole). Returns the number of fan faces added.
+size_t regrow_region(Mesh& mesh, const TwistRegion& region) {
+  std::vector<const std::vector<HalfedgeHandle>*> loops;
+  std::unordered_set<int> loop_vertex;
+  bool simple = true;
+  for (size_t i = 0; i < region.border.size() && simple; ++i) {
+    if (region.border_on_mesh_border[i]) continue;
+    const auto& loop = region.border[i];
+    simple = loop.size() >= 3;
+    for (HalfedgeHandle h : loop) simple = simple && loop_vertex.insert(mesh.from_vertex_handle(h).idx()).second;
+    loops.push_back(&loop);
+  }
+  if (!simple || loops.empty()) {
+    remove_faces(mesh, region.faces);
+    return 0;
+  }
+  std::vector<VertexHandle> region_vertices;
+  for (FaceHandle f : region.faces) {
+    for (VertexHandle v : mesh.fv_range(f)) region_vertices.push_back(v);
+  }
+  for (FaceHandle f : region.faces) {
+    if (edgefront::is_live(mesh, f)) mesh.delete_face(f, false);
+  }
+  size_t added = 0;
+  for (const auto* loop : loops) {
+    std::vector<std::array<VertexHandle, 2>> edges;  // hole edges, wound like the faces outside
+    Vec3 centre(0, 0, 0);
+    for (HalfedgeHandle h : *loop) {
+      edges.push_back({mesh.to_vertex_handle(h), mesh.from_vertex_handle(h)});
+      centre += mesh.point(mesh.from_vertex_handle(h));
+    }
+    centre /= static_cast<double>(loop->size());
+    if (edges.size() == 3) {
+      const FaceHandle f = mesh.add_face(edges[0][0], edges[2][0], edges[1][0]);
+      EF_CHECK(f.is_valid(), "twist: OpenMesh refused the face closing a 3-edge hole");
+      ++added;
+      continue;
+    }
+    const VertexHandle c = mesh.add_vertex(centre);
+    for (const auto& e : edges) {
+      const FaceHandle f = mesh.add_face(e[0], e[1], c);
+      EF_CHECK(f.is_valid(), "twist: OpenMesh refused a face of a re-grown fan");
+      mesh.set_normal(f, mesh.calc_face_normal(f));
+      ++added;
+    }
+  }
+  // Interior vertices of the region are left without faces now.
+  for (VertexHandle v : region_vertices) {
+    if (!mesh.status(v).deleted() && mesh.is_isolated(v)) mesh.delete_vertex(v, false);
+  }
+  return added;
 }
 
 /// Cuts `region` off along its border, grows two fronts alternately from both sides of the cut,
@@ -149,7 +208,11 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
   rec.other_side_faces = other.order.size();
   rec.faces_visited = a.order.size() + b.order.size();
   if (exhausted->order.size() < o.min_component_faces) {
-    remove_faces(mesh, exhausted->order);
+    if (exhausted == &a && o.regrow_cut_outs) {
+      regrow_region(mesh, region);
+    } else {
+      remove_faces(mesh, exhausted->order);
+    }
     rec.removed = true;
     return rec;
   }
@@ -201,7 +264,7 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
     group_volume[acc.group] += vol;
     if (o.detect.reference) {
       const Vec3 n = detail::unit_normal(p);
-      acc.vote += detail::area(p) * OpenMesh::dot(n, o.detect.reference->nearest_normal(detail::centroid(p)));
+      acc.vote += detail::area(p) * OpenMesh::dot(n, reference_normal(*o.detect.reference, o.detect, detail::centroid(p), n));
     }
   }
   for (HalfedgeHandle h : mesh.halfedges()) {
@@ -270,7 +333,11 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       for (size_t i = 0; i < region.border.size(); ++i) has_cut = has_cut || !region.border_on_mesh_border[i];
       if (!has_cut) continue;  // a whole component: the global orientation decides its side
       if (cut_out && cut_out(mesh, region)) {
-        remove_faces(mesh, region.faces);
+        if (o.regrow_cut_outs) {
+          regrow_region(mesh, region);
+        } else {
+          remove_faces(mesh, region.faces);
+        }
         ++report.regions_cut_out;
         report.faces_removed += region.faces.size();
         ++report.repairs;

@@ -101,6 +101,10 @@ struct DetectOptions {
   const ReferenceNormals* reference = nullptr;
   /// A face disagrees with its reference normal when n·n_ref < this. In [-1, 1].
   double reference_cos = -0.2;
+  /// Which reference point speaks for a face: 0 = the nearest to its centroid; >= 1 = the one of
+  /// the face's own side (`ReferenceNormals::side_normal` with this normal weight), which matters
+  /// on walls thinner than the mesh's edges. 0 or in [1, 100].
+  double reference_side_weight = 4.0;
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
   /// `audit_offset`) are tested first; faces within `grow_levels` of a flagged face are then
   /// tested too, so a twisted region is found whole. Invalid or deleted handles throw.
@@ -128,6 +132,17 @@ struct DetectResult {
 ///         options out of range (the message names the option).
 /// \throws edgefront::TopologyError when the fronts meet a non-manifold vertex.
 DetectResult detect_regions(const edgefront::Mesh& mesh, const DetectOptions& options = {});
+
+/// The reference normal that speaks for a face with this centre and unit normal under `options`
+/// (see `DetectOptions::reference_side_weight`).
+edgefront::Vec3 reference_normal(const ReferenceNormals& reference, const DetectOptions& options,
+                                 const edgefront::Vec3& centre, const edgefront::Vec3& normal);
+
+/// Faces that have a partner close in space (centroids within `radius`, in front or behind:
+/// |n_f·d| >= `facing_cos`·|d|), far along the surface (as for facing layers) and with the same
+/// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
+/// Uses the geometry only (`reference`, `restrict_to` are ignored). Throws as `detect`.
+size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {});
 
 /// `detect_regions(mesh, options).regions`.
 std::vector<TwistRegion> detect(const edgefront::Mesh& mesh, const DetectOptions& options = {});

@@ -26,6 +26,15 @@ class ReferenceNormals {
   size_t nearest(const edgefront::Vec3& p) const;
   /// Unit normal of the reference point nearest to `p`.
   edgefront::Vec3 nearest_normal(const edgefront::Vec3& p) const;
+  /// Unit normal of the reference point that stands for the surface a face at `centre` with unit
+  /// normal `normal` lies on: among the `candidates` nearest points, the one with the smallest
+  /// distance when offsets along `normal` count `normal_weight` times (tangential^2 +
+  /// (normal_weight * along)^2). On a wall thinner than the mesh's edges the plainly nearest
+  /// point is often on the other side of the wall; the point of the face's own side lies in its
+  /// plane. A zero `normal` gives `nearest_normal(centre)`.
+  /// \throws edgefront::InvalidInput when `candidates` is 0 or `normal_weight` < 1 or not finite.
+  edgefront::Vec3 side_normal(const edgefront::Vec3& centre, const edgefront::Vec3& normal, size_t candidates = 16,
+                              double normal_weight = 4.0) const;
   const edgefront::PointCloud& cloud() const;
 
  private:

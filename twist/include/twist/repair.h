@@ -30,6 +30,10 @@ struct RepairOptions {
   /// A side smaller than this (in faces) is never left as its own component: it is removed
   /// instead of flipped. >= 1.
   size_t min_component_faces = 8;
+  /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
+  /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
+  /// hole; falls back to a hole when a loop is not simple.
+  bool regrow_cut_outs = true;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
