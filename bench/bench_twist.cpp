@@ -2,7 +2,9 @@
 /// without the repair operation, and the standalone repair on the deterministic twisted meshes.
 ///
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
-///               [--thickness t] [--side-weight W] [--max-retwists K] [--no-regrow] [--no-normals]
+///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
+///               [--min-flagged K] [--global-index] [--no-normals]
+///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
 ///
 /// For every shape and seed: sample P oriented points (shapes::sample, exact normals), run GCS
 /// from the box start to N vertices with and without the twist operation, and report the
@@ -43,11 +45,13 @@ struct Case {
 
 struct Consistency {
   double absolute = 0, per_component = 0;
+  double judged = 0, undecided = 0;  ///< by sides (ReferenceNormals::judge): per component among decided area; undecided share
 };
 
 Consistency consistency(const Mesh& mesh, const twist::ReferenceNormals& ref) {
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
-  std::vector<double> agree(labels.count, 0), total(labels.count, 0);
+  std::vector<double> agree(labels.count, 0), total(labels.count, 0), j_agree(labels.count, 0), j_total(labels.count, 0);
+  double undecided = 0;
   for (edgefront::FaceHandle f : mesh.faces()) {
     const auto n = mesh.calc_face_normal(f);
     const double a = mesh.calc_face_area(f);
@@ -55,6 +59,18 @@ Consistency consistency(const Mesh& mesh, const twist::ReferenceNormals& ref) {
     const int c = labels.vertex_component[static_cast<size_t>((*mesh.cfv_begin(f)).idx())];
     total[static_cast<size_t>(c)] += a;
     if (OpenMesh::dot(n, ref.nearest_normal(mesh.calc_face_centroid(f))) > 0) agree[static_cast<size_t>(c)] += a;
+    const int vote = ref.judge(mesh.calc_face_centroid(f), n);
+    if (vote == 0) {
+      undecided += a;
+    } else {
+      j_total[static_cast<size_t>(c)] += a;
+      if (vote > 0) j_agree[static_cast<size_t>(c)] += a;
+    }
+  }
+  double JA = 0, JT = 0;
+  for (size_t c = 0; c < labels.count; ++c) {
+    JA += std::max(j_agree[c], j_total[c] - j_agree[c]);
+    JT += j_total[c];
   }
   double A = 0, B = 0, T = 0;
   for (size_t c = 0; c < labels.count; ++c) {
@@ -62,7 +78,62 @@ Consistency consistency(const Mesh& mesh, const twist::ReferenceNormals& ref) {
     B += std::max(agree[c], total[c] - agree[c]);
     T += total[c];
   }
-  return {T > 0 ? A / T : 0, T > 0 ? B / T : 0};
+  return {T > 0 ? A / T : 0, T > 0 ? B / T : 0, JT > 0 ? JA / JT : 0, T > 0 ? undecided / T : 0};
+}
+
+/// Time per incremental detection call vs mesh size (issue 7, Speed): a correct vault shell
+/// mesh (t/R = 0.1) at growing resolution; each call gets 64 "changed" faces (a breadth-first
+/// patch around a different face) plus the 64-face audit, once with a k-d tree over all face
+/// centroids per call (no face grid) and once with a face grid kept across calls.
+void detect_scaling() {
+  std::printf("| arch segments | faces | k-d tree per call: ms | faces tested | face grid per call: ms | faces tested | ratio |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (int arch : {16, 32, 64, 128, 256, 512}) {
+    const Mesh mesh = edgefront::shapes::vault_shell(arch, 1.0, 0.1, 2.0);
+    const size_t nf = mesh.n_faces();
+    std::vector<std::vector<edgefront::FaceHandle>> patches;
+    for (size_t call = 0; call < 20; ++call) {
+      std::vector<edgefront::FaceHandle> patch{edgefront::FaceHandle(static_cast<int>((call * 7919 + nf / 3) % nf))};
+      std::vector<char> seen(nf, 0);
+      seen[static_cast<size_t>(patch[0].idx())] = 1;
+      for (size_t q = 0; q < patch.size() && patch.size() < 64; ++q) {
+        for (auto g : mesh.ff_range(patch[q])) {
+          if (!seen[static_cast<size_t>(g.idx())] && patch.size() < 64) {
+            seen[static_cast<size_t>(g.idx())] = 1;
+            patch.push_back(g);
+          }
+        }
+      }
+      std::sort(patch.begin(), patch.end(), [](auto a, auto b) { return a.idx() < b.idx(); });
+      patches.push_back(std::move(patch));
+    }
+    double mean_edge = 0;
+    for (auto e : mesh.edges()) mean_edge += mesh.calc_edge_length(e);
+    mean_edge /= static_cast<double>(mesh.n_edges());
+    twist::FaceGrid grid;
+    grid.rebuild(mesh, 2 * mean_edge);
+    double ms[2] = {0, 0};
+    size_t tested[2] = {0, 0};
+    for (int local = 0; local < 2; ++local) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (size_t call = 0; call < patches.size(); ++call) {
+        twist::DetectOptions o;
+        o.restrict_to = patches[call];
+        o.audit_offset = call * 7919;
+        if (local) {
+          grid.update(mesh, patches[call]);
+          o.face_grid = &grid;
+          o.mean_edge_length = mean_edge;
+        }
+        tested[local] += twist::detect_regions(mesh, o).stats.faces_tested;
+      }
+      ms[local] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+                  static_cast<double>(patches.size());
+    }
+    std::printf("| %d | %zu | %.3f | %zu | %.3f | %zu | %.1fx |\n", arch, nf, ms[0], tested[0] / patches.size(), ms[1],
+                tested[1] / patches.size(), ms[0] / ms[1]);
+    std::fflush(stdout);
+  }
 }
 
 std::vector<std::string> split(const std::string& s) {
@@ -75,9 +146,9 @@ std::vector<std::string> split(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2;
-  double side_weight = 4.0, only_thickness = 0;
-  bool normals = true, regrow = true;
+  size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
+  double side_weight = 4.0, only_thickness = 0, margin = 1.5;
+  bool normals = true, regrow = false, local = true;
   std::string only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -94,10 +165,17 @@ int main(int argc, char** argv) {
     else if (a == "--thickness") only_thickness = std::stod(next());
     else if (a == "--side-weight") side_weight = std::stod(next());
     else if (a == "--max-retwists") max_retwists = std::stoul(next());
-    else if (a == "--no-regrow") regrow = false;
+    else if (a == "--regrow") regrow = true;
+    else if (a == "--margin") margin = std::stod(next());
+    else if (a == "--min-flagged") min_flagged = std::stoul(next());
+    else if (a == "--global-index") local = false;
+    else if (a == "--detect-scaling") {
+      detect_scaling();
+      return 0;
+    }
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
-                   " [--side-weight W] [--max-retwists K] [--no-regrow] [--no-normals]\n";
+                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--no-normals] | --detect-scaling\n";
       return 2;
     }
   }
@@ -115,11 +193,11 @@ int main(int argc, char** argv) {
     cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.thickness != only_thickness; }),
                 cases.end());
   }
-  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, max re-twists %zu, %s\n\n",
+  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s\n\n",
               vertices, points, normals ? " with exact normals" : " without normals", first_seed, first_seed + seeds - 1,
-              side_weight, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes");
-  std::printf("| shape | seed | no repair: abs / comp | eval comp | same-orient. faces | borders | with repair: abs / comp | eval comp | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes");
+  std::printf("| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     edgefront::shapes::SampleOptions dense;
     dense.points = 200000;
@@ -148,6 +226,9 @@ int main(int argc, char** argv) {
         if (with) {
           gcs::TwistOperationOptions to;
           to.repair.detect.reference_side_weight = side_weight;
+          to.repair.detect.reference_margin = margin;
+          if (min_flagged > 0) to.repair.detect.min_flagged_faces = min_flagged;
+          to.local = local;
           to.max_retwists = max_retwists;
           to.repair.regrow_cut_outs = regrow;
           op = std::make_shared<gcs::TwistOperation>(to);
@@ -165,9 +246,10 @@ int main(int argc, char** argv) {
           share = r.seconds_total > 0 ? r.seconds_operations / r.seconds_total : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %zu | %zu | %.4f / %.4f | %.4f | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n",
-                  c.label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].per_component, left[0], borders[0],
-                  cons[1].absolute, cons[1].per_component, eval[1].per_component, left[1], borders[1], components[1],
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n",
+                  c.label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].per_component, cons[0].judged,
+                  cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, eval[1].per_component,
+                  cons[1].judged, cons[1].undecided, left[1], borders[1], components[1],
                   stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share);
       std::fflush(stdout);
     }

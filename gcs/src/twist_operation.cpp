@@ -27,7 +27,8 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   if (context.live_vertices < options_.min_vertices && !context.final_call) return result;
   if (changed.faces.empty() && !context.final_call) return result;
   const twist::RepairReport r =
-      context.final_call ? repairer_->finish(mesh) : repairer_->repair_changed(mesh, changed.faces);
+      context.final_call ? repairer_->finish(mesh)
+                         : repairer_->repair_changed(mesh, changed.faces, options_.local ? context.mean_edge_length : 0.0);
   stats_.regions_found += r.regions_found;
   stats_.repairs += r.repairs;
   stats_.regions_cut_out += r.regions_cut_out;

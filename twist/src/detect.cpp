@@ -36,6 +36,83 @@ const char* to_string(EvidenceKind kind) {
 }
 
 namespace {
+std::uint64_t cell_key(const Vec3& p, double cell) {
+  std::uint64_t key = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto c = static_cast<std::int64_t>(std::floor(p[i] / cell));
+    key = (key << 21) | (static_cast<std::uint64_t>(c) & 0x1FFFFFu);
+  }
+  return key;
+}
+}  // namespace
+
+void FaceGrid::insert(const Mesh& mesh, FaceHandle f) {
+  if (!edgefront::is_live(mesh, f)) return;
+  const std::uint64_t key = cell_key(detail::centroid(detail::face_points(mesh, f)), cell_);
+  const auto [it, fresh] = key_of_.emplace(f.idx(), key);
+  if (!fresh) {
+    if (it->second == key) return;
+    auto& old = cells_[it->second];
+    const auto pos = std::find(old.begin(), old.end(), f.idx());
+    if (pos != old.end()) {
+      *pos = old.back();
+      old.pop_back();
+      --size_;
+    }
+    it->second = key;
+  }
+  cells_[key].push_back(f.idx());
+  ++size_;
+}
+
+void FaceGrid::update(const Mesh& mesh, const std::vector<FaceHandle>& faces) {
+  EF_CHECK(cell_ > 0, "FaceGrid::update before rebuild");
+  for (FaceHandle f : faces) insert(mesh, f);
+}
+
+void FaceGrid::update_new(const Mesh& mesh) {
+  EF_CHECK(cell_ > 0, "FaceGrid::update_new before rebuild");
+  for (size_t i = seen_faces_; i < mesh.n_faces(); ++i) insert(mesh, FaceHandle(static_cast<int>(i)));
+  seen_faces_ = mesh.n_faces();
+}
+
+void FaceGrid::rebuild(const Mesh& mesh, double cell) {
+  if (!(cell > 0) || !std::isfinite(cell)) throw InvalidInput("twist::FaceGrid: the cell size must be finite and > 0");
+  cell_ = cell;
+  cells_.clear();
+  key_of_.clear();
+  size_ = 0;
+  ++rebuilds_;
+  for (FaceHandle f : mesh.faces()) insert(mesh, f);
+  seen_faces_ = mesh.n_faces();
+}
+
+void FaceGrid::query(const Mesh& mesh, const Vec3& p, double radius, std::vector<FaceHandle>& out) const {
+  out.clear();
+  if (!(cell_ > 0)) return;
+  const auto lo = [&](int i) { return static_cast<std::int64_t>(std::floor((p[i] - radius) / cell_)); };
+  const auto hi = [&](int i) { return static_cast<std::int64_t>(std::floor((p[i] + radius) / cell_)); };
+  const double r2 = radius * radius;
+  for (std::int64_t x = lo(0); x <= hi(0); ++x) {
+    for (std::int64_t y = lo(1); y <= hi(1); ++y) {
+      for (std::int64_t z = lo(2); z <= hi(2); ++z) {
+        const std::uint64_t key = ((static_cast<std::uint64_t>(x) & 0x1FFFFFu) << 42) |
+                                  ((static_cast<std::uint64_t>(y) & 0x1FFFFFu) << 21) | (static_cast<std::uint64_t>(z) & 0x1FFFFFu);
+        const auto it = cells_.find(key);
+        if (it == cells_.end()) continue;
+        for (int fi : it->second) {
+          const FaceHandle f(fi);
+          if (!edgefront::is_live(mesh, f)) continue;
+          if ((detail::centroid(detail::face_points(mesh, f)) - p).sqrnorm() < r2) out.push_back(f);
+        }
+      }
+    }
+  }
+  std::sort(out.begin(), out.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+namespace {
 
 void check_range(bool ok, const std::string& what) {
   if (!ok) throw InvalidInput("twist::detect: option " + what);
@@ -53,6 +130,8 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
   check_range(o.reference_cos >= -1 && o.reference_cos <= 1, "reference_cos must lie in [-1, 1]");
   check_range(o.reference_side_weight == 0 || (o.reference_side_weight >= 1 && o.reference_side_weight <= 100),
               "reference_side_weight must be 0 or lie in [1, 100]");
+  check_range(std::isfinite(o.mean_edge_length) && o.mean_edge_length >= 0, "mean_edge_length must be finite and >= 0");
+  check_range(o.reference_margin >= 1 && o.reference_margin <= 100, "reference_margin must lie in [1, 100]");
   if (o.restrict_to) {
     for (FaceHandle f : *o.restrict_to) {
       if (!edgefront::is_live(mesh, f)) {
@@ -66,25 +145,17 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
 /// Per-face geometry and the evidence tests.
 class Detector {
  public:
-  Detector(const Mesh& mesh, const DetectOptions& o) : mesh_(mesh), o_(o), mdf_(mesh) {
-    const size_t nf = mesh.n_faces();
-    normal_.assign(nf, Vec3(0, 0, 0));
-    center_.assign(nf, Vec3(0, 0, 0));
-    longest_.assign(nf, 0.0);
-    std::vector<Vec3> centers;
-    for (FaceHandle f : mesh.faces()) {
-      const auto p = detail::face_points(mesh, f);
-      normal_[static_cast<size_t>(f.idx())] = detail::unit_normal(p);
-      center_[static_cast<size_t>(f.idx())] = detail::centroid(p);
-      double l = 0;
-      for (size_t i = 0; i < 3; ++i) l = std::max(l, (p[i] - p[(i + 1) % 3]).norm());
-      longest_[static_cast<size_t>(f.idx())] = l;
-      max_edge_ = std::max(max_edge_, l);
-      live_.push_back(f);
-      centers.push_back(center_[static_cast<size_t>(f.idx())]);
+  Detector(const Mesh& mesh, const DetectOptions& o) : mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
+    if (!grid_) {
+      // Full mode (or no incremental index given): a k-d tree over every live face's centroid.
+      std::vector<Vec3> centers;
+      for (FaceHandle f : mesh.faces()) {
+        live_.push_back(f);
+        centers.push_back(geo(f).center);
+      }
+      index_ = std::make_unique<edgefront::PointIndex>(std::move(centers));
     }
-    index_ = std::make_unique<edgefront::PointIndex>(std::move(centers));
-    mean_edge_ = detail::mean_edge_length(mesh);
+    mean_edge_ = o.mean_edge_length > 0 ? o.mean_edge_length : detail::mean_edge_length(mesh);
     if (!(mean_edge_ > 0)) throw InvalidInput("twist::detect: every edge of the mesh has zero length");
     radius_ = o.radius > 0 ? o.radius : 2.0 * mean_edge_;
     mdf_.set_settled_callback([this](VertexHandle v, double d, const Vec3&) {
@@ -100,24 +171,56 @@ class Detector {
     });
   }
 
-  const std::vector<FaceHandle>& live() const { return live_; }
-  const Vec3& normal(FaceHandle f) const { return normal_[static_cast<size_t>(f.idx())]; }
+  struct FaceGeo {
+    Vec3 normal, center;
+    double longest = 0;
+    int vote = 2;  ///< the reference's verdict (`reference_vote`), 2 until asked
+  };
+  /// The reference's verdict on f, asked once per face and detection.
+  int vote(FaceHandle f) {
+    geo(f);
+    FaceGeo& g = geo_.at(f.idx());
+    if (g.vote == 2) g.vote = reference_vote(*o_.reference, o_, g.center, g.normal);
+    return g.vote;
+  }
+  /// Geometry of a face, computed on first use (only the faces a detection looks at).
+  const FaceGeo& geo(FaceHandle f) {
+    const auto it = geo_.find(f.idx());
+    if (it != geo_.end()) return it->second;
+    const auto p = detail::face_points(mesh_, f);
+    FaceGeo g{detail::unit_normal(p), detail::centroid(p), 0.0};
+    for (size_t i = 0; i < 3; ++i) g.longest = std::max(g.longest, (p[i] - p[(i + 1) % 3]).norm());
+    return geo_.emplace(f.idx(), g).first->second;
+  }
+  const Vec3& normal(FaceHandle f) { return geo(f).normal; }
+  const Vec3& center(FaceHandle f) { return geo(f).center; }
+
+  /// Live faces whose centroid lies within `radius` of `p`, in increasing index order.
+  void near_faces(const Vec3& p, double radius, std::vector<FaceHandle>& out) {
+    out.clear();
+    if (grid_) {
+      grid_->query(mesh_, p, radius, out);
+      return;
+    }
+    index_->radius_search(p, radius, near_);
+    for (size_t k : near_) out.push_back(live_[k]);
+  }
 
   /// Evaluates the evidence of one face; returns true and fills `ev` when it is flagged.
   bool test(FaceHandle f, Evidence& ev) {
     ++stats.faces_tested;
     tested_.emplace(f.idx(), 1);
-    const Vec3& nf = normal(f);
-    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
+    const Vec3 nf = normal(f);
+    const Vec3 cf = center(f);
     if (nf.sqrnorm() == 0) return false;  // degenerate: no orientation to judge
     ev = Evidence{EvidenceKind::Reference, f, FaceHandle()};
-    if (o_.reference && OpenMesh::dot(nf, reference_normal(*o_.reference, o_, cf, nf)) < o_.reference_cos) return true;
+    if (o_.reference && vote(f) < 0) return true;
     const FaceHandle layer = far_layer(f, 1.0);
     if (layer.is_valid()) {
       // Two layers facing each other: a wall turned inside out. Two layers pointing the same
       // way: f points into the other's back, unless f itself sits back to back with a layer of
       // its own wall, which makes the layer in front a stray (a fold band left over the face).
-      const Vec3 d = center_[static_cast<size_t>(layer.idx())] - cf;
+      const Vec3 d = center(layer) - cf;
       const bool mutual = OpenMesh::dot(normal(layer), d) < 0;
       if (mutual || !confirmed(f)) {
         ev = Evidence{EvidenceKind::FacingLayer, f, layer};
@@ -147,15 +250,14 @@ class Detector {
   /// reference) a layer with the opposite normal lies right behind it within the radius (back to
   /// back, as the two sides of a thin wall; near or far along the surface).
   bool confirmed(FaceHandle f) {
-    const Vec3& nf = normal(f);
+    const Vec3 nf = normal(f);
     if (nf.sqrnorm() == 0) return false;
-    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
-    if (o_.reference) return OpenMesh::dot(nf, reference_normal(*o_.reference, o_, cf, nf)) >= -o_.reference_cos;
-    index_->radius_search(cf, radius_, near_);
-    for (size_t k : near_) {
-      const FaceHandle g = live_[k];
+    const Vec3 cf = center(f);
+    if (o_.reference) return vote(f) > 0;
+    near_faces(cf, radius_, near_faces_);
+    for (FaceHandle g : near_faces_) {
       if (g == f) continue;
-      const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
+      const Vec3 d = center(g) - cf;
       const double dist = d.norm();
       if (dist > 0 && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.parallel_cos &&
           !shares_vertex(f, g)) {
@@ -189,24 +291,23 @@ class Detector {
   /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
   /// -1: behind) that is far along the surface, or an invalid handle.
   FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false) {
-    const Vec3& nf = normal(f);
-    const Vec3& cf = center_[static_cast<size_t>(f.idx())];
+    const Vec3 nf = normal(f);
+    const Vec3 cf = center(f);
     std::array<VertexHandle, 3> fv;
     {
       int i = 0;
       for (VertexHandle v : mesh_.fv_range(f)) fv[static_cast<size_t>(i++)] = v;
     }
-    index_->radius_search(cf, radius_, near_);
+    near_faces(cf, radius_, near_faces_);
     layers_.clear();
-    for (size_t k : near_) {
-      const FaceHandle g = live_[k];
+    for (FaceHandle g : near_faces_) {
       if (g == f) continue;
       bool shares = false;
       for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
       if (shares) continue;
-      const Vec3 d = center_[static_cast<size_t>(g.idx())] - cf;
+      const Vec3 d = center(g) - cf;
       const double dist = d.norm();
-      const Vec3& ng = normal(g);
+      const Vec3 ng = normal(g);
       const double cos_ng = OpenMesh::dot(nf, ng);
       if (dist > 0 && dist <= radius_ && side * OpenMesh::dot(nf, d) >= o_.facing_cos * dist &&
           (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.parallel_cos) {
@@ -246,9 +347,9 @@ class Detector {
   /// face finds every pair (in incremental mode, pairs with a longer untested face can be missed).
   void scan_intersections(FaceHandle f) {
     if (!scanned_.emplace(f.idx(), 1).second) return;
-    const size_t fi = static_cast<size_t>(f.idx());
-    const double lf = longest_[fi];
-    index_->radius_search(center_[fi], 2 * lf, si_near_);
+    const double lf = geo(f).longest;
+    const Vec3 cf = center(f);
+    near_faces(cf, 2 * lf, si_near_);
     std::array<VertexHandle, 3> fv;
     {
       int i = 0;
@@ -256,11 +357,11 @@ class Detector {
     }
     std::array<Vec3, 3> pf;
     bool have_pf = false;
-    for (size_t k : si_near_) {
-      const FaceHandle g = live_[k];
-      const size_t gi = static_cast<size_t>(g.idx());
-      if (g == f || longest_[gi] > lf || (longest_[gi] == lf && g.idx() < f.idx())) continue;
-      if ((center_[gi] - center_[fi]).norm() > lf + longest_[gi]) continue;
+    for (FaceHandle g : si_near_) {
+      if (g == f) continue;
+      const double lg = geo(g).longest;
+      if (lg > lf || (lg == lf && g.idx() < f.idx())) continue;
+      if ((center(g) - cf).norm() > lf + lg) continue;
       bool shares = false;
       for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
       if (shares) continue;
@@ -281,15 +382,15 @@ class Detector {
   std::unordered_map<int, int> si_partner_;
   std::unordered_map<int, char> ambiguous_, tested_;
   std::unordered_map<int, char> scanned_;
-  std::vector<size_t> si_near_;
+  std::vector<FaceHandle> si_near_, near_faces_;
   const Mesh& mesh_;
   const DetectOptions& o_;
   edgefront::MinimalDistanceFront mdf_;
-  std::vector<Vec3> normal_, center_;
-  std::vector<double> longest_;
+  const FaceGrid* grid_;
+  std::unordered_map<int, FaceGeo> geo_;
   std::vector<FaceHandle> live_;
   std::unique_ptr<edgefront::PointIndex> index_;
-  double mean_edge_ = 0, max_edge_ = 0, radius_ = 0;
+  double mean_edge_ = 0, radius_ = 0;
   std::unordered_map<int, std::vector<std::pair<size_t, double>>> cand_of_vertex_;  // candidate, limit
   std::vector<char> near_flag_;
   size_t unresolved_ = 0;
@@ -347,13 +448,30 @@ std::pair<std::vector<std::vector<HalfedgeHandle>>, std::vector<bool>> border_lo
 
 }  // namespace
 
-Vec3 reference_normal(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal) {
-  return options.reference_side_weight > 0 ? reference.side_normal(centre, normal, 16, options.reference_side_weight)
-                                           : reference.nearest_normal(centre);
+int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal) {
+  if (options.reference_side_weight > 0) {
+    return reference.judge(centre, normal, 16, options.reference_side_weight, options.reference_margin);
+  }
+  const double c = OpenMesh::dot(normal, reference.nearest_normal(centre));
+  return c < options.reference_cos ? -1 : (c >= -options.reference_cos ? 1 : 0);
 }
 
 DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
-  detail::check_mesh(mesh, "twist::detect");
+  if (options.face_grid && options.restrict_to) {
+    // Incremental: no pass over the mesh; the candidates' vertices are checked.
+    if (mesh.n_faces() == 0) throw InvalidInput("twist::detect: the mesh has no faces");
+    for (FaceHandle f : *options.restrict_to) {
+      if (!edgefront::is_live(mesh, f)) continue;  // reported by validate_options
+      for (VertexHandle v : mesh.fv_range(f)) {
+        const Vec3& p = mesh.point(v);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+          throw InvalidInput("twist::detect: vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
+        }
+      }
+    }
+  } else {
+    detail::check_mesh(mesh, "twist::detect");
+  }
   validate_options(mesh, options);
   Detector det(mesh, options);
   DetectResult result;
@@ -372,15 +490,19 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   };
   if (!options.restrict_to) {
     if (options.self_intersections) {
-      for (FaceHandle f : det.live()) det.scan_intersections(f);
+      for (FaceHandle f : mesh.faces()) det.scan_intersections(f);
     }
-    for (FaceHandle f : det.live()) run_test(f);
+    for (FaceHandle f : mesh.faces()) run_test(f);
   } else {
     std::vector<FaceHandle> candidates = *options.restrict_to;
-    const auto& live = det.live();
-    const size_t audit = std::min(options.audit_faces, live.size());
+    // The audit: evenly spaced face indices (the next live face after a deleted one), so it
+    // costs O(audit_faces), not a pass over the mesh.
+    const size_t nf = mesh.n_faces();
+    const size_t audit = std::min(options.audit_faces, nf);
     for (size_t i = 0; i < audit; ++i) {
-      candidates.push_back(live[(options.audit_offset + i * live.size() / audit) % live.size()]);
+      size_t k = (options.audit_offset + i * nf / audit) % nf;
+      for (size_t probe = 0; probe < 16 && !edgefront::is_live(mesh, FaceHandle(static_cast<int>(k))); ++probe) k = (k + 1) % nf;
+      if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(k)))) candidates.push_back(FaceHandle(static_cast<int>(k)));
     }
     std::deque<std::pair<FaceHandle, int>> queue;
     if (options.self_intersections) {
@@ -558,7 +680,7 @@ size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& opti
   validate_options(mesh, options);
   Detector det(mesh, options);
   size_t count = 0;
-  for (FaceHandle f : det.live()) {
+  for (FaceHandle f : mesh.faces()) {
     if (det.normal(f).sqrnorm() == 0) continue;
     if (det.far_layer(f, 1.0, true).is_valid() || det.far_layer(f, -1.0, true).is_valid()) ++count;
   }

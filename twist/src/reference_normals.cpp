@@ -52,28 +52,31 @@ size_t ReferenceNormals::nearest(const Vec3& p) const { return impl_->index.near
 Vec3 ReferenceNormals::nearest_normal(const Vec3& p) const { return impl_->cloud.normals[nearest(p)]; }
 const edgefront::PointCloud& ReferenceNormals::cloud() const { return impl_->cloud; }
 
-Vec3 ReferenceNormals::side_normal(const Vec3& centre, const Vec3& normal, size_t candidates, double normal_weight) const {
-  if (candidates == 0) throw InvalidInput("reference normals: side_normal needs at least one candidate");
+int ReferenceNormals::judge(const Vec3& centre, const Vec3& normal, size_t candidates, double normal_weight,
+                           double margin) const {
+  if (candidates == 0) throw InvalidInput("reference normals: judge needs at least one candidate");
   if (!(normal_weight >= 1) || !std::isfinite(normal_weight)) {
-    throw InvalidInput("reference normals: side_normal's normal_weight must be finite and >= 1");
+    throw InvalidInput("reference normals: judge's normal_weight must be finite and >= 1");
   }
-  if (normal.sqrnorm() == 0) return nearest_normal(centre);
+  if (!(margin >= 1) || !std::isfinite(margin)) throw InvalidInput("reference normals: judge's margin must be finite and >= 1");
+  if (normal.sqrnorm() == 0) return 0;
   thread_local std::vector<edgefront::PointIndex::Neighbor> near;
   impl_->index.k_nearest(centre, candidates, near);
   const double w2 = normal_weight * normal_weight;
-  size_t best = near.front().index;
-  double best_cost = std::numeric_limits<double>::infinity();
+  double agree = std::numeric_limits<double>::infinity(), disagree = agree;  // squared weighted distances
   for (const auto& nb : near) {
-    const size_t i = nb.index;
-    const Vec3 d = impl_->cloud.points[i] - centre;
+    const Vec3 d = impl_->cloud.points[nb.index] - centre;
     const double along = OpenMesh::dot(d, normal);
     const double cost = d.sqrnorm() + (w2 - 1) * along * along;
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = i;
-    }
+    double& best = OpenMesh::dot(impl_->cloud.normals[nb.index], normal) > 0 ? agree : disagree;
+    best = std::min(best, cost);
   }
-  return impl_->cloud.normals[best];
+  const double m2 = margin * margin;
+  if (agree * m2 < disagree) return 1;
+  if (disagree * m2 < agree) return -1;
+  if (agree == 0 && disagree > 0) return 1;
+  if (disagree == 0 && agree > 0) return -1;
+  return 0;
 }
 
 double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {

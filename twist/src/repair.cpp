@@ -264,7 +264,7 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
     group_volume[acc.group] += vol;
     if (o.detect.reference) {
       const Vec3 n = detail::unit_normal(p);
-      acc.vote += detail::area(p) * OpenMesh::dot(n, reference_normal(*o.detect.reference, o.detect, detail::centroid(p), n));
+      acc.vote += detail::area(p) * reference_vote(*o.detect.reference, o.detect, detail::centroid(p), n);
     }
   }
   for (HalfedgeHandle h : mesh.halfedges()) {
@@ -290,8 +290,11 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
   }
 }
 
-RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups) {
-  detail::check_mesh(mesh, "twist::repair");
+RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups,
+                         FaceGrid* grid = nullptr) {
+  // Incremental (a face grid and a restricted candidate set): nothing here passes over the mesh.
+  const bool incremental = grid && o.detect.restrict_to;
+  if (!incremental) detail::check_mesh(mesh, "twist::repair");
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
   if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
   RepairReport report;
@@ -302,15 +305,17 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     cut_vertices.insert(copy.idx());
     cut_vertices.insert(original.idx());
   }
-  for (HalfedgeHandle h : reversed_seams(mesh)) {
+  for (HalfedgeHandle h : incremental ? std::vector<HalfedgeHandle>{} : reversed_seams(mesh)) {
     if (cut_vertices.count(mesh.from_vertex_handle(h).idx()) && cut_vertices.count(mesh.to_vertex_handle(h).idx())) continue;
     ++report.seam_edges;
   }
   report.non_orientable = report.seam_edges > 0;
 
   DetectOptions dopt = o.detect;
+  if (grid) dopt.face_grid = grid;
   bool first = true;
   while (report.repairs < o.max_repairs) {
+    const size_t faces_before = mesh.n_faces();
     DetectResult dr = detect_regions(mesh, dopt);
     if (first) report.regions_found = dr.regions.size();
     first = false;
@@ -355,9 +360,23 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       did_something = true;
     }
     if (!stale || !did_something) break;
-    // Re-detect on the whole mesh: handles of the restricted set may be gone.
-    dopt.restrict_to.reset();
+    if (incremental) {
+      // Re-detect on what is left of the candidates and the faces the repairs created.
+      grid->update_new(mesh);
+      std::vector<FaceHandle> next;
+      for (FaceHandle f : *dopt.restrict_to) {
+        if (edgefront::is_live(mesh, f)) next.push_back(f);
+      }
+      for (size_t i = faces_before; i < mesh.n_faces(); ++i) {
+        if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(i)))) next.push_back(FaceHandle(static_cast<int>(i)));
+      }
+      dopt.restrict_to = std::move(next);
+    } else {
+      // Re-detect on the whole mesh: handles of the restricted set may be gone.
+      dopt.restrict_to.reset();
+    }
   }
+  if (grid) grid->update_new(mesh);
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
   if (o.garbage_collect) {
     const size_t before = mesh.n_vertices();
@@ -377,10 +396,21 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
 TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
     : options_(std::move(options)), max_retwists_(max_retwists) {}
 
-RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHandle>& changed) {
+RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHandle>& changed, double mean_edge_length) {
   ++calls_;
   RepairOptions o = options_;
   o.detect.restrict_to = changed;
+  if (mean_edge_length > 0 && std::isfinite(mean_edge_length)) {
+    // Local mode: keep the face grid current (a rebuild only when the edge length drifted by 2x).
+    o.detect.mean_edge_length = mean_edge_length;
+    const double cell = o.detect.radius > 0 ? o.detect.radius : 2.0 * mean_edge_length;
+    if (grid_.cell() == 0 || grid_.cell() > 2 * cell || grid_.cell() < cell / 2) {
+      grid_.rebuild(mesh, cell);
+    } else {
+      grid_.update(mesh, changed);
+      grid_.update_new(mesh);
+    }
+  }
   o.detect.audit_offset = calls_ * 7919;  // a different audit sample every call
   o.global_orientation = false;
   auto rule = [this](const Mesh& m, const TwistRegion& region) {
@@ -390,7 +420,10 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
     double radius = 0;
     for (FaceHandle f : region.faces) radius = std::max(radius, (detail::centroid(detail::face_points(m, f)) - centre).norm());
     for (Place& p : places_) {
-      if ((p.centre - centre).norm() <= std::max(p.radius, radius)) {
+      // The same place: centres within half the larger radius and radii within a factor 2 (a
+      // small region near a large earlier one is a different place).
+      const double lo = std::min(p.radius, radius), hi = std::max(p.radius, radius);
+      if ((p.centre - centre).norm() <= 0.5 * hi && lo >= 0.5 * hi) {
         ++p.count;
         return p.count > max_retwists_;
       }
@@ -398,9 +431,13 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
     places_.push_back(Place{centre, radius, 1});
     return false;
   };
-  return repair_impl(mesh, o, rule, cuts_);
+  return repair_impl(mesh, o, rule, cuts_, grid_.cell() > 0 && o.detect.mean_edge_length > 0 ? &grid_ : nullptr);
 }
 
-RepairReport TwistRepairer::finish(Mesh& mesh) { return repair_impl(mesh, options_, nullptr, cuts_); }
+RepairReport TwistRepairer::finish(Mesh& mesh) {
+  RepairReport r = repair_impl(mesh, options_, nullptr, cuts_);
+  grid_ = FaceGrid();  // the final repair may garbage-collect: handles change
+  return r;
+}
 
 }  // namespace twist

@@ -16,10 +16,21 @@
 namespace gcs {
 
 struct TwistOperationOptions {
-  twist::RepairOptions repair;       ///< detection and repair settings (garbage collection is forced off)
+  /// Detection and repair settings (garbage collection is forced off). Default here: regions
+  /// need 4 flagged faces (a GCS mesh in transit has single inverted faces that the loop's own
+  /// smoothing undoes; cutting them out only leaves holes).
+  twist::RepairOptions repair = default_repair();
+  static twist::RepairOptions default_repair() {
+    twist::RepairOptions o;
+    o.detect.min_flagged_faces = 4;
+    return o;
+  }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
   bool use_point_normals = true;     ///< use the input normals as reference when the cloud has them
+  /// Local detection after a batch: a face grid kept up to date across calls instead of a k-d
+  /// tree over all face centroids per call (see `twist::TwistRepairer::repair_changed`).
+  bool local = true;
 };
 
 /// Totals over all calls.

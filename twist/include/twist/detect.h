@@ -29,6 +29,8 @@
 /// outside.
 
 #include <cstddef>
+#include <cstdint>
+#include <unordered_map>
 #include <optional>
 #include <vector>
 
@@ -69,6 +71,35 @@ struct TwistRegion {
   double area = 0;                          ///< total area of `faces`
 };
 
+/// An incremental spatial hash of face centroids, for repeated local detection on a mesh that
+/// changes a little at a time (see `DetectOptions::face_grid`): updating it costs O(changed
+/// faces), a query O(faces in the cells it covers). It holds face indices; the mesh must not be
+/// garbage-collected while it is used (rebuild after). Queries check the faces' current
+/// centroids, so a stale entry costs time, never a wrong answer about a face it finds.
+class FaceGrid {
+ public:
+  /// (Re)inserts these faces at their current centroids; deleted handles are skipped.
+  void update(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces);
+  /// Inserts the faces created since the last update (indices from the highest seen on).
+  void update_new(const edgefront::Mesh& mesh);
+  /// Rebuilds over all live faces with cells of this edge length (> 0, finite): O(F).
+  /// \throws edgefront::InvalidInput for a bad cell size.
+  void rebuild(const edgefront::Mesh& mesh, double cell);
+  /// Live faces whose current centroid lies within `radius` of `p`, in increasing index order.
+  void query(const edgefront::Mesh& mesh, const edgefront::Vec3& p, double radius,
+             std::vector<edgefront::FaceHandle>& out) const;
+  double cell() const { return cell_; }
+  size_t size() const { return size_; }
+  size_t rebuilds() const { return rebuilds_; }
+
+ private:
+  void insert(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
+  double cell_ = 0;
+  size_t size_ = 0, rebuilds_ = 0, seen_faces_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::unordered_map<int, std::uint64_t> key_of_;
+};
+
 /// Options of `detect`. Lengths are absolute; 0 means "automatic" where stated.
 struct DetectOptions {
   /// Search radius for layers, > 0, or 0: 2 x the mean edge length. Must exceed the thickness of
@@ -101,16 +132,26 @@ struct DetectOptions {
   const ReferenceNormals* reference = nullptr;
   /// A face disagrees with its reference normal when n·n_ref < this. In [-1, 1].
   double reference_cos = -0.2;
-  /// Which reference point speaks for a face: 0 = the nearest to its centroid; >= 1 = the one of
-  /// the face's own side (`ReferenceNormals::side_normal` with this normal weight), which matters
-  /// on walls thinner than the mesh's edges. 0 or in [1, 100].
+  /// How the reference judges a face: 0 = the nearest point to its centroid (disagrees when
+  /// n.n_ref < `reference_cos`, agrees when n.n_ref >= -`reference_cos`); >= 1 = by sides
+  /// (`ReferenceNormals::judge` with this normal weight and `reference_margin`), which tells
+  /// the face's own wall on walls thinner than the mesh's edges and abstains between the walls.
+  /// 0 or in [1, 100].
   double reference_side_weight = 4.0;
+  double reference_margin = 1.5;  ///< see `reference_side_weight`; in [1, 100]
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
   /// `audit_offset`) are tested first; faces within `grow_levels` of a flagged face are then
   /// tested too, so a twisted region is found whole. Invalid or deleted handles throw.
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
   size_t audit_faces = 64;
   size_t audit_offset = 0;
+  /// Incremental index of face centroids kept up to date by the caller (not owned; may be null).
+  /// With it and `restrict_to`, a detection touches only the candidates, their neighbourhoods
+  /// and the audit: no pass over the whole mesh (pass `mean_edge_length` too). Without it, a
+  /// k-d tree over all face centroids is built per call.
+  const FaceGrid* face_grid = nullptr;
+  /// The mesh's mean edge length if known (> 0), else 0: computed (a pass over the edges).
+  double mean_edge_length = 0;
 };
 
 /// Statistics of a detection run (for reports and benchmarks).
@@ -133,10 +174,10 @@ struct DetectResult {
 /// \throws edgefront::TopologyError when the fronts meet a non-manifold vertex.
 DetectResult detect_regions(const edgefront::Mesh& mesh, const DetectOptions& options = {});
 
-/// The reference normal that speaks for a face with this centre and unit normal under `options`
-/// (see `DetectOptions::reference_side_weight`).
-edgefront::Vec3 reference_normal(const ReferenceNormals& reference, const DetectOptions& options,
-                                 const edgefront::Vec3& centre, const edgefront::Vec3& normal);
+/// The reference's verdict on a face with this centre and unit normal under `options` (see
+/// `DetectOptions::reference_side_weight`): +1 agrees, -1 disagrees, 0 undecided.
+int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const edgefront::Vec3& centre,
+                   const edgefront::Vec3& normal);
 
 /// Faces that have a partner close in space (centroids within `radius`, in front or behind:
 /// |n_f·d| >= `facing_cos`·|d|), far along the surface (as for facing layers) and with the same

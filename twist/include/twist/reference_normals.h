@@ -26,15 +26,18 @@ class ReferenceNormals {
   size_t nearest(const edgefront::Vec3& p) const;
   /// Unit normal of the reference point nearest to `p`.
   edgefront::Vec3 nearest_normal(const edgefront::Vec3& p) const;
-  /// Unit normal of the reference point that stands for the surface a face at `centre` with unit
-  /// normal `normal` lies on: among the `candidates` nearest points, the one with the smallest
-  /// distance when offsets along `normal` count `normal_weight` times (tangential^2 +
-  /// (normal_weight * along)^2). On a wall thinner than the mesh's edges the plainly nearest
-  /// point is often on the other side of the wall; the point of the face's own side lies in its
-  /// plane. A zero `normal` gives `nearest_normal(centre)`.
-  /// \throws edgefront::InvalidInput when `candidates` is 0 or `normal_weight` < 1 or not finite.
-  edgefront::Vec3 side_normal(const edgefront::Vec3& centre, const edgefront::Vec3& normal, size_t candidates = 16,
-                              double normal_weight = 4.0) const;
+  /// How the reference judges the orientation of a face at `centre` with unit normal `normal`:
+  /// +1 agrees, -1 disagrees, 0 ambiguous. Among the `candidates` nearest points, distances
+  /// count offsets along `normal` `normal_weight` times (tangential^2 + (normal_weight *
+  /// along)^2), so the points of the face's own wall (in its plane) are nearest; the vote is
+  /// the side of the nearest agreeing (n.n_ref > 0) or disagreeing point when it is nearer than
+  /// the other kind by the factor `margin` (in distance), else ambiguous: a face between the two
+  /// walls of a wall thinner than the mesh's edges (both walls about equally far, one agreeing,
+  /// one not, whichever way the face points) has no decidable side. A zero `normal` is
+  /// ambiguous. \throws edgefront::InvalidInput when `candidates` is 0, `normal_weight` < 1 or
+  /// `margin` < 1 (or not finite).
+  int judge(const edgefront::Vec3& centre, const edgefront::Vec3& normal, size_t candidates = 16,
+            double normal_weight = 4.0, double margin = 1.5) const;
   const edgefront::PointCloud& cloud() const;
 
  private:

@@ -33,7 +33,7 @@ struct RepairOptions {
   /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
   /// hole; falls back to a hole when a loop is not simple.
-  bool regrow_cut_outs = true;
+  bool regrow_cut_outs = false;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
@@ -87,8 +87,15 @@ class TwistRepairer {
   explicit TwistRepairer(RepairOptions options = {}, size_t max_retwists = 2);
 
   /// \param changed faces created or moved since the last call (handles of the current mesh).
+  /// \param mean_edge_length the mesh's mean edge length when the caller knows it (> 0): then
+  ///        the call is local (a face grid kept up to date across calls, no pass over the mesh
+  ///        but a grid rebuild when the edge length drifted by a factor 2); 0: a k-d tree over
+  ///        all face centroids per call. The mesh must not be garbage-collected between calls.
   /// Global orientation is not applied here (call `finish`).
-  RepairReport repair_changed(edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& changed);
+  RepairReport repair_changed(edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& changed,
+                              double mean_edge_length = 0);
+  /// The face grid of the local mode (for statistics).
+  const FaceGrid& face_grid() const { return grid_; }
   /// A full `repair` with the global orientation (at the end of a reconstruction).
   RepairReport finish(edgefront::Mesh& mesh);
 
@@ -104,6 +111,7 @@ class TwistRepairer {
   size_t max_retwists_;
   size_t calls_ = 0;
   std::vector<Place> places_;
+  FaceGrid grid_;
   /// Vertex copies made by the cuts so far, with their originals: the global orientation treats
   /// pieces cut apart as one group. Forgotten when garbage collection renumbers vertices.
   std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>> cuts_;

@@ -1,0 +1,160 @@
+// Tests of the side-aware reference judgement, the incremental face grid and local detection,
+// re-growing cut-out regions, and the same-orientation layer count (twist/, issue 7).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
+#include "edgefront/shapes.h"
+#include "twist/detect.h"
+#include "twist/reference_normals.h"
+#include "twist/repair.h"
+#include "twist/twisted_shapes.h"
+
+namespace {
+
+using edgefront::FaceHandle;
+using edgefront::InvalidInput;
+using edgefront::Mesh;
+using edgefront::Vec3;
+
+/// A wall of thickness t: the plane z = 0 with normals up and z = -t with normals down, sampled
+/// on a square grid of spacing h.
+twist::ReferenceNormals thin_wall(double t, double h) {
+  edgefront::PointCloud cloud;
+  for (int i = -20; i <= 20; ++i) {
+    for (int j = -20; j <= 20; ++j) {
+      cloud.points.emplace_back(i * h, j * h, 0.0);
+      cloud.normals.emplace_back(0, 0, 1);
+      cloud.points.emplace_back(i * h + h / 2, j * h + h / 2, -t);
+      cloud.normals.emplace_back(0, 0, -1);
+    }
+  }
+  return twist::ReferenceNormals(cloud);
+}
+
+TEST(TwistJudge, TellsTheOwnWallAndAbstainsBetweenTheWalls) {
+  const double t = 0.02, h = 0.05;  // the wall is thinner than the sample spacing
+  const auto ref = thin_wall(t, h);
+  // On the top wall, slightly off a sample: the nearest point can be on the bottom wall ...
+  const Vec3 on_top(0.3 * h, 0.3 * h, -0.002);
+  EXPECT_EQ(ref.nearest_normal(on_top)[2], -1.0) << "the plainly nearest point is on the other wall";
+  // ... but the judgement by sides takes the face's own wall.
+  EXPECT_EQ(ref.judge(on_top, Vec3(0, 0, 1)), 1);
+  EXPECT_EQ(ref.judge(on_top, Vec3(0, 0, -1)), -1);
+  EXPECT_EQ(ref.judge(Vec3(0.25 * h, 0.25 * h, -t), Vec3(0, 0, -1)), 1);
+  // Half way between the walls neither orientation is decidable.
+  EXPECT_EQ(ref.judge(Vec3(0.25 * h, 0.25 * h, -t / 2), Vec3(0, 0, 1)), 0);
+  EXPECT_EQ(ref.judge(Vec3(0.25 * h, 0.25 * h, -t / 2), Vec3(0, 0, -1)), 0);
+  EXPECT_EQ(ref.judge(on_top, Vec3(0, 0, 0)), 0);
+  EXPECT_THROW(ref.judge(on_top, Vec3(0, 0, 1), 0), InvalidInput);
+  EXPECT_THROW(ref.judge(on_top, Vec3(0, 0, 1), 16, 0.5), InvalidInput);
+  EXPECT_THROW(ref.judge(on_top, Vec3(0, 0, 1), 16, 4.0, std::nan("")), InvalidInput);
+}
+
+std::vector<FaceHandle> brute_force(const Mesh& mesh, const Vec3& p, double r) {
+  std::vector<FaceHandle> out;
+  for (FaceHandle f : mesh.faces()) {
+    if ((mesh.calc_face_centroid(f) - p).norm() < r) out.push_back(f);
+  }
+  return out;
+}
+
+TEST(TwistFaceGrid, AnswersLikeABruteForceSearchAndFollowsUpdates) {
+  Mesh mesh = edgefront::shapes::icosphere(3);
+  twist::FaceGrid grid;
+  EXPECT_THROW(grid.rebuild(mesh, 0.0), InvalidInput);
+  grid.rebuild(mesh, 0.2);
+  EXPECT_EQ(grid.size(), mesh.n_faces());
+  std::vector<FaceHandle> got;
+  for (const Vec3& p : {Vec3(1, 0, 0), Vec3(0, 0.7, 0.7), Vec3(0, 0, 0)}) {
+    for (double r : {0.05, 0.3, 1.1}) {
+      grid.query(mesh, p, r, got);
+      EXPECT_EQ(got, brute_force(mesh, p, r));
+    }
+  }
+  // Move a vertex far away; after updating its faces the grid finds them at the new place.
+  const edgefront::VertexHandle v(0);
+  std::vector<FaceHandle> ring(mesh.vf_range(v).begin(), mesh.vf_range(v).end());
+  mesh.set_point(v, Vec3(5, 5, 5));
+  grid.update(mesh, ring);
+  grid.query(mesh, Vec3(5, 5, 5) * (1.0 / 3.0), 2.0, got);
+  EXPECT_EQ(got, brute_force(mesh, Vec3(5, 5, 5) * (1.0 / 3.0), 2.0));
+  // Deleted faces are not returned; new faces come in with update_new.
+  mesh.delete_face(ring[0], false);
+  grid.query(mesh, mesh.point(edgefront::VertexHandle(1)), 0.5, got);
+  EXPECT_EQ(std::count(got.begin(), got.end(), ring[0]), 0);
+  const auto a = mesh.add_vertex(Vec3(9, 9, 9)), b = mesh.add_vertex(Vec3(9.1, 9, 9)), c = mesh.add_vertex(Vec3(9, 9.1, 9));
+  const FaceHandle nf = mesh.add_face(a, b, c);
+  grid.update_new(mesh);
+  grid.query(mesh, Vec3(9, 9, 9), 0.2, got);
+  EXPECT_EQ(got, std::vector<FaceHandle>{nf});
+}
+
+TEST(TwistLocalDetection, FindsTheSameRegionWithTheFaceGrid) {
+  const twist::TwistedShape s = twist::flipped_disk_plate();
+  const auto full = twist::detect(s.mesh);
+  ASSERT_EQ(full.size(), 1u);
+  double mean_edge = 0;
+  for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e);
+  mean_edge /= static_cast<double>(s.mesh.n_edges());
+  twist::FaceGrid grid;
+  grid.rebuild(s.mesh, 2 * mean_edge);
+  twist::DetectOptions o;
+  o.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
+  o.audit_faces = 4;
+  const auto with_tree = twist::detect_regions(s.mesh, o);
+  o.face_grid = &grid;
+  o.mean_edge_length = mean_edge;
+  const auto with_grid = twist::detect_regions(s.mesh, o);
+  ASSERT_EQ(with_grid.regions.size(), 1u);
+  ASSERT_EQ(with_tree.regions.size(), 1u);
+  EXPECT_EQ(with_grid.regions[0].faces, with_tree.regions[0].faces);
+  EXPECT_EQ(with_grid.regions[0].faces, full[0].faces);
+  EXPECT_LT(with_grid.stats.faces_tested, s.mesh.n_faces() / 2) << "local: not every face is tested";
+  o.mean_edge_length = -1;
+  EXPECT_THROW(twist::detect_regions(s.mesh, o), InvalidInput);
+}
+
+TEST(TwistRegrow, ACutOutRegionIsReplacedByAConsistentPatchNotAHole) {
+  for (bool regrow : {false, true}) {
+    twist::TwistedShape s = twist::flipped_disk_plate();
+    twist::RepairOptions o;
+    o.regrow_cut_outs = regrow;
+    o.garbage_collect = false;
+    twist::TwistRepairer repairer(o, 0);  // every repair place counts as re-twisted: cut out
+    std::vector<FaceHandle> all(s.mesh.faces().begin(), s.mesh.faces().end());
+    const twist::RepairReport r = repairer.repair_changed(s.mesh, all);
+    ASSERT_EQ(r.regions_cut_out, 1u) << regrow;
+    const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
+    EXPECT_EQ(st.nonmanifold_vertices, 0u) << regrow;
+    EXPECT_EQ(st.components, 1u) << regrow << ": no tiny component left";
+    if (regrow) {
+      EXPECT_EQ(st.border_loops, 0u) << "the plate stays closed";
+      EXPECT_GT(twist::truth_consistency(s.mesh, s), 0.99) << "the re-grown patch faces the right way";
+      // The patch is wound like its surroundings: the surface is still a closed, consistently
+      // oriented shell with positive volume.
+      double volume = 0;
+      for (FaceHandle f : s.mesh.faces()) {
+        auto it = s.mesh.cfv_begin(f);
+        const Vec3 a = s.mesh.point(*it), b = s.mesh.point(*++it), c = s.mesh.point(*++it);
+        volume += OpenMesh::dot(a, OpenMesh::cross(b, c)) / 6.0;
+      }
+      EXPECT_GT(volume, 0.0);
+    } else {
+      EXPECT_EQ(st.border_loops, 1u) << "without re-growing the cut-out leaves a hole";
+    }
+  }
+}
+
+TEST(TwistSameOrientationLayers, CountsTwistedLayersOnlyOnTwistedMeshes) {
+  EXPECT_GT(twist::count_same_orientation_layers(twist::twisted_tube().mesh), 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::vault_shell(24, 1.0, 0.1)), 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::icosphere(2)), 0u);
+}
+
+}  // namespace
