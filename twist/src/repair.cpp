@@ -58,22 +58,55 @@ bool region_is_live(const Mesh& mesh, const TwistRegion& r) {
   return true;
 }
 
-/// Removes faces; vertices where the rest then meets in several fans get one copy per extra fan
-/// (so the mesh stays manifold).
-void remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces) {
+/// Pieces (edge-connected face sets) touching these vertices that have fewer than `min_faces`
+/// faces are deleted: a cut must never leave a tiny component. Each piece is explored with a
+/// budget of `min_faces`, so this is local. Returns the number of faces deleted.
+size_t remove_tiny_pieces(Mesh& mesh, const std::vector<VertexHandle>& around, size_t min_faces) {
+  size_t removed = 0;
+  std::unordered_set<int> explored;
+  for (VertexHandle v : around) {
+    if (!edgefront::is_live(mesh, v)) continue;
+    std::vector<FaceHandle> starts(mesh.vf_range(v).begin(), mesh.vf_range(v).end());
+    for (FaceHandle start : starts) {
+      if (!edgefront::is_live(mesh, start) || explored.count(start.idx())) continue;
+      std::vector<FaceHandle> piece{start};
+      explored.insert(start.idx());
+      for (size_t q = 0; q < piece.size() && piece.size() < min_faces; ++q) {
+        for (FaceHandle g : mesh.ff_range(piece[q])) {
+          if (explored.insert(g.idx()).second) piece.push_back(g);
+        }
+      }
+      if (piece.size() >= min_faces) continue;
+      for (FaceHandle f : piece) mesh.delete_face(f, true);
+      removed += piece.size();
+    }
+  }
+  return removed;
+}
+
+/// Removes faces and any tiny piece the removal leaves; vertices where the rest then meets in
+/// several fans get one copy per extra fan (so the mesh stays manifold). Returns the number of
+/// faces deleted.
+size_t remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces, size_t min_faces) {
   std::vector<VertexHandle> touched;
+  size_t removed = 0;
   for (FaceHandle f : faces) {
     if (!edgefront::is_live(mesh, f)) continue;
     for (VertexHandle v : mesh.fv_range(f)) touched.push_back(v);
   }
   for (FaceHandle f : faces) {
-    if (edgefront::is_live(mesh, f)) mesh.delete_face(f, true);
+    if (edgefront::is_live(mesh, f)) {
+      mesh.delete_face(f, true);
+      ++removed;
+    }
   }
   std::sort(touched.begin(), touched.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  removed += remove_tiny_pieces(mesh, touched, min_faces);
   for (VertexHandle v : touched) {
     if (edgefront::is_live(mesh, v)) detail::split_fans(mesh, v);
   }
+  return removed;
 }
 
 /// Replaces the faces of `region` by one fan per border loop (a new vertex at the loop's mean
@@ -82,7 +115,7 @@ void remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces) {
 /// the samples, instead of leaving a hole. Loops entirely on the mesh border stay border; loops
 /// that are not simple (a vertex twice, or in two loops) or have fewer than 3 edges make the
 /// whole region fall back to plain removal (a hole). Returns the number of fan faces added.
-size_t regrow_region(Mesh& mesh, const TwistRegion& region) {
+size_t regrow_region(Mesh& mesh, const TwistRegion& region, size_t min_faces) {
   std::vector<const std::vector<HalfedgeHandle>*> loops;
   std::unordered_set<int> loop_vertex;
   bool simple = true;
@@ -94,18 +127,37 @@ size_t regrow_region(Mesh& mesh, const TwistRegion& region) {
     loops.push_back(&loop);
   }
   if (!simple || loops.empty()) {
-    remove_faces(mesh, region.faces);
+    remove_faces(mesh, region.faces, min_faces);
     return 0;
   }
   std::vector<VertexHandle> region_vertices;
   for (FaceHandle f : region.faces) {
     for (VertexHandle v : mesh.fv_range(f)) region_vertices.push_back(v);
   }
+  std::unordered_set<int> had_face;  // loop halfedges with a face outside the region
+  for (const auto* loop : loops) {
+    for (HalfedgeHandle h : *loop) {
+      if (mesh.face_handle(h).is_valid()) had_face.insert(h.idx());
+    }
+  }
   for (FaceHandle f : region.faces) {
     if (edgefront::is_live(mesh, f)) mesh.delete_face(f, false);
   }
+  // Tiny pieces left outside a loop (an island the region enclosed) go too, and their loop is
+  // not closed: a fan over them would make a tiny closed component.
+  std::vector<VertexHandle> loop_vertices;
+  for (const auto* loop : loops) {
+    for (HalfedgeHandle h : *loop) loop_vertices.push_back(mesh.from_vertex_handle(h));
+  }
+  remove_tiny_pieces(mesh, loop_vertices, min_faces);
   size_t added = 0;
   for (const auto* loop : loops) {
+    bool outside_left = true;
+    for (HalfedgeHandle h : *loop) {
+      if (had_face.count(h.idx())) outside_left = outside_left && edgefront::is_live(mesh, h) && mesh.face_handle(h).is_valid();
+      outside_left = outside_left && edgefront::is_live(mesh, mesh.from_vertex_handle(h));
+    }
+    if (!outside_left) continue;
     std::vector<std::array<VertexHandle, 2>> edges;  // hole edges, wound like the faces outside
     Vec3 centre(0, 0, 0);
     for (HalfedgeHandle h : *loop) {
@@ -209,9 +261,9 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
   rec.faces_visited = a.order.size() + b.order.size();
   if (exhausted->order.size() < o.min_component_faces) {
     if (exhausted == &a && o.regrow_cut_outs) {
-      regrow_region(mesh, region);
+      regrow_region(mesh, region, o.min_component_faces);
     } else {
-      remove_faces(mesh, exhausted->order);
+      remove_faces(mesh, exhausted->order, o.min_component_faces);
     }
     rec.removed = true;
     return rec;
@@ -339,9 +391,9 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       if (!has_cut) continue;  // a whole component: the global orientation decides its side
       if (cut_out && cut_out(mesh, region)) {
         if (o.regrow_cut_outs) {
-          regrow_region(mesh, region);
+          regrow_region(mesh, region, o.min_component_faces);
         } else {
-          remove_faces(mesh, region.faces);
+          remove_faces(mesh, region.faces, o.min_component_faces);
         }
         ++report.regions_cut_out;
         report.faces_removed += region.faces.size();

@@ -137,7 +137,7 @@ struct DetectOptions {
   /// (`ReferenceNormals::judge` with this normal weight and `reference_margin`), which tells
   /// the face's own wall on walls thinner than the mesh's edges and abstains between the walls.
   /// 0 or in [1, 100].
-  double reference_side_weight = 4.0;
+  double reference_side_weight = 0.0;
   double reference_margin = 1.5;  ///< see `reference_side_weight`; in [1, 100]
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
   /// `audit_offset`) are tested first; faces within `grow_levels` of a flagged face are then
