@@ -87,6 +87,11 @@ int main(int argc, char** argv) {
     std::cout << "faces flipped:      " << r.faces_flipped << " by repairs, " << r.faces_flipped_globally << " by the global orientation ("
               << r.components_flipped << " components)\n";
     std::cout << "faces removed:      " << r.faces_removed << "\n";
+    if (r.regions_scattered > 0) {
+      std::cout << "left alone:         " << r.regions_scattered
+                << " scattered region(s) (border far longer than a disk's of their size: noise or a wall thinner than the"
+                   " faces, not a twist; cutting there would shred the surface)\n";
+    }
     std::cout << "non-orientable:     " << (r.non_orientable ? "yes (" + std::to_string(r.seam_edges) + " seam edges left cut open)" : std::string("no")) << "\n";
     std::cout << "evidence:           " << r.detect_stats.faces_tested << " faces tested, " << r.detect_stats.distance_queries
               << " bounded distance fronts, " << r.detect_stats.flagged_faces << " faces flagged\n";

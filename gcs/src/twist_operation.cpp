@@ -10,6 +10,11 @@ TwistOperation::TwistOperation(TwistOperationOptions options) : options_(std::mo
 
 TwistOperation::~TwistOperation() = default;
 
+const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& TwistOperation::cuts() const {
+  static const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>> none;
+  return repairer_ ? repairer_->cuts() : none;
+}
+
 OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) {
   OperationResult result;
   ++stats_.calls;
@@ -34,6 +39,7 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.regions_cut_out += r.regions_cut_out;
   stats_.faces_flipped += r.faces_flipped;
   stats_.faces_removed += r.faces_removed;
+  stats_.regions_scattered += r.regions_scattered;
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
   result.mesh_changed = r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;

@@ -349,6 +349,9 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (!incremental) detail::check_mesh(mesh, "twist::repair");
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
   if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
+  if (!(o.max_border_ratio >= 0) || !std::isfinite(o.max_border_ratio)) {
+    throw InvalidInput("twist::repair: option max_border_ratio must be finite and >= 0");
+  }
   RepairReport report;
   // Reversed seams, except those of our own earlier cuts (a flipped side meets its old
   // neighbours with opposite orientation along the cut: that is the repair, not the input).
@@ -389,6 +392,19 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       bool has_cut = false;
       for (size_t i = 0; i < region.border.size(); ++i) has_cut = has_cut || !region.border_on_mesh_border[i];
       if (!has_cut) continue;  // a whole component: the global orientation decides its side
+      if (o.max_border_ratio > 0) {
+        // A twist is a compact region behind a short twist line; a region whose border is far
+        // longer than a disk's of its size is scattered evidence (noise, or a wall thinner than
+        // the faces), and cutting along it would shred the surface.
+        size_t border_edges = 0;
+        for (size_t i = 0; i < region.border.size(); ++i) {
+          if (!region.border_on_mesh_border[i]) border_edges += region.border[i].size();
+        }
+        if (static_cast<double>(border_edges) > o.max_border_ratio * std::sqrt(static_cast<double>(region.faces.size())) + 16) {
+          ++report.regions_scattered;
+          continue;
+        }
+      }
       if (cut_out && cut_out(mesh, region)) {
         if (o.regrow_cut_outs) {
           regrow_region(mesh, region, o.min_component_faces);

@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gcs/operation.h"
 #include "twist/repair.h"
@@ -16,15 +18,7 @@
 namespace gcs {
 
 struct TwistOperationOptions {
-  /// Detection and repair settings (garbage collection is forced off). Default here: regions
-  /// need 4 flagged faces (a GCS mesh in transit has single inverted faces that the loop's own
-  /// smoothing undoes; cutting them out only leaves holes).
-  twist::RepairOptions repair = default_repair();
-  static twist::RepairOptions default_repair() {
-    twist::RepairOptions o;
-    o.detect.min_flagged_faces = 4;
-    return o;
-  }
+  twist::RepairOptions repair;       ///< detection and repair settings (garbage collection is forced off)
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
   bool use_point_normals = true;     ///< use the input normals as reference when the cloud has them
@@ -41,6 +35,7 @@ struct TwistOperationStats {
   std::size_t regions_cut_out = 0;
   std::size_t faces_flipped = 0;
   std::size_t faces_removed = 0;
+  std::size_t regions_scattered = 0;   ///< left alone: not compact (`twist::RepairOptions::max_border_ratio`)
   std::size_t components_flipped = 0;  ///< by the global orientation of the final call
   bool non_orientable = false;
 };
@@ -52,6 +47,10 @@ class TwistOperation : public Operation {
   std::string name() const override { return "twist-repair"; }
   OperationResult apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) override;
   const TwistOperationStats& stats() const { return stats_; }
+  /// What the repairs cut so far: (vertex copy, original) pairs, at the same position, along the
+  /// cuts (handles of the current mesh; cleared when the final call garbage-collects). A
+  /// reconstructor can use them to re-join borders where orientations are compatible again.
+  const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& cuts() const;
 
  private:
   TwistOperationOptions options_;

@@ -34,6 +34,12 @@ struct RepairOptions {
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
   /// hole; falls back to a hole when a loop is not simple.
   bool regrow_cut_outs = false;
+  /// Regions whose cut border has more than max_border_ratio * sqrt(faces) + 16 edges are not
+  /// repaired (counted in `regions_scattered`): a twist is a compact region behind a short twist
+  /// line, while scattered evidence (noise, a wall thinner than the faces) joined into one
+  /// region has a border snaking through the surface, and cutting along it shreds it. A disk
+  /// of n faces has a border of about 3.5 sqrt(n) edges. 0 = no limit; >= 0.
+  double max_border_ratio = 6.0;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
@@ -62,6 +68,7 @@ struct RepairReport {
   size_t vertices_duplicated = 0;
   size_t cut_edges = 0;
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
+  size_t regions_scattered = 0;        ///< regions left alone: not compact (see max_border_ratio)
   size_t components_flipped = 0;       ///< by the global orientation
   size_t faces_flipped_globally = 0;
   bool non_orientable = false;         ///< the surface meets itself with opposite orientation
@@ -100,6 +107,8 @@ class TwistRepairer {
   RepairReport finish(edgefront::Mesh& mesh);
 
   size_t calls() const { return calls_; }
+  /// (vertex copy, original) pairs made by the cuts so far (see `cuts_`).
+  const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& cuts() const { return cuts_; }
 
  private:
   struct Place {
