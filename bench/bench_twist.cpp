@@ -3,7 +3,7 @@
 ///
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
-///               [--min-flagged K] [--global-index] [--no-normals]
+///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
 ///
 /// For every shape and seed: sample P oriented points (shapes::sample, exact normals), run GCS
@@ -147,7 +147,7 @@ std::vector<std::string> split(const std::string& s) {
 
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
-  double side_weight = 4.0, only_thickness = 0, margin = 1.5;
+  double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
   bool normals = true, regrow = false, local = true;
   std::string only;
   for (int i = 1; i < argc; ++i) {
@@ -169,13 +169,14 @@ int main(int argc, char** argv) {
     else if (a == "--margin") margin = std::stod(next());
     else if (a == "--min-flagged") min_flagged = std::stoul(next());
     else if (a == "--global-index") local = false;
+    else if (a == "--border-ratio") border_ratio = std::stod(next());
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
     }
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
-                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--no-normals] | --detect-scaling\n";
+                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals] | --detect-scaling\n";
       return 2;
     }
   }
@@ -193,9 +194,9 @@ int main(int argc, char** argv) {
     cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.thickness != only_thickness; }),
                 cases.end());
   }
-  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s\n\n",
+  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g\n\n",
               vertices, points, normals ? " with exact normals" : " without normals", first_seed, first_seed + seeds - 1,
-              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes");
+              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio);
   std::printf("| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
@@ -229,6 +230,7 @@ int main(int argc, char** argv) {
           to.repair.detect.reference_margin = margin;
           if (min_flagged > 0) to.repair.detect.min_flagged_faces = min_flagged;
           to.local = local;
+          to.repair.max_border_ratio = border_ratio;
           to.max_retwists = max_retwists;
           to.repair.regrow_cut_outs = regrow;
           op = std::make_shared<gcs::TwistOperation>(to);

@@ -170,3 +170,35 @@ TEST(TwistSameOrientationLayers, CountsTwistedLayersOnlyOnTwistedMeshes) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
+  // A correct sphere whose reference disagrees on every third face: evidence everywhere, no
+  // compact twisted region. Cutting along the border of what it grows into would shred it.
+  const Mesh sphere = edgefront::shapes::icosphere(3);
+  edgefront::PointCloud cloud;
+  for (FaceHandle f : sphere.faces()) {
+    const Vec3 c = sphere.calc_face_centroid(f);
+    cloud.points.push_back(c);
+    cloud.normals.push_back(f.idx() % 3 == 0 ? -c.normalized() : c.normalized());
+  }
+  const twist::ReferenceNormals ref(cloud);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  Mesh kept = sphere;
+  const twist::RepairReport r = twist::repair(kept, o);
+  EXPECT_GE(r.regions_scattered, 1u);
+  EXPECT_EQ(r.vertices_duplicated, 0u);
+  EXPECT_EQ(edgefront::compute_stats(kept).components, 1u) << "not shredded";
+  o.max_border_ratio = 0;  // no limit: the old behaviour cuts it apart
+  Mesh cut = sphere;
+  const twist::RepairReport r0 = twist::repair(cut, o);
+  EXPECT_EQ(r0.regions_scattered, 0u);
+  EXPECT_GT(r0.vertices_duplicated, 0u);
+  EXPECT_GT(edgefront::compute_stats(cut).components, 1u);
+  o.max_border_ratio = -1;
+  EXPECT_THROW(twist::repair(cut, o), InvalidInput);
+}
+
+}  // namespace

@@ -18,7 +18,16 @@
 namespace gcs {
 
 struct TwistOperationOptions {
-  twist::RepairOptions repair;       ///< detection and repair settings (garbage collection is forced off)
+  /// Detection and repair settings (garbage collection is forced off). Default here: no limit
+  /// on the border of a region (`max_border_ratio` = 0): in the loop, cutting scattered regions
+  /// too gives higher orientation consistency on the vault shells, at the price of many more
+  /// components (bench/results/twist-vaults.md has both).
+  twist::RepairOptions repair = default_repair();
+  static twist::RepairOptions default_repair() {
+    twist::RepairOptions o;
+    o.max_border_ratio = 0;
+    return o;
+  }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
   bool use_point_normals = true;     ///< use the input normals as reference when the cloud has them
