@@ -63,20 +63,26 @@ bool region_is_live(const Mesh& mesh, const TwistRegion& r) {
 /// budget of `min_faces`, so this is local. Returns the number of faces deleted.
 size_t remove_tiny_pieces(Mesh& mesh, const std::vector<VertexHandle>& around, size_t min_faces) {
   size_t removed = 0;
-  std::unordered_set<int> explored;
+  std::unordered_set<int> big;  // faces known to lie in a piece of at least min_faces
   for (VertexHandle v : around) {
     if (!edgefront::is_live(mesh, v)) continue;
     std::vector<FaceHandle> starts(mesh.vf_range(v).begin(), mesh.vf_range(v).end());
     for (FaceHandle start : starts) {
-      if (!edgefront::is_live(mesh, start) || explored.count(start.idx())) continue;
+      if (!edgefront::is_live(mesh, start) || big.count(start.idx())) continue;
       std::vector<FaceHandle> piece{start};
-      explored.insert(start.idx());
-      for (size_t q = 0; q < piece.size() && piece.size() < min_faces; ++q) {
+      std::unordered_set<int> seen{start.idx()};
+      bool is_big = false;
+      for (size_t q = 0; q < piece.size() && !is_big; ++q) {
         for (FaceHandle g : mesh.ff_range(piece[q])) {
-          if (explored.insert(g.idx()).second) piece.push_back(g);
+          if (big.count(g.idx())) is_big = true;
+          if (seen.insert(g.idx()).second) piece.push_back(g);
         }
+        is_big = is_big || piece.size() >= min_faces;
       }
-      if (piece.size() >= min_faces) continue;
+      if (is_big) {
+        for (FaceHandle f : piece) big.insert(f.idx());
+        continue;
+      }
       for (FaceHandle f : piece) mesh.delete_face(f, true);
       removed += piece.size();
     }
@@ -116,17 +122,28 @@ size_t remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces, size_t min
 /// that are not simple (a vertex twice, or in two loops) or have fewer than 3 edges make the
 /// whole region fall back to plain removal (a hole). Returns the number of fan faces added.
 size_t regrow_region(Mesh& mesh, const TwistRegion& region, size_t min_faces) {
-  std::vector<const std::vector<HalfedgeHandle>*> loops;
-  std::unordered_set<int> loop_vertex;
-  bool simple = true;
-  for (size_t i = 0; i < region.border.size() && simple; ++i) {
+  // The loops, split at repeated vertices into simple cycles (a region touching itself at a
+  // vertex has a loop through it twice; each cycle gets its own fan, which fills one wedge).
+  std::vector<std::vector<HalfedgeHandle>> cycles;
+  for (size_t i = 0; i < region.border.size(); ++i) {
     if (region.border_on_mesh_border[i]) continue;
-    const auto& loop = region.border[i];
-    simple = loop.size() >= 3;
-    for (HalfedgeHandle h : loop) simple = simple && loop_vertex.insert(mesh.from_vertex_handle(h).idx()).second;
-    loops.push_back(&loop);
+    std::vector<HalfedgeHandle> path;
+    std::unordered_map<int, size_t> pos;  // from-vertex -> index in path
+    for (HalfedgeHandle h : region.border[i]) {
+      const int v = mesh.from_vertex_handle(h).idx();
+      const auto it = pos.find(v);
+      if (it != pos.end()) {
+        const size_t start = it->second;
+        cycles.emplace_back(path.begin() + static_cast<std::ptrdiff_t>(start), path.end());
+        for (size_t k = start; k < path.size(); ++k) pos.erase(mesh.from_vertex_handle(path[k]).idx());
+        path.resize(start);
+      }
+      pos[v] = path.size();
+      path.push_back(h);
+    }
+    if (!path.empty()) cycles.push_back(std::move(path));
   }
-  if (!simple || loops.empty()) {
+  if (cycles.empty()) {
     remove_faces(mesh, region.faces, min_faces);
     return 0;
   }
@@ -135,9 +152,11 @@ size_t regrow_region(Mesh& mesh, const TwistRegion& region, size_t min_faces) {
     for (VertexHandle v : mesh.fv_range(f)) region_vertices.push_back(v);
   }
   std::unordered_set<int> had_face;  // loop halfedges with a face outside the region
-  for (const auto* loop : loops) {
-    for (HalfedgeHandle h : *loop) {
+  std::vector<VertexHandle> loop_vertices;
+  for (const auto& cycle : cycles) {
+    for (HalfedgeHandle h : cycle) {
       if (mesh.face_handle(h).is_valid()) had_face.insert(h.idx());
+      loop_vertices.push_back(mesh.from_vertex_handle(h));
     }
   }
   for (FaceHandle f : region.faces) {
@@ -145,43 +164,53 @@ size_t regrow_region(Mesh& mesh, const TwistRegion& region, size_t min_faces) {
   }
   // Tiny pieces left outside a loop (an island the region enclosed) go too, and their loop is
   // not closed: a fan over them would make a tiny closed component.
-  std::vector<VertexHandle> loop_vertices;
-  for (const auto* loop : loops) {
-    for (HalfedgeHandle h : *loop) loop_vertices.push_back(mesh.from_vertex_handle(h));
-  }
   remove_tiny_pieces(mesh, loop_vertices, min_faces);
   size_t added = 0;
-  for (const auto* loop : loops) {
-    bool outside_left = true;
-    for (HalfedgeHandle h : *loop) {
+  for (const auto& cycle : cycles) {
+    bool outside_left = cycle.size() >= 3;
+    for (HalfedgeHandle h : cycle) {
       if (had_face.count(h.idx())) outside_left = outside_left && edgefront::is_live(mesh, h) && mesh.face_handle(h).is_valid();
       outside_left = outside_left && edgefront::is_live(mesh, mesh.from_vertex_handle(h));
     }
-    if (!outside_left) continue;
+    if (!outside_left) continue;  // left as a hole
     std::vector<std::array<VertexHandle, 2>> edges;  // hole edges, wound like the faces outside
     Vec3 centre(0, 0, 0);
-    for (HalfedgeHandle h : *loop) {
+    for (HalfedgeHandle h : cycle) {
       edges.push_back({mesh.to_vertex_handle(h), mesh.from_vertex_handle(h)});
       centre += mesh.point(mesh.from_vertex_handle(h));
     }
-    centre /= static_cast<double>(loop->size());
+    centre /= static_cast<double>(cycle.size());
+    std::vector<FaceHandle> fan;
+    bool refused = false;
     if (edges.size() == 3) {
       const FaceHandle f = mesh.add_face(edges[0][0], edges[2][0], edges[1][0]);
-      EF_CHECK(f.is_valid(), "twist: OpenMesh refused the face closing a 3-edge hole");
-      ++added;
-      continue;
+      refused = !f.is_valid();
+      if (!refused) fan.push_back(f);
+    } else {
+      const VertexHandle c = mesh.add_vertex(centre);
+      for (const auto& e : edges) {
+        const FaceHandle f = mesh.add_face(e[0], e[1], c);
+        if (!f.is_valid()) {
+          refused = true;
+          break;
+        }
+        fan.push_back(f);
+      }
+      if (refused || fan.empty()) {
+        for (FaceHandle f : fan) mesh.delete_face(f, false);
+        if (!mesh.status(c).deleted()) mesh.delete_vertex(c, false);
+        fan.clear();
+      }
     }
-    const VertexHandle c = mesh.add_vertex(centre);
-    for (const auto& e : edges) {
-      const FaceHandle f = mesh.add_face(e[0], e[1], c);
-      EF_CHECK(f.is_valid(), "twist: OpenMesh refused a face of a re-grown fan");
-      mesh.set_normal(f, mesh.calc_face_normal(f));
-      ++added;
-    }
+    for (FaceHandle f : fan) mesh.set_normal(f, mesh.calc_face_normal(f));
+    added += fan.size();
   }
-  // Interior vertices of the region are left without faces now.
+  // Interior vertices of the region are left without faces now; holes left may meet at a vertex.
   for (VertexHandle v : region_vertices) {
     if (!mesh.status(v).deleted() && mesh.is_isolated(v)) mesh.delete_vertex(v, false);
+  }
+  for (VertexHandle v : loop_vertices) {
+    if (edgefront::is_live(mesh, v)) detail::split_fans(mesh, v);
   }
   return added;
 }
