@@ -125,9 +125,10 @@ class Straightener {
     strip.assign(out.begin() + static_cast<long>(first), out.begin() + static_cast<long>(last) + 1);
   }
 
-  // Unfolds the strip into portals: the start vertex, the shared edges, the end vertex.
-  void unfold(const std::vector<FaceHandle>& strip, VertexHandle s, VertexHandle t) {
-    portals_.clear();
+  // Unfolds the strip into portals: the start vertex, the shared edges, the end vertex. `s` must
+  // be a corner of the first face, `t` of the last.
+  void unfold(const std::vector<FaceHandle>& strip, VertexHandle s, VertexHandle t, std::vector<Portal>& portals) const {
+    portals.clear();
     std::array<std::pair<int, P2>, 3> cur;
     {
       std::array<VertexHandle, 3> v;
@@ -146,7 +147,7 @@ class Straightener {
       EF_CHECK(false, "geodesic polyline: unfolding lost a vertex");
       return P2{};
     };
-    portals_.push_back(Portal{s.idx(), s.idx(), pos(s.idx()), pos(s.idx()), HalfedgeHandle()});
+    portals.push_back(Portal{s.idx(), s.idx(), pos(s.idx()), pos(s.idx()), HalfedgeHandle()});
     for (size_t j = 0; j + 1 < strip.size(); ++j) {
       HalfedgeHandle shared;
       for (HalfedgeHandle h : mesh_.fh_range(strip[j])) {
@@ -158,7 +159,7 @@ class Straightener {
       EF_CHECK(shared.is_valid(), "geodesic polyline: consecutive corridor faces share no edge");
       const int r = mesh_.from_vertex_handle(shared).idx(), l = mesh_.to_vertex_handle(shared).idx();
       const P2 pr = pos(r), pl = pos(l);
-      portals_.push_back(Portal{l, r, pl, pr, shared});
+      portals.push_back(Portal{l, r, pl, pr, shared});
       const HalfedgeHandle o = mesh_.opposite_halfedge_handle(shared);
       const VertexHandle c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
       const Vec3 c3 = mesh_.point(c);
@@ -166,7 +167,7 @@ class Straightener {
                           (c3 - mesh_.point(VertexHandle(l))).norm(), false);
       cur = {std::pair<int, P2>{r, pr}, {l, pl}, {c.idx(), pc}};
     }
-    portals_.push_back(Portal{t.idx(), t.idx(), pos(t.idx()), pos(t.idx()), HalfedgeHandle()});
+    portals.push_back(Portal{t.idx(), t.idx(), pos(t.idx()), pos(t.idx()), HalfedgeHandle()});
   }
 
   // The point at distances da from a and db from b, left of a -> b or right of it.
@@ -180,17 +181,21 @@ class Straightener {
     return a + x * u + (left ? y : -y) * n;
   }
 
-  P2 apex_pos(const Apex& a) const { return a.left ? portals_[a.portal].l : portals_[a.portal].r; }
-  int apex_vertex(const Apex& a) const { return a.left ? portals_[a.portal].left : portals_[a.portal].right; }
+  static P2 apex_pos(const std::vector<Portal>& portals, const Apex& a) {
+    return a.left ? portals[a.portal].l : portals[a.portal].r;
+  }
+  static int apex_vertex(const std::vector<Portal>& portals, const Apex& a) {
+    return a.left ? portals[a.portal].left : portals[a.portal].right;
+  }
 
   // The funnel algorithm over the portals: the corners of the shortest path through them.
-  std::vector<Apex> funnel() const {
+  static std::vector<Apex> funnel(const std::vector<Portal>& portals) {
     std::vector<Apex> out{Apex{0, true}};
-    const int n = static_cast<int>(portals_.size());
-    P2 apex = portals_[0].l, lb = apex, rb = apex;
+    const int n = static_cast<int>(portals.size());
+    P2 apex = portals[0].l, lb = apex, rb = apex;
     int li = 0, ri = 0;
     for (int i = 1; i < n; ++i) {
-      const P2 L = portals_[i].l, R = portals_[i].r;
+      const P2 L = portals[i].l, R = portals[i].r;
       if (orient(apex, rb, R) >= 0) {
         if (same(apex, rb) || orient(apex, lb, R) < 0) {
           rb = R;
@@ -222,20 +227,28 @@ class Straightener {
     return out;
   }
 
-  double length(const std::vector<Apex>& apexes) const {
+  static double length(const std::vector<Portal>& portals, const std::vector<Apex>& apexes) {
     double sum = 0;
-    for (size_t i = 1; i < apexes.size(); ++i) sum += norm(apex_pos(apexes[i]) - apex_pos(apexes[i - 1]));
+    for (size_t i = 1; i < apexes.size(); ++i)
+      sum += norm(apex_pos(portals, apexes[i]) - apex_pos(portals, apexes[i - 1]));
     return sum;
   }
 
-  // Moves the corridor to the other side of the vertex of an inner apex. False when impossible.
-  bool flip(std::vector<FaceHandle>& strip, const Apex& a) const {
-    const VertexHandle w(apex_vertex(a));
-    // Portal p lies between strip[p-1] and strip[p]; both contain w.
-    int lo = a.portal - 1, hi = a.portal;
+  // The faces strip[lo..hi] around the corner w at portal p (which lies between strip[p-1] and
+  // strip[p], both containing w). False for an end portal.
+  bool fan_range(const std::vector<FaceHandle>& strip, int p, VertexHandle w, int& lo, int& hi) const {
+    lo = p - 1;
+    hi = p;
     if (lo < 0 || hi >= static_cast<int>(strip.size())) return false;
     while (lo > 0 && contains(strip[lo - 1], w)) --lo;
     while (hi + 1 < static_cast<int>(strip.size()) && contains(strip[hi + 1], w)) ++hi;
+    return true;
+  }
+
+  // Moves the corridor to the other side of the corner w at portal p. False when impossible.
+  bool flip(std::vector<FaceHandle>& strip, int p, VertexHandle w) const {
+    int lo = 0, hi = 0;
+    if (!fan_range(strip, p, w, lo, hi)) return false;
     const bool ccw = rotate(strip[lo], w, true) == strip[lo + 1];
     std::vector<FaceHandle> other;
     if (!fan_between(strip[lo], strip[hi], w, !ccw, other)) return false;
@@ -244,6 +257,54 @@ class Straightener {
     next.insert(next.end(), strip.begin() + hi, strip.end());
     strip.swap(next);
     return true;
+  }
+
+  enum class Trial { impossible, no_gain, gain };
+  // A change of the corridor: strip[fa..fb] becomes `faces`.
+  struct Window {
+    int fa = 0, fb = 0;
+    std::vector<FaceHandle> faces;
+  };
+
+  // Flips the corridor around the corner of apexes[k] (into `win`) and tells whether that
+  // shortens the path between apexes[k-1] and apexes[k+1], straightened on that stretch alone.
+  Trial try_flip(const std::vector<FaceHandle>& strip, const std::vector<Portal>& portals, const std::vector<Apex>& apexes,
+                 size_t k, Window& win, std::vector<FaceHandle>& local, std::vector<Portal>& local_portals) const {
+    const int p = apexes[k].portal, pa = apexes[k - 1].portal, pb = apexes[k + 1].portal;
+    const VertexHandle w(apex_vertex(portals, apexes[k]));
+    const VertexHandle wa(apex_vertex(portals, apexes[k - 1])), wb(apex_vertex(portals, apexes[k + 1]));
+    int lo = 0, hi = 0;
+    if (!fan_range(strip, p, w, lo, hi)) return Trial::impossible;
+    const int m = static_cast<int>(strip.size());
+    // Faces holding the neighbouring corners (portal q lies between strip[q-1] and strip[q]; the
+    // end portals are the first face's and the last face's corner).
+    win.fa = pa == 0 ? 0 : std::min(pa, lo);
+    win.fb = pb == m ? m - 1 : std::max(pb - 1, hi);
+    if (!contains(strip[static_cast<size_t>(win.fa)], wa) || !contains(strip[static_cast<size_t>(win.fb)], wb))
+      return Trial::impossible;
+    win.faces.assign(strip.begin() + win.fa, strip.begin() + win.fb + 1);
+    if (!flip(win.faces, p - win.fa, w)) return Trial::impossible;
+    local = win.faces;
+    tidy(local, wa, wb);
+    if (local.empty()) return Trial::no_gain;
+    unfold(local, wa, wb, local_portals);
+    const double before = norm(apex_pos(portals, apexes[k]) - apex_pos(portals, apexes[k - 1])) +
+                          norm(apex_pos(portals, apexes[k + 1]) - apex_pos(portals, apexes[k]));
+    const double after = length(local_portals, funnel(local_portals));
+    return after < before - 1e-12 * std::max(1.0, before) ? Trial::gain : Trial::no_gain;
+  }
+
+  // `strip` with the first `count` windows (in order, not overlapping) applied.
+  static void splice(const std::vector<FaceHandle>& strip, const std::vector<Window>& wins, size_t count,
+                     std::vector<FaceHandle>& out) {
+    out.clear();
+    int at = 0;
+    for (size_t i = 0; i < count; ++i) {
+      out.insert(out.end(), strip.begin() + at, strip.begin() + wins[i].fa);
+      out.insert(out.end(), wins[i].faces.begin(), wins[i].faces.end());
+      at = wins[i].fb + 1;
+    }
+    out.insert(out.end(), strip.begin() + at, strip.end());
   }
 
   std::vector<PathPoint> run(const std::vector<VertexHandle>& chain, int max_flips, bool* converged) {
@@ -256,35 +317,53 @@ class Straightener {
     }
     std::vector<FaceHandle> strip = corridor(chain);
     tidy(strip, s, t);
-    unfold(strip, s, t);
-    std::vector<Apex> apexes = funnel();
-    double len = length(apexes);
+    std::vector<Portal> portals, trial_portals;
+    unfold(strip, s, t, portals);
+    std::vector<Apex> apexes = funnel(portals);
+    double len = length(portals, apexes);
+    // A pass tries to move the corridor to the other side of each inner corner, judging each
+    // move on the stretch between the corner's two neighbouring corners alone (cost follows the
+    // corner's fan, not the path). The moves that shorten their stretch and do not overlap are
+    // applied together and the whole corridor is straightened once; if that is not shorter
+    // (a loop cut away by tidy), they are tried one by one. Passes repeat until nothing shortens.
+    std::vector<FaceHandle> trial, local;
+    std::vector<Window> wins;
+    Window win;
     int flips = 0;
     bool improved = true;
     while (improved && flips < max_flips) {
       improved = false;
+      wins.clear();
       for (size_t k = 1; k + 1 < apexes.size() && flips < max_flips; ++k) {
-        std::vector<FaceHandle> trial = strip;
-        if (!flip(trial, apexes[k])) continue;
-        tidy(trial, s, t);
-        if (trial.empty()) continue;
-        const std::vector<Portal> saved = portals_;
-        unfold(trial, s, t);
-        std::vector<Apex> ta = funnel();
-        const double tl = length(ta);
+        const Trial outcome = try_flip(strip, portals, apexes, k, win, local, trial_portals);
+        if (outcome == Trial::impossible) continue;
         ++flips;
-        if (tl < len - 1e-12 * std::max(1.0, len)) {
-          strip.swap(trial);
-          apexes.swap(ta);
-          len = tl;
-          improved = true;
-          break;
-        }
-        portals_ = saved;
+        if (outcome == Trial::no_gain) continue;
+        if (!wins.empty() && win.fa <= wins.back().fb) continue;  // overlaps: the next pass
+        wins.push_back(win);
+      }
+      const auto accept = [&](const std::vector<Window>& ws, size_t count) {
+        splice(strip, ws, count, trial);
+        tidy(trial, s, t);
+        if (trial.empty()) return false;
+        unfold(trial, s, t, trial_portals);
+        std::vector<Apex> ta = funnel(trial_portals);
+        const double tl = length(trial_portals, ta);
+        if (!(tl < len - 1e-12 * std::max(1.0, len))) return false;
+        strip.swap(trial);
+        portals.swap(trial_portals);
+        apexes.swap(ta);
+        len = tl;
+        return true;
+      };
+      improved = !wins.empty() && accept(wins, wins.size());
+      for (size_t i = 0; !improved && wins.size() > 1 && i < wins.size(); ++i) {
+        const std::vector<Window> one{wins[i]};
+        improved = accept(one, 1);
       }
     }
     if (converged) *converged = !improved;
-    return points(apexes);
+    return points(portals, apexes);
   }
 
   PathPoint vertex_point(VertexHandle v) const {
@@ -300,17 +379,17 @@ class Straightener {
   }
 
   // The polyline: apexes, and between them the crossings with every portal passed.
-  std::vector<PathPoint> points(const std::vector<Apex>& apexes) const {
+  std::vector<PathPoint> points(const std::vector<Portal>& portals, const std::vector<Apex>& apexes) const {
     std::vector<PathPoint> out;
     auto push = [&](const PathPoint& p) {
       if (!out.empty() && p.vertex.is_valid() && out.back().vertex == p.vertex) return;
       out.push_back(p);
     };
-    push(vertex_point(VertexHandle(apex_vertex(apexes[0]))));
+    push(vertex_point(VertexHandle(apex_vertex(portals, apexes[0]))));
     for (size_t k = 1; k < apexes.size(); ++k) {
-      const P2 a = apex_pos(apexes[k - 1]), b = apex_pos(apexes[k]);
+      const P2 a = apex_pos(portals, apexes[k - 1]), b = apex_pos(portals, apexes[k]);
       for (int p = apexes[k - 1].portal + 1; p < apexes[k].portal; ++p) {
-        const Portal& q = portals_[p];
+        const Portal& q = portals[p];
         const P2 e = q.l - q.r, d = b - a;
         const double den = cross(e, d);
         double u = den != 0 ? cross(a - q.r, d) / den : 0.5;
@@ -331,14 +410,13 @@ class Straightener {
         }
         push(pt);
       }
-      push(vertex_point(VertexHandle(apex_vertex(apexes[k]))));
+      push(vertex_point(VertexHandle(apex_vertex(portals, apexes[k]))));
     }
     return out;
   }
 
  private:
   const Mesh& mesh_;
-  std::vector<Portal> portals_;
 };
 
 }  // namespace
