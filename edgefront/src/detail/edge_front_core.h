@@ -584,6 +584,20 @@ class EdgeFrontCore {
     return -1;
   }
 
+  // Prefetch for a vertex about to be expanded: the halfedge `depth` steps into the fan walk of
+  // each of its wedges (0: the front halfedge itself). The records before it must be in cache
+  // already (prefetched with smaller depths a little earlier), or this waits for them.
+  void prefetch_occurrences(int v, int depth) const {
+    const VRec* rec = vt.find(static_cast<uint32_t>(v));
+    if (!rec) return;
+    for (int id = rec->head; id >= 0; id = nodes[id].vnext) {
+      int g = nodes[id].he;
+      const int h2 = nodes[nodes[id].next].he;
+      for (int k = 0; k < depth && g != h2; ++k) g = k == 0 ? nexth(g) : nexth(opph(g));
+      prefetch_halfedge(g);
+    }
+  }
+
   // Expands every active occurrence of `v` (the full fan of a seed). Returns false when `v` has
   // nothing ahead (not on the front, enclosed, or only barrier occurrences left).
   bool expand_vertex(int v) {
