@@ -529,6 +529,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));
   }
 
+  // The neighbours' positions, which settle_neighbours needs after the front expansion at `v`.
+  void prefetch_ring(int v) const {
+    for (const HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
+      detail::prefetch(&mesh.point(mesh.to_vertex_handle(h)));
+    }
+  }
+
   bool step() {
     while (!heap.empty()) {
       const auto [d, v] = heap.top();
@@ -546,6 +553,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       ++n_settled;
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
+      prefetch_ring(v);
       expand_vertex(v);
       settle_neighbours(v);
       note_memory();

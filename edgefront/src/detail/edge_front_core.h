@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "detail/flat_map.h"
+#include "detail/prefetch.h"
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
@@ -102,8 +103,8 @@ class EdgeFrontCore {
   bool has_face(int h) const { return mesh.face_handle(HalfedgeHandle(h)).is_valid(); }
   // Memory hints: the mesh's connectivity is the working set that does not fit in cache, and the
   // fan walks know a few loads ahead which records they will need.
-  void prefetch_halfedge(int h) const { __builtin_prefetch(&mesh.halfedge(HalfedgeHandle(h))); }
-  void prefetch_vertex(int v) const { __builtin_prefetch(&mesh.vertex(VertexHandle(v))); }
+  void prefetch_halfedge(int h) const { prefetch(&mesh.halfedge(HalfedgeHandle(h))); }
+  void prefetch_vertex(int v) const { prefetch(&mesh.vertex(VertexHandle(v))); }
   void emit(FrontEvent::Kind k, int v) {
     if (on_event) on_event(FrontEvent{k, VertexHandle(v), event_level()});
   }
