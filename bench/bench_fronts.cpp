@@ -260,9 +260,8 @@ int run(const Args& args) {
             << fixed(seconds_since(t0), 2) << " s, untimed)\n\n";
   std::cout.flush();
 
-  // One object per query unless --reuse: reusing a front object after a large query hangs with
-  // detail::FlatMap as of this writing (its clear() on a table above 4096 slots re-inserts the
-  // old entries and only zeroes the count, so the table later fills up and probing never ends).
+  // One object per query unless --reuse (one object of each kind, reset per source: the reuse
+  // path the headers advertise).
   std::optional<edgefront::VertexFront> vf;
   std::optional<edgefront::MinimalEdgeFront> mef;
   std::vector<Row> rows;

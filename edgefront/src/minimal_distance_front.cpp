@@ -32,7 +32,7 @@ struct DRec {
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   Vec3 origin{0, 0, 0};  // where `source` really lies (the source point or the pseudo-source vertex)
-  int unsettled = 0;     // neighbours not settled yet
+  int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
 };
 
@@ -115,9 +115,14 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return n;
   }
 
+  // The record of `v`, created on first use. Its `unsettled` count matters only once `v` is settled
+  // (it tells when the record can go): settle_neighbours counts it then, on the ring it walks
+  // anyway, instead of a circulation per new record here. Every neighbour that settles later
+  // decrements it. Loop sources keep the count from creation on: a loop vertex's record can be
+  // dropped and made again (it is reached again from behind).
   DRec& record(int v) {
     auto [r, inserted] = dt.insert(static_cast<uint32_t>(v), DRec{});
-    if (inserted) r->unsettled = count_unsettled(v);
+    if (inserted && line_source) r->unsettled = count_unsettled(v);
     return *r;
   }
 
@@ -475,8 +480,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void settle_neighbours(int x) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
     build_ring(x);
+    int open = 0;  // neighbours not settled yet
     auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
+      open += !(rc && rc->settled);
       if (rc) {
         --rc->unsettled;
         if (rc->settled) {
@@ -518,7 +525,15 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       for (HalfedgeHandle h : mesh.voh_range(VertexHandle(x))) visit(mesh.to_vertex_handle(h).idx(), h);
     }
     DRec* r = dt.find(static_cast<uint32_t>(x));
+    if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));
+  }
+
+  // The neighbours' positions, which settle_neighbours needs after the front expansion at `v`.
+  void prefetch_ring(int v) const {
+    for (const HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
+      detail::prefetch(&mesh.point(mesh.to_vertex_handle(h)));
+    }
   }
 
   bool step() {
@@ -538,6 +553,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       ++n_settled;
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
+      prefetch_ring(v);
       expand_vertex(v);
       settle_neighbours(v);
       note_memory();

@@ -63,6 +63,12 @@ struct MinimalEdgeFront::Impl : EdgeFrontCore {
         cur = -1;
       }
       if (due_pos < due.size()) {
+        // The connectivity of the vertices a few places ahead is fetched while these expand.
+        // Two stages: the front halfedges of the vertex 8 places ahead, the first fan halfedge of
+        // each of its wedges 4 places ahead.
+        constexpr size_t kNear = 4, kFar = 8;
+        if (due_pos + kFar < due.size()) prefetch_occurrences(static_cast<int>(due[due_pos + kFar]), 0);
+        if (due_pos + kNear < due.size()) prefetch_occurrences(static_cast<int>(due[due_pos + kNear]), 1);
         cur = static_cast<int>(due[due_pos++]);
         continue;
       }

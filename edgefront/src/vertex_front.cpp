@@ -5,6 +5,7 @@
 
 #include "detail/front_levels.h"
 #include "detail/flat_map.h"
+#include "detail/prefetch.h"
 #include "edgefront/error.h"
 
 namespace edgefront {
@@ -65,6 +66,20 @@ struct VertexFront::Impl {
     if (inserted) new_list.push_back(static_cast<uint32_t>(y.idx()));
   }
 
+  // Look-ahead for the level being processed: the vertex record of the vertex 8 places ahead, its
+  // first outgoing halfedge 4 places ahead (the circulator's first loads; the mesh does not fit in
+  // cache).
+  void prefetch_ahead() const {
+    constexpr size_t kNear = 4, kFar = 8;
+    if (pos + kFar < front_list.size()) {
+      detail::prefetch(&mesh.vertex(VertexHandle(static_cast<int>(front_list[pos + kFar]))));
+    }
+    if (pos + kNear < front_list.size()) {
+      const HalfedgeHandle h = mesh.halfedge_handle(VertexHandle(static_cast<int>(front_list[pos + kNear])));
+      if (h.is_valid()) detail::prefetch(&mesh.halfedge(h));
+    }
+  }
+
   void process(uint32_t x) {
     const VertexHandle vx(static_cast<int>(x));
     if (loop_source && completed == 0) {
@@ -95,6 +110,7 @@ struct VertexFront::Impl {
         level_steps = 0;
       }
       if (pos < front_list.size()) {
+        prefetch_ahead();
         process(front_list[pos++]);
         ++level_steps;
         peak_front = std::max(peak_front, front_list.size() - pos + new_list.size());
@@ -132,6 +148,7 @@ struct VertexFront::Impl {
       level_steps = 0;
     }
     while (pos < front_list.size()) {
+      prefetch_ahead();
       process(front_list[pos++]);
       ++level_steps;
     }

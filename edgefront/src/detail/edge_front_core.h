@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "detail/flat_map.h"
+#include "detail/prefetch.h"
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
@@ -29,6 +30,7 @@ constexpr uint8_t kVertexOnLoop = 8;       // a vertex of a loop source (may joi
 
 struct Node {
   int he = -1;
+  int to = -1;  // tov(he), kept here so that the hot paths need not reload the halfedge
   int prev = -1;
   int next = -1;
   int vnext = -1;  // next incoming node at the same end vertex
@@ -67,6 +69,7 @@ class EdgeFrontCore {
 
   // scratch
   std::vector<int> seg;
+  std::vector<int> seg_to;  // tov(seg[i]), known from the fan walk without loading seg[i]
   std::vector<int> dirty;
   std::vector<int> collided;
   std::vector<int> ins;
@@ -98,12 +101,18 @@ class EdgeFrontCore {
   int tov(int h) const { return mesh.to_vertex_handle(HalfedgeHandle(h)).idx(); }
   int fromv(int h) const { return mesh.from_vertex_handle(HalfedgeHandle(h)).idx(); }
   bool has_face(int h) const { return mesh.face_handle(HalfedgeHandle(h)).is_valid(); }
+  // Memory hints: the mesh's connectivity is the working set that does not fit in cache, and the
+  // fan walks know a few loads ahead which records they will need.
+  void prefetch_halfedge(int h) const { prefetch(&mesh.halfedge(HalfedgeHandle(h))); }
+  void prefetch_vertex(int v) const { prefetch(&mesh.vertex(VertexHandle(v))); }
   void emit(FrontEvent::Kind k, int v) {
     if (on_event) on_event(FrontEvent{k, VertexHandle(v), event_level()});
   }
 
   // ---- node pool ----
-  int new_node(int he, uint8_t flags) {
+  int new_node(int he, uint8_t flags) { return new_node(he, flags, tov(he)); }
+  // `to` must be tov(he); the hot paths know it without loading the halfedge.
+  int new_node(int he, uint8_t flags, int to) {
     int id;
     if (!free_nodes.empty()) {
       id = free_nodes.back();
@@ -114,6 +123,7 @@ class EdgeFrontCore {
     }
     Node& n = nodes[id];
     n.he = he;
+    n.to = to;
     n.prev = n.next = n.vnext = -1;
     n.flags = static_cast<uint8_t>(kNodeLive | flags);
     ++live_nodes;
@@ -135,7 +145,7 @@ class EdgeFrontCore {
   // Lists node `id` at its end vertex, creating the vertex record (a new join) when absent.
   // Returns true when the vertex already had other incoming nodes (a collision candidate).
   bool attach(int id) {
-    const int v = tov(nodes[id].he);
+    const int v = nodes[id].to;
     auto [rec, inserted] = vt.insert(static_cast<uint32_t>(v), VRec{});
     bool had_nodes = false;
     if (inserted) {
@@ -163,7 +173,7 @@ class EdgeFrontCore {
     Node& n = nodes[id];
     if (!(n.flags & kNodeAttached)) return;
     n.flags &= static_cast<uint8_t>(~kNodeAttached);
-    VRec* rec = vt.find(static_cast<uint32_t>(tov(n.he)));
+    VRec* rec = vt.find(static_cast<uint32_t>(n.to));
     EF_CHECK(rec != nullptr, "attached node without vertex record");
     int* p = &rec->head;
     while (*p != id) {
@@ -271,34 +281,48 @@ class EdgeFrontCore {
   // Builds in `seg` the path that replaces the occurrence (h1, h2) at their common vertex: the
   // outer edges of the fan ahead, and the two border halfedges through the vertex where the fan
   // has a gap. Returns the number of faces in the wedge.
-  int build_wedge(int h1, int h2) {
+  int build_wedge(int h1, int h2, int v) {
     seg.clear();
+    seg_to.clear();
     int faces = 0;
-    const int v = tov(h1);
     constexpr size_t guard = size_t{1} << 24;  // the fan of a manifold vertex always closes
     int g = nexth(h1);
     for (size_t i = 0;; ++i) {
       if (i > guard) {
         throw TopologyError("edge front: the fan of " + vname(v) + " does not close; the vertex is non-manifold");
       }
-      if (has_face(g)) {
-        seg.push_back(opph(nexth(g)));
-        ++faces;
-      } else {
-        seg.push_back(prevh(g));
-        seg.push_back(g);
-      }
+      push_fan_step(g, v, faces);
       if (g == h2) break;
       g = nexth(opph(g));
     }
     return faces;
   }
 
+  // One step of a fan walk around v at the outgoing halfedge g: the outer edge of g's face, or the
+  // two border halfedges through v at a gap. The outer edge opp(next(g)) ends where g does.
+  void push_fan_step(int g, int v, int& faces) {
+    const HalfedgeHandle gh(g);
+    const int a = mesh.to_vertex_handle(gh).idx();
+    if (mesh.face_handle(gh).is_valid()) {
+      const int outer = opph(mesh.next_halfedge_handle(gh).idx());
+      prefetch_halfedge(outer);
+      prefetch_vertex(a);
+      seg.push_back(outer);
+      seg_to.push_back(a);
+      ++faces;
+    } else {
+      seg.push_back(mesh.prev_halfedge_handle(gh).idx());
+      seg_to.push_back(v);
+      seg.push_back(g);
+      seg_to.push_back(a);
+    }
+  }
+
   void expand(int n1) {
     const int n2 = nodes[n1].next;
     const int h1 = nodes[n1].he, h2 = nodes[n2].he;
-    const int v = tov(h1);  // checked for manifoldness when it joined
-    const int faces = build_wedge(h1, h2);
+    const int v = nodes[n1].to;  // checked for manifoldness when it joined
+    const int faces = build_wedge(h1, h2, v);
     EF_CHECK(faces > 0, "expanding an occurrence with nothing ahead at " + vname(v));
     const bool border = seg.size() > static_cast<size_t>(faces);
     const bool keep_first = seg.front() == h1;
@@ -313,10 +337,10 @@ class EdgeFrontCore {
     const size_t b = keep_first ? 1 : 0;
     const size_t e = seg.size() - (keep_last ? 1 : 0);
     for (size_t i = b; i < e; ++i) {
-      const int id = new_node(seg[i], 0);
+      const int x = seg_to[i];
+      const int id = new_node(seg[i], 0, x);
       link(last, id);
       last = id;
-      const int x = tov(seg[i]);
       if (attach(id) && x != v && i + 1 < seg.size()) collided.push_back(x);
     }
     link(last, q);
@@ -326,8 +350,8 @@ class EdgeFrontCore {
     dirty.clear();
     dirty.push_back(v);
     dirty.push_back(fromv(h1));
-    dirty.push_back(tov(h2));
-    for (size_t i = b; i < e; ++i) dirty.push_back(tov(seg[i]));
+    dirty.push_back(nodes[n2].to);
+    for (size_t i = b; i < e; ++i) dirty.push_back(seg_to[i]);
     resolve_collisions();
     settle();
     note_memory();
@@ -352,18 +376,13 @@ class EdgeFrontCore {
     }
     // The occurrence "(prev(h0)... h0)" around the whole fan: rotate from h0 back to h0.
     seg.clear();
+    seg_to.clear();
     int faces = 0;
     constexpr size_t guard = size_t{1} << 24;
     int g = h0;
     for (size_t i = 0;; ++i) {
       EF_CHECK(i <= guard, "fan of " + vname(s) + " does not close");
-      if (has_face(g)) {
-        seg.push_back(opph(nexth(g)));
-        ++faces;
-      } else {
-        seg.push_back(prevh(g));
-        seg.push_back(g);
-      }
+      push_fan_step(g, s, faces);
       g = nexth(opph(g));
       if (g == h0) break;
     }
@@ -371,11 +390,11 @@ class EdgeFrontCore {
     collided.clear();
     dirty.clear();
     std::vector<int> ids(seg.size());
-    for (size_t i = 0; i < seg.size(); ++i) ids[i] = new_node(seg[i], 0);
+    for (size_t i = 0; i < seg.size(); ++i) ids[i] = new_node(seg[i], 0, seg_to[i]);
     for (size_t i = 0; i < seg.size(); ++i) link(ids[i], ids[(i + 1) % seg.size()]);
     ++loop_count;
     for (size_t i = 0; i < seg.size(); ++i) {
-      const int x = tov(seg[i]);
+      const int x = seg_to[i];
       if (attach(ids[i]) && x != s) collided.push_back(x);
       dirty.push_back(x);
     }
@@ -460,8 +479,8 @@ class EdgeFrontCore {
   void remove_spike(int a) {
     // a = c->x, b = x->c: both sides of the edge are processed; drop both halfedges.
     const int b = nodes[a].next;
-    const int c = fromv(nodes[a].he);
     const int pa = nodes[a].prev;
+    const int c = nodes[pa].to;  // = fromv(a's halfedge)
     const int nb = nodes[b].next;
     if (pa == b) {
       free_node(a);
@@ -480,19 +499,19 @@ class EdgeFrontCore {
     // (u->x, x->w) around the single face (u, x, w) ahead becomes u->w.
     const int n_out = nodes[n_in].next;
     const int h2 = nodes[n_out].he;
-    const int u = fromv(nodes[n_in].he);
-    const int w = tov(h2);
-    const int x = tov(nodes[n_in].he);
     const int p = nodes[n_in].prev;
+    const int u = nodes[p].to;  // loops are closed: the predecessor ends where n_in starts
+    const int w = nodes[n_out].to;
+    const int x = nodes[n_in].to;
     const int q = nodes[n_out].next;
-    const int nh = opph(nexth(h2));
+    const int nh = opph(nexth(h2));  // ends at w
     if (p == n_out) {
       // A two-node loop cannot enclose a face; guarded by the spike rule.
       EF_CHECK(false, "two-node loop at " + vname(x));
     }
     free_node(n_in);
     free_node(n_out);
-    const int id = new_node(nh, 0);
+    const int id = new_node(nh, 0, w);
     link(p, id);
     link(id, q);
     attach(id);
@@ -566,6 +585,20 @@ class EdgeFrontCore {
     return -1;
   }
 
+  // Prefetch for a vertex about to be expanded: the halfedge `depth` steps into the fan walk of
+  // each of its wedges (0: the front halfedge itself). The records before it must be in cache
+  // already (prefetched with smaller depths a little earlier), or this waits for them.
+  void prefetch_occurrences(int v, int depth) const {
+    const VRec* rec = vt.find(static_cast<uint32_t>(v));
+    if (!rec) return;
+    for (int id = rec->head; id >= 0; id = nodes[id].vnext) {
+      int g = nodes[id].he;
+      const int h2 = nodes[nodes[id].next].he;
+      for (int k = 0; k < depth && g != h2; ++k) g = k == 0 ? nexth(g) : nexth(opph(g));
+      prefetch_halfedge(g);
+    }
+  }
+
   // Expands every active occurrence of `v` (the full fan of a seed). Returns false when `v` has
   // nothing ahead (not on the front, enclosed, or only barrier occurrences left).
   bool expand_vertex(int v) {
@@ -586,7 +619,7 @@ class EdgeFrontCore {
   size_t memory_bytes() const {
     return nodes.capacity() * sizeof(Node) + free_nodes.capacity() * sizeof(int) + vt.memory_bytes() +
            sources.capacity() * sizeof(uint32_t) +
-           (seg.capacity() + dirty.capacity() + collided.capacity() + ins.capacity() + outs.capacity() +
+           (seg.capacity() + seg_to.capacity() + dirty.capacity() + collided.capacity() + ins.capacity() + outs.capacity() +
             partner.capacity()) *
                sizeof(int);
   }
