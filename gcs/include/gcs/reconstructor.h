@@ -161,6 +161,11 @@ class Reconstructor {
   /// \throw whatever an operation throws (the reconstructor is then unusable).
   ReconstructResult run(const ProgressCallback& progress = {});
 
+  /// Runs n basic steps (sample, winner move, smoothing, counters) without splits, collapses,
+  /// batches or operations: the mesh keeps its connectivity. For measuring the cost of a basic step
+  /// at a given mesh size (bench/bench_gcs.cpp).
+  void run_basic_steps(std::uint64_t n);
+
   /// The current mesh, in the loop's internal coordinates (the input translated so that the
   /// cloud's bounding-box centre is the origin), with deleted elements not yet collected.
   const edgefront::Mesh& mesh() const;
