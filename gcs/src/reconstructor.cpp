@@ -100,7 +100,7 @@ struct Reconstructor::Impl {
   std::mt19937_64 rng;
   std::uint64_t steps = 0;
   std::uint64_t next_collapse_scan = 0;
-  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, holes_filled = 0, batches = 0;
+  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, slits_zipped = 0, holes_filled = 0, batches = 0;
   size_t splits_in_batch = 0;
   size_t topology_last_live = 0;
   double seconds_ops = 0, seconds_topology = 0;
@@ -771,6 +771,14 @@ struct Reconstructor::Impl {
       const size_t merged = detail::merge_border_loops(mesh, dist, mp);
       loops_merged += merged;
       changed = changed || merged > 0;
+      if (opt.zip_slits) {
+        detail::ZipParams zp;
+        zp.mean_edge_length = ell;
+        zp.max_support_distance = support;
+        const size_t zipped = detail::zip_border_slits(mesh, dist, zp);
+        slits_zipped += zipped;
+        changed = changed || zipped > 0;
+      }
     }
     if (opt.create_borders) {
       const size_t filled = detail::fill_small_holes(mesh, dist, 8, support, 0.5);
@@ -829,6 +837,7 @@ struct Reconstructor::Impl {
     r.collapses = collapses;
     r.faces_removed = faces_removed;
     r.loops_merged = loops_merged;
+    r.slits_zipped = slits_zipped;
     r.holes_filled = holes_filled;
     r.batches = batches;
     r.seconds_total = seconds;
