@@ -10,6 +10,8 @@
 
 #include "../gcs/src/detail/border_topology.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/shapes.h"
+#include "gcs/reconstructor.h"
 
 namespace {
 
@@ -111,6 +113,25 @@ TEST(GcsZipSlits, WideHolesAndUnsupportedStripsStayOpen) {
   const gcs::detail::CloudQuery far = [](const Vec3& p) { return gcs::detail::CloudHit{std::abs(p[2]) + 5.0, Vec3(0, 0, 1)}; };
   EXPECT_EQ(gcs::detail::zip_border_slits(n, far, unit_params()), 0u);
   EXPECT_EQ(edgefront::compute_stats(n).border_loops, 2u);
+}
+
+TEST(GcsZipSlits, TheLoopStaysValidWithSlitZippingOn) {
+  edgefront::shapes::SampleOptions so;
+  so.points = 3000;
+  gcs::ReconstructOptions o;
+  o.target_vertices = 400;
+  o.batch_splits = 50;
+  o.progress_interval = 50;
+  o.zip_slits = true;
+  gcs::Reconstructor r(edgefront::shapes::sample("hemisphere", so), o);
+  const gcs::ReconstructResult res = r.run([&](const gcs::Progress&) {
+    EXPECT_NO_THROW(r.validate());
+    return true;
+  });
+  EXPECT_NO_THROW(r.validate());
+  Mesh m = res.mesh;
+  expect_valid(m);
+  EXPECT_GE(edgefront::compute_stats(m).border_loops, 1u);  // an open shape keeps its border
 }
 
 }  // namespace

@@ -754,37 +754,31 @@ struct Reconstructor::Impl {
     const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
     const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
     bool changed = false;
+    const auto tally = [&changed](size_t& total, size_t n) {
+      total += n;
+      changed = changed || n > 0;
+    };
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
-      const size_t removed = detail::remove_unsupported_faces(mesh, dist, bp);
-      faces_removed += removed;
-      changed = changed || removed > 0;
+      tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
     }
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
       mp.max_support_distance = support;
-      const size_t merged = detail::merge_border_loops(mesh, dist, mp);
-      loops_merged += merged;
-      changed = changed || merged > 0;
+      tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
       if (opt.zip_slits) {
         detail::ZipParams zp;
         zp.mean_edge_length = ell;
         zp.max_support_distance = support;
-        const size_t zipped = detail::zip_border_slits(mesh, dist, zp);
-        slits_zipped += zipped;
-        changed = changed || zipped > 0;
+        tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
       }
     }
-    if (opt.create_borders) {
-      const size_t filled = detail::fill_small_holes(mesh, dist, 8, support, 0.5);
-      holes_filled += filled;
-      changed = changed || filled > 0;
-    }
+    if (opt.create_borders) tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, support, 0.5));
     if (changed) resync();
     seconds_topology += seconds_since(t0);
   }
