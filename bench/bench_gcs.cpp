@@ -1,12 +1,14 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--data DIR]
+//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step] [--vertices N] [--smoothing K]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences.
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape.
-// --quick divides the synthetic targets by 10 (for a smoke run). Single thread.
+// 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
+//    grows to N, then times 100 * N further basic steps at that size (no splits, no collapses).
+// --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case. Single thread.
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <time.h>
+
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
 #include "edgefront/shapes.h"
@@ -26,6 +30,25 @@ namespace {
 
 using edgefront::Mesh;
 using edgefront::Vec3;
+
+// CPU time of this thread (the machine is shared: wall times are inflated by other jobs).
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double g_last_cpu = 0;  // CPU seconds of the last run()
+int g_smoothing = -1;   // --smoothing K: smoothing passes per basic step (-1: the default)
+
+double load_average() {
+  double l = -1;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &l) != 1) l = -1;
+    std::fclose(f);
+  }
+  return l;
+}
 
 double median_min_angle_deg(const Mesh& mesh) {
   std::vector<double> a;
@@ -47,11 +70,11 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
   std::printf("%s: %zu vertices, %zu faces, %zu component(s), %zu border loop(s), non-manifold %zu, stop: %s\n", label,
               s.vertices, s.faces, s.components, s.border_loops, s.nonmanifold_vertices,
               gcs::to_string(r.stop_reason).c_str());
-  std::printf("  time %.2f s (topology %.2f s), %llu basic steps (%.2f us/step), %zu splits, %zu collapses, "
-              "%zu faces removed, %zu loops merged, %zu holes filled\n",
-              r.seconds_total, r.seconds_topology, static_cast<unsigned long long>(r.basic_steps),
+  std::printf("  time %.2f s wall, %.2f s CPU (load average %.1f) (topology %.2f s wall), %llu basic steps (%.2f us/step wall), %zu splits, %zu collapses, "
+              "%zu faces removed, %zu loops merged, %zu slits zipped, %zu holes filled\n",
+              r.seconds_total, g_last_cpu, load_average(), r.seconds_topology, static_cast<unsigned long long>(r.basic_steps),
               1e6 * r.seconds_total / std::max<double>(1, static_cast<double>(r.basic_steps)), r.splits, r.collapses,
-              r.faces_removed, r.loops_merged, r.holes_filled);
+              r.faces_removed, r.loops_merged, r.slits_zipped, r.holes_filled);
   for (size_t c = 0; c < s.per_component.size() && c < 4; ++c)
     std::printf("  component %zu: %zu faces, %zu border loops, genus %g\n", c, s.per_component[c].faces,
                 s.per_component[c].border_loops, s.per_component[c].genus);
@@ -74,46 +97,87 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
 gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
   o.target_vertices = target;
-  return gcs::reconstruct(cloud, o);
+  if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
+  const double c0 = cpu_seconds();
+  gcs::ReconstructResult r = gcs::reconstruct(cloud, o);
+  g_last_cpu = cpu_seconds() - c0;
+  return r;
 }
+
 
 }  // namespace
 
 int main(int argc, char** argv) {
   bool quick = false;
+  std::string only;
+  size_t vertices = 0;
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
+    else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
+    else if (!std::strcmp(argv[i], "--vertices") && i + 1 < argc) vertices = std::stoul(argv[++i]);
+    else if (!std::strcmp(argv[i], "--smoothing") && i + 1 < argc) g_smoothing = std::stoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step] [--vertices N] [--smoothing K]\n");
       return 2;
     }
   }
   const size_t div = quick ? 10 : 1;
+  const auto want = [&](const char* name) { return only.empty() || only == name; };
   try {
     const auto models = data / "models";
-    if (std::filesystem::exists(models / "kitten.xyz")) {
+    if (!want("kitten")) {
+    } else if (std::filesystem::exists(models / "kitten.xyz")) {
       print_mesh("kitten.xyz at 5K", run(edgefront::read_points(models / "kitten.xyz"), 5000));
     } else {
       std::printf("kitten.xyz: missing (run data/fetch-models.sh)\n");
     }
-    if (std::filesystem::exists(models / "sphere_20k.xyz")) {
+    if (!want("sphere")) {
+    } else if (std::filesystem::exists(models / "sphere_20k.xyz")) {
       print_mesh("sphere_20k.xyz at 10K", run(edgefront::read_points(models / "sphere_20k.xyz"), 10000));
     } else {
       std::printf("sphere_20k.xyz: missing (run data/fetch-models.sh)\n");
     }
+    if (!want("fixed") && !want("big") && !want("step")) return 0;
     edgefront::shapes::SampleOptions so;
     so.points = 1'000'000;
     const edgefront::PointCloud big = edgefront::shapes::sample("bumpy-sphere", so);
-    so.points = 100'000;
-    const edgefront::PointCloud small_cloud = edgefront::shapes::sample("bumpy-sphere", so);
-    const size_t fixed = 20000 / div;
-    const gcs::ReconstructResult a = run(small_cloud, fixed);
-    const gcs::ReconstructResult b = run(big, fixed);
-    std::printf("fixed target %zu: 100K points %.2f s, 1M points %.2f s, ratio 1M/100K %.3f\n", fixed, a.seconds_total,
-                b.seconds_total, b.seconds_total / a.seconds_total);
-    print_mesh("bumpy-sphere 1M points at the 100K target", run(big, 100000 / div));
+    if (want("fixed")) {
+      so.points = 100'000;
+      const edgefront::PointCloud small_cloud = edgefront::shapes::sample("bumpy-sphere", so);
+      const size_t fixed = vertices ? vertices : 20000 / div;
+      const gcs::ReconstructResult a = run(small_cloud, fixed);
+      const double cpu_a = g_last_cpu;
+      const gcs::ReconstructResult b = run(big, fixed);
+      const double cpu_b = g_last_cpu;
+      std::printf("fixed target %zu: 100K points %.2f s wall / %.2f s CPU, 1M points %.2f s wall / %.2f s CPU, "
+                  "ratio 1M/100K %.3f (CPU %.3f), load average %.1f\n",
+                  fixed, a.seconds_total, cpu_a, b.seconds_total, cpu_b, b.seconds_total / a.seconds_total,
+                  cpu_b / cpu_a, load_average());
+    }
+    if (want("big")) {
+      const size_t n = vertices ? vertices : 100000 / div;
+      print_mesh(("bumpy-sphere 1M points at the " + std::to_string(n) + " target").c_str(), run(big, n));
+    }
+    if (only == "step") {
+      const size_t n = vertices ? vertices : 10000;
+      gcs::ReconstructOptions o;
+      o.target_vertices = n;
+      if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
+      gcs::Reconstructor rec(big, o);
+      rec.run();
+      const std::uint64_t steps = 100 * static_cast<std::uint64_t>(n);
+      const auto t0 = std::chrono::steady_clock::now();
+      const double c0 = cpu_seconds();
+      rec.run_basic_steps(steps);
+      const double cpu = cpu_seconds() - c0;
+      const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("basic step at %zu vertices (1M-point cloud): %.3f us CPU, %.3f us wall (%llu steps, load "
+                  "average %.1f)\n",
+                  n, 1e6 * cpu / static_cast<double>(steps), 1e6 * dt / static_cast<double>(steps),
+                  static_cast<unsigned long long>(steps), load_average());
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_gcs: error: %s\n", e.what());
     return 1;

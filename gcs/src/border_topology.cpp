@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/point_index.h"
 
 namespace gcs::detail {
 
@@ -127,6 +129,82 @@ std::vector<Loop> border_loops(const Mesh& mesh) {
   return loops;
 }
 
+// Vertex k of a loop, k taken cyclically (may be negative).
+VertexHandle loop_vertex(const Loop& L, long k) {
+  const long n = static_cast<long>(L.vertices.size());
+  return L.vertices[static_cast<size_t>(((k % n) + n) % n)];
+}
+// Boundary halfedge k of a loop (from vertex k to vertex k + 1), k taken cyclically.
+HalfedgeHandle loop_halfedge(const Loop& L, long k) {
+  const long n = static_cast<long>(L.halfedges.size());
+  return L.halfedges[static_cast<size_t>(((k % n) + n) % n)];
+}
+
+// A strip of triangles between two border chains that run opposite: chain A is a(0..nA) along its
+// loop's direction, chain B is b(0..nB) against its loop's direction; ha(i) is the boundary
+// halfedge a(i) -> a(i+1), hb(j) the boundary halfedge b(j+1) -> b(j). For whole loops a(nA) =
+// a(0) and b(nB) = b(0) (the strip closes into a ring).
+struct Strip {
+  std::function<VertexHandle(size_t)> a, b;
+  std::function<HalfedgeHandle(size_t)> ha, hb;
+  size_t nA = 0, nB = 0;
+};
+
+// Plans the zipper triangles of a strip (advancing on the side whose next diagonal is shorter),
+// checks that every triangle is non-degenerate, lies within `max_support_distance` of the cloud and
+// that the triangles agree with the faces they border (mean cosine >= min_normal_agreement), then
+// adds them. Leaves the mesh unchanged and returns false when a check fails or OpenMesh refuses a
+// face (a non-manifold result).
+bool zip_strip(Mesh& mesh, const CloudQuery& cloud, const Strip& st, double max_support_distance,
+               double min_normal_agreement) {
+  struct Tri {
+    VertexHandle a, b, c;
+    HalfedgeHandle border;  // the loop halfedge the face closes
+  };
+  std::vector<Tri> plan;
+  size_t i = 0, j = 0;
+  while (i < st.nA || j < st.nB) {
+    bool advance_a;
+    if (i == st.nA) advance_a = false;
+    else if (j == st.nB) advance_a = true;
+    else
+      advance_a = (mesh.point(st.a(i + 1)) - mesh.point(st.b(j))).sqrnorm() <=
+                  (mesh.point(st.a(i)) - mesh.point(st.b(j + 1))).sqrnorm();
+    if (advance_a) {
+      plan.push_back({st.a(i), st.a(i + 1), st.b(j), st.ha(i)});
+      ++i;
+    } else {
+      plan.push_back({st.b(j + 1), st.b(j), st.a(i), st.hb(j)});
+      ++j;
+    }
+  }
+  if (plan.empty()) return false;
+  double agreement = 0;
+  for (const Tri& t : plan) {
+    if (t.a == t.c || t.b == t.c) return false;
+    const Vec3 n = tri_normal(mesh.point(t.a), mesh.point(t.b), mesh.point(t.c));
+    const FaceHandle adj = mesh.opposite_face_handle(t.border);
+    const Vec3 m = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+    const double ln = n.norm(), lm = m.norm();
+    if (!(ln > 0) || !(lm > 0)) return false;
+    agreement += (n | m) / (ln * lm);
+    const Vec3 c = (mesh.point(t.a) + mesh.point(t.b) + mesh.point(t.c)) / 3.0;
+    if (cloud(c).distance > max_support_distance) return false;
+  }
+  if (agreement / static_cast<double>(plan.size()) < min_normal_agreement) return false;
+  std::vector<FaceHandle> added;
+  const MuteOpenMeshErrors mute;  // a refused face is handled below, not printed
+  for (const Tri& t : plan) {
+    const FaceHandle f = mesh.add_face(t.a, t.b, t.c);
+    if (!f.is_valid()) {
+      for (auto g : added) mesh.delete_face(g, false);
+      return false;
+    }
+    added.push_back(f);
+  }
+  return true;
+}
+
 }  // namespace
 
 size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
@@ -222,69 +300,14 @@ size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams
       gap /= static_cast<double>(nA);
       if (gap > std::max(params.max_gap_edges * params.mean_edge_length, params.max_gap_fraction * lmin)) continue;
       // Orientation: A's and B's boundary halfedges must run opposite at the start pair.
-      const auto at = [](const Loop& L, long k) { return L.vertices[static_cast<size_t>(((k % long(L.vertices.size())) + long(L.vertices.size())) % long(L.vertices.size()))]; };
-      const Vec3 tA = mesh.point(at(A, long(i0) + 1)) - mesh.point(at(A, long(i0) - 1));
-      const Vec3 tB = mesh.point(at(B, long(k0) + 1)) - mesh.point(at(B, long(k0) - 1));
+      const Vec3 tA = mesh.point(loop_vertex(A, long(i0) + 1)) - mesh.point(loop_vertex(A, long(i0) - 1));
+      const Vec3 tB = mesh.point(loop_vertex(B, long(k0) + 1)) - mesh.point(loop_vertex(B, long(k0) - 1));
       if ((tA | tB) >= 0) continue;
-      // Plan the zipper strip.
-      struct Tri {
-        VertexHandle a, b, c;
-        HalfedgeHandle border;  // the loop halfedge the face closes
-      };
-      std::vector<Tri> plan;
-      const auto a_of = [&](size_t i) { return at(A, long(i0 + i)); };
-      const auto b_of = [&](size_t j) { return at(B, long(k0) - long(j)); };
-      const auto ha_of = [&](size_t i) { return A.halfedges[(i0 + i) % nA]; };                       // a(i) -> a(i+1)
-      const auto hb_of = [&](size_t j) { return B.halfedges[static_cast<size_t>((long(k0) - long(j) - 1 + long(nB) * 2) % long(nB))]; };  // b(j+1) -> b(j)
-      size_t i = 0, j = 0;
-      while (i < nA || j < nB) {
-        bool advance_a;
-        if (i == nA) advance_a = false;
-        else if (j == nB) advance_a = true;
-        else
-          advance_a = (mesh.point(a_of(i + 1)) - mesh.point(b_of(j))).sqrnorm() <=
-                      (mesh.point(a_of(i)) - mesh.point(b_of(j + 1))).sqrnorm();
-        if (advance_a) {
-          plan.push_back({a_of(i), a_of(i + 1), b_of(j), ha_of(i)});
-          ++i;
-        } else {
-          plan.push_back({b_of(j + 1), b_of(j), a_of(i), hb_of(j)});
-          ++j;
-        }
-      }
-      double agreement = 0;
-      bool ok = true;
-      for (const Tri& t : plan) {
-        const Vec3 n = tri_normal(mesh.point(t.a), mesh.point(t.b), mesh.point(t.c));
-        const FaceHandle adj = mesh.opposite_face_handle(t.border);
-        const Vec3 m = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
-        const double ln = n.norm(), lm = m.norm();
-        if (!(ln > 0) || !(lm > 0)) {
-          ok = false;
-          break;
-        }
-        agreement += (n | m) / (ln * lm);
-        const Vec3 c = (mesh.point(t.a) + mesh.point(t.b) + mesh.point(t.c)) / 3.0;
-        if (cloud(c).distance > params.max_support_distance) {
-          ok = false;
-          break;
-        }
-      }
-      if (!ok || agreement / static_cast<double>(plan.size()) < params.min_normal_agreement) continue;
-      std::vector<FaceHandle> added;
-      const MuteOpenMeshErrors mute;  // a refused face is handled below, not printed
-      for (const Tri& t : plan) {
-        const FaceHandle f = mesh.add_face(t.a, t.b, t.c);
-        if (!f.is_valid()) {
-          ok = false;
-          break;
-        }
-        added.push_back(f);
-      }
-      if (!ok) {
-        for (auto f : added) mesh.delete_face(f, false);
-        continue;
-      }
+      const Strip strip{[&](size_t i) { return loop_vertex(A, long(i0 + i)); },
+                        [&](size_t j) { return loop_vertex(B, long(k0) - long(j)); },
+                        [&](size_t i) { return loop_halfedge(A, long(i0 + i)); },
+                        [&](size_t j) { return loop_halfedge(B, long(k0) - long(j) - 1); }, nA, nB};
+      if (!zip_strip(mesh, cloud, strip, params.max_support_distance, params.min_normal_agreement)) continue;
       used[ia] = used[ib] = 1;
       ++merged;
     }
@@ -336,6 +359,120 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
     ++filled;
   }
   return filled;
+}
+
+size_t zip_border_slits(Mesh& mesh, const CloudQuery& cloud, const ZipParams& params) {
+  const double gap = params.max_gap_edges * params.mean_edge_length;
+  if (!(gap > 0)) return 0;
+  size_t zipped = 0;
+  size_t attempts = 0;
+  std::set<std::pair<int, int>> failed;  // seed vertex pairs whose strip was refused
+  while (zipped < params.max_zips && attempts < 8 * params.max_zips) {
+    const std::vector<Loop> loops = border_loops(mesh);
+    // Boundary vertex -> (loop, position); a vertex on two loops is skipped (not simple).
+    std::vector<std::pair<int, long>> where;
+    std::vector<Vec3> pts;
+    std::vector<char> simple;
+    for (size_t l = 0; l < loops.size(); ++l) {
+      for (size_t k = 0; k < loops[l].vertices.size(); ++k) {
+        where.push_back({static_cast<int>(l), static_cast<long>(k)});
+        pts.push_back(mesh.point(loops[l].vertices[k]));
+      }
+    }
+    if (pts.size() < 6) break;
+    {
+      std::vector<int> count(mesh.n_vertices(), 0);
+      for (const auto& [l, k] : where) ++count[loop_vertex(loops[l], k).idx()];
+      for (const auto& [l, k] : where) simple.push_back(count[loop_vertex(loops[l], k).idx()] == 1);
+    }
+    const edgefront::PointIndex index(pts);
+    // Candidate seeds: close pairs of boundary vertices whose loops run opposite there.
+    struct Seed {
+      double d;
+      size_t p, q;
+    };
+    std::vector<Seed> seeds;
+    std::vector<size_t> near;
+    const auto tangent = [&](size_t p) {
+      const Loop& L = loops[static_cast<size_t>(where[p].first)];
+      return mesh.point(loop_vertex(L, where[p].second + 1)) - mesh.point(loop_vertex(L, where[p].second - 1));
+    };
+    for (size_t p = 0; p < pts.size(); ++p) {
+      if (!simple[p]) continue;
+      index.radius_search(pts[p], gap, near);
+      for (const size_t q : near) {
+        if (q <= p || !simple[q]) continue;
+        const auto [lp, kp] = where[p];
+        const auto [lq, kq] = where[q];
+        if (lp != lq && !params.across_loops) continue;
+        if (lp == lq) {
+          const long n = static_cast<long>(loops[static_cast<size_t>(lp)].vertices.size());
+          const long d = std::abs(kp - kq);
+          if (std::min(d, n - d) < static_cast<long>(params.min_loop_separation)) continue;
+        }
+        const VertexHandle vp = loop_vertex(loops[static_cast<size_t>(lp)], kp);
+        const VertexHandle vq = loop_vertex(loops[static_cast<size_t>(lq)], kq);
+        if (mesh.find_halfedge(vp, vq).is_valid() || failed.count({vp.idx(), vq.idx()})) continue;
+        const Vec3 tp = tangent(p), tq = tangent(q);
+        const double lt = tp.norm() * tq.norm();
+        if (!(lt > 0) || (tp | tq) > -params.min_opposite_cos * lt) continue;
+        seeds.push_back({(pts[p] - pts[q]).norm(), p, q});
+      }
+    }
+    if (seeds.empty()) break;
+    std::sort(seeds.begin(), seeds.end(), [](const Seed& x, const Seed& y) {
+      return x.d < y.d || (x.d == y.d && (x.p < y.p || (x.p == y.p && x.q < y.q)));
+    });
+    bool done = false;
+    for (const Seed& sd : seeds) {
+      if (attempts >= 8 * params.max_zips) break;
+      ++attempts;
+      const Loop& A = loops[static_cast<size_t>(where[sd.p].first)];
+      const Loop& B = loops[static_cast<size_t>(where[sd.q].first)];
+      const long i0 = where[sd.p].second, j0 = where[sd.q].second;
+      const bool same = &A == &B;
+      const long n = static_cast<long>(A.vertices.size());
+      // Extend the matched run both ways while the pairs stay within the gap and (same loop) the
+      // two chains keep at least two loop vertices between them.
+      const auto close = [&](long ia, long jb) {
+        return (mesh.point(loop_vertex(A, ia)) - mesh.point(loop_vertex(B, jb))).norm() <= gap;
+      };
+      const auto apart = [&](long ia, long jb) {
+        if (!same) return true;
+        const long d = ((jb - ia) % n + n) % n;  // from a forward to b
+        return d >= 2 && n - d >= 2;
+      };
+      const long limit = static_cast<long>(std::min(A.vertices.size(), B.vertices.size())) / 2;
+      long back = 0, fwd = 0;
+      while (back < limit && close(i0 - back - 1, j0 + back + 1) && apart(i0 - back - 1, j0 + back + 1) &&
+             apart(i0 + fwd, j0 - fwd))
+        ++back;
+      while (fwd + back < limit && close(i0 + fwd + 1, j0 - fwd - 1) && apart(i0 + fwd + 1, j0 - fwd - 1)) ++fwd;
+      if (same && !(apart(i0 - back, j0 + back) && apart(i0 + fwd, j0 - fwd))) {
+        failed.insert({loop_vertex(A, i0).idx(), loop_vertex(B, j0).idx()});
+        continue;
+      }
+      const long ia = i0 - back, jb = j0 + back;
+      const size_t m = static_cast<size_t>(back + fwd);
+      if (m == 0) {
+        failed.insert({loop_vertex(A, i0).idx(), loop_vertex(B, j0).idx()});
+        continue;
+      }
+      const Strip strip{[&](size_t i) { return loop_vertex(A, ia + long(i)); },
+                        [&](size_t j) { return loop_vertex(B, jb - long(j)); },
+                        [&](size_t i) { return loop_halfedge(A, ia + long(i)); },
+                        [&](size_t j) { return loop_halfedge(B, jb - long(j) - 1); }, m, m};
+      if (!zip_strip(mesh, cloud, strip, params.max_support_distance, params.min_normal_agreement)) {
+        failed.insert({loop_vertex(A, i0).idx(), loop_vertex(B, j0).idx()});
+        continue;
+      }
+      ++zipped;
+      done = true;
+      break;
+    }
+    if (!done) break;
+  }
+  return zipped;
 }
 
 }  // namespace gcs::detail

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <set>
 #include <utility>
 
 #include <Eigen/Dense>
 
 #include "detail/border_topology.h"
+#include "detail/counter_heap.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
@@ -91,7 +91,7 @@ struct Reconstructor::Impl {
   std::vector<double> tau;  // scaled counters: true counter = tau * scale
   double scale = 1.0;
   double decay = 1.0;
-  std::set<std::pair<double, int>> order;
+  detail::CounterHeap order;  // the scaled counters of the live vertices, most active on top
   std::vector<std::uint64_t> last_win;
   std::vector<std::uint64_t> vstamp, fstamp;
   std::uint64_t clock = 1;
@@ -100,7 +100,7 @@ struct Reconstructor::Impl {
   std::mt19937_64 rng;
   std::uint64_t steps = 0;
   std::uint64_t next_collapse_scan = 0;
-  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, holes_filled = 0, batches = 0;
+  size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, slits_zipped = 0, holes_filled = 0, batches = 0;
   size_t splits_in_batch = 0;
   size_t topology_last_live = 0;
   double seconds_ops = 0, seconds_topology = 0;
@@ -117,7 +117,6 @@ struct Reconstructor::Impl {
   // Snapshot of face vertex triples for detecting what an operation re-connected.
   std::vector<std::array<int, 3>> face_snapshot;
 
-  std::vector<VertexHandle> ring_buf;
 
   // ---------------------------------------------------------------- setup
   void init(edgefront::PointCloud points, const ReconstructOptions& options) {
@@ -241,13 +240,12 @@ struct Reconstructor::Impl {
   }
 
   void set_tau(int v, double true_value) {
-    if (tau[v] >= 0) order.erase({tau[v], v});
     tau[v] = true_value / scale;
-    order.insert({tau[v], v});
+    order.set(v, tau[v]);
   }
   double true_tau(int v) const { return tau[v] * scale; }
   void drop_tau(int v) {
-    if (tau[v] >= 0) order.erase({tau[v], v});
+    order.erase(v);
     tau[v] = -1.0;
   }
   void update_decay() {
@@ -257,12 +255,9 @@ struct Reconstructor::Impl {
     return static_cast<std::uint64_t>(std::ceil(opt.inactivity_window * static_cast<double>(live)));
   }
   void renormalize() {
-    std::set<std::pair<double, int>> fresh;
-    for (const auto& [t, v] : order) {
-      tau[v] = t * scale;
-      fresh.insert({tau[v], v});
-    }
-    order.swap(fresh);
+    for (size_t v = 0; v < tau.size(); ++v)
+      if (tau[v] >= 0) tau[v] *= scale;
+    order.scale_all(scale);
     scale = 1.0;
   }
   void stamp(VertexHandle v) { vstamp[v.idx()] = clock; }
@@ -336,58 +331,120 @@ struct Reconstructor::Impl {
     grid.move(wi, mesh.point(w));
     stamp(w);
     if (opt.neighbor_rate > 0 && opt.smoothing_iterations > 0) {
-      ring_buf.clear();
-      for (auto u : mesh.vv_range(w)) ring_buf.push_back(u);
+      gather_ring(w);
       for (int it = 0; it < opt.smoothing_iterations; ++it) {
-        for (const VertexHandle v : ring_buf) smooth_vertex(v);
+        for (size_t i = 0; i < ring.members.size(); ++i) smooth_local(i);
       }
-      for (const VertexHandle v : ring_buf) {
-        grid.move(v.idx(), mesh.point(v));
+      for (size_t i = 0; i < ring.members.size(); ++i) {
+        const int l = ring.members[i].local;
+        const VertexHandle v(ring.vid[l]);
+        mesh.point(v) = ring.pos[l];
+        grid.move(v.idx(), ring.pos[l]);
         stamp(v);
       }
     }
-    order.erase({tau[wi], wi});
     tau[wi] += 1.0 / scale;
-    order.insert({tau[wi], wi});
+    order.set(wi, tau[wi]);
     last_win[wi] = steps;
     scale *= decay;
     if (scale < 1e-150) renormalize();
     ++steps;
   }
 
-  // One tangential Laplacian update of v (border vertices: along the border only). One pass over
-  // the outgoing halfedges gathers the ring mean and the area-weighted normal.
-  void smooth_vertex(VertexHandle v) {
-    const Vec3 x = mesh.point(v);
+  // The winner's 1-ring and the rings of its members, gathered once per basic step so that the
+  // smoothing passes run over small local arrays instead of re-walking the halfedge structure.
+  // Same arithmetic in the same order as walking the mesh: the results are identical.
+  struct RingCache {
+    struct Member {
+      int local;             // index of the member in pos / vid
+      int begin, end;        // its neighbours: entries [begin, end)
+      int border_a = -1;     // border members: the two border neighbours (local indices)
+      int border_b = -1;
+    };
+    struct Entry {
+      int a;  // neighbour (local), in outgoing-halfedge order
+      int b;  // the next vertex of the face of that halfedge (local), -1 at a border
+    };
+    std::vector<Vec3> pos;
+    std::vector<int> vid;
+    std::vector<Member> members;
+    std::vector<Entry> entries;
+    std::vector<int> slot;               // per mesh vertex: local index when slot_gen matches
+    std::vector<std::uint64_t> slot_gen;
+    std::uint64_t gen = 0;
+  } ring;
+
+  int ring_local(VertexHandle v) {
+    const size_t i = static_cast<size_t>(v.idx());
+    if (ring.slot.size() <= i) {
+      ring.slot.resize(mesh.n_vertices(), -1);
+      ring.slot_gen.resize(mesh.n_vertices(), 0);
+    }
+    if (ring.slot_gen[i] != ring.gen) {
+      ring.slot_gen[i] = ring.gen;
+      ring.slot[i] = static_cast<int>(ring.pos.size());
+      ring.pos.push_back(mesh.point(v));
+      ring.vid.push_back(v.idx());
+    }
+    return ring.slot[i];
+  }
+
+  void gather_ring(VertexHandle w) {
+    ++ring.gen;
+    ring.pos.clear();
+    ring.vid.clear();
+    ring.members.clear();
+    ring.entries.clear();
+    ring_local(w);
+    for (auto u : mesh.vv_range(w)) ring.members.push_back({ring_local(u), 0, 0});
+    for (auto& m : ring.members) {
+      const VertexHandle v(ring.vid[m.local]);
+      m.begin = static_cast<int>(ring.entries.size());
+      HalfedgeHandle border_out;
+      for (auto h : mesh.voh_range(v)) {
+        const int a = ring_local(mesh.to_vertex_handle(h));
+        int b = -1;
+        if (mesh.face_handle(h).is_valid()) {
+          b = ring_local(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+        } else {
+          border_out = h;
+        }
+        ring.entries.push_back({a, b});
+      }
+      m.end = static_cast<int>(ring.entries.size());
+      if (border_out.is_valid()) {
+        m.border_a = ring_local(mesh.to_vertex_handle(border_out));
+        m.border_b = ring_local(mesh.from_vertex_handle(mesh.prev_halfedge_handle(border_out)));
+      }
+    }
+  }
+
+  // One tangential Laplacian update of ring member i (border vertices: along the border only):
+  // the ring mean minus the vertex, without its component along the area-weighted normal.
+  void smooth_local(size_t i) {
+    const RingCache::Member& m = ring.members[i];
+    const Vec3 x = ring.pos[m.local];
     Vec3 sum(0, 0, 0), n(0, 0, 0);
     int k = 0;
-    bool border = false;
-    HalfedgeHandle border_out, border_in;
-    for (auto h : mesh.voh_range(v)) {
-      const Vec3& a = mesh.point(mesh.to_vertex_handle(h));
+    for (int e = m.begin; e < m.end; ++e) {
+      const Vec3& a = ring.pos[ring.entries[e].a];
       sum += a;
       ++k;
-      if (mesh.face_handle(h).is_valid()) {
-        const Vec3& b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+      if (ring.entries[e].b >= 0) {
+        const Vec3& b = ring.pos[ring.entries[e].b];
         n += (a - x) % (b - x);
-      } else {
-        border = true;
-        border_out = h;
       }
     }
     if (k == 0) return;
     Vec3 mean = sum / k;
-    if (border) {
-      border_in = mesh.prev_halfedge_handle(border_out);
-      mean = (mesh.point(mesh.to_vertex_handle(border_out)) + mesh.point(mesh.from_vertex_handle(border_in))) * 0.5;
-    }
+    if (m.border_a >= 0) mean = (ring.pos[m.border_a] + ring.pos[m.border_b]) * 0.5;
     Vec3 L = mean - x;
     const double ln = n.norm();
     if (ln > 0) {
       n /= ln;
       L -= (L | n) * n;
     }
-    mesh.point(v) += opt.neighbor_rate * L;
+    ring.pos[m.local] += opt.neighbor_rate * L;
   }
 
   // ---------------------------------------------------------------- vertex split
@@ -460,7 +517,7 @@ struct Reconstructor::Impl {
 
   void split_most_active() {
     EF_CHECK(!order.empty(), "no vertex to split");
-    const VertexHandle v(order.rbegin()->second);
+    const VertexHandle v(order.top());
     HalfedgeHandle longest;
     double best = -1;
     int best_to = std::numeric_limits<int>::max();
@@ -697,29 +754,31 @@ struct Reconstructor::Impl {
     const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
     const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
     bool changed = false;
+    const auto tally = [&changed](size_t& total, size_t n) {
+      total += n;
+      changed = changed || n > 0;
+    };
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
-      const size_t removed = detail::remove_unsupported_faces(mesh, dist, bp);
-      faces_removed += removed;
-      changed = changed || removed > 0;
+      tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
     }
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
       mp.max_support_distance = support;
-      const size_t merged = detail::merge_border_loops(mesh, dist, mp);
-      loops_merged += merged;
-      changed = changed || merged > 0;
+      tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
+      if (opt.zip_slits) {
+        detail::ZipParams zp;
+        zp.mean_edge_length = ell;
+        zp.max_support_distance = support;
+        tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
+      }
     }
-    if (opt.create_borders) {
-      const size_t filled = detail::fill_small_holes(mesh, dist, 8, support, 0.5);
-      holes_filled += filled;
-      changed = changed || filled > 0;
-    }
+    if (opt.create_borders) tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, support, 0.5));
     if (changed) resync();
     seconds_topology += seconds_since(t0);
   }
@@ -772,6 +831,7 @@ struct Reconstructor::Impl {
     r.collapses = collapses;
     r.faces_removed = faces_removed;
     r.loops_merged = loops_merged;
+    r.slits_zipped = slits_zipped;
     r.holes_filled = holes_filled;
     r.batches = batches;
     r.seconds_total = seconds;
@@ -860,7 +920,8 @@ struct Reconstructor::Impl {
       ++n_live;
       grid.check(id, mesh.point(v));
       if (!(tau[i] >= 0) || !std::isfinite(tau[i])) fail("vertex " + std::to_string(i) + " has no valid counter");
-      if (!order.count({tau[i], id})) fail("vertex " + std::to_string(i) + " is missing from the counter order");
+      if (!order.contains(id) || order.value(id) != tau[i])
+        fail("vertex " + std::to_string(i) + " is missing from the counter order");
       if (!mesh.is_manifold(v)) fail("vertex " + std::to_string(i) + " is not manifold");
       if (mesh.valence(v) < 2) fail("vertex " + std::to_string(i) + " has valence " + std::to_string(mesh.valence(v)));
       const Vec3& p = mesh.point(v);
@@ -877,6 +938,11 @@ struct Reconstructor::Impl {
     }
     if (n_live != live) fail("live vertex count " + std::to_string(live) + " != mesh " + std::to_string(n_live));
     if (grid.size() != n_live) fail("spatial grid holds " + std::to_string(grid.size()) + " vertices, mesh has " + std::to_string(n_live));
+    try {
+      order.check();
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
     if (order.size() != n_live) fail("counter order holds " + std::to_string(order.size()) + " vertices, mesh has " + std::to_string(n_live));
     for (auto f : mesh.faces()) {
       int k = 0;
@@ -920,6 +986,9 @@ ReconstructResult Reconstructor::run(const ProgressCallback& progress) { return 
 const Mesh& Reconstructor::mesh() const { return impl_->mesh; }
 Vec3 Reconstructor::offset() const { return impl_->offset; }
 void Reconstructor::validate() const { impl_->validate(); }
+void Reconstructor::run_basic_steps(std::uint64_t n) {
+  for (std::uint64_t i = 0; i < n; ++i) impl_->basic_step();
+}
 
 ReconstructResult reconstruct(edgefront::PointCloud points, const ReconstructOptions& options,
                               const ProgressCallback& progress) {

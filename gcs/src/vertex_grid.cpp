@@ -22,14 +22,17 @@ void VertexGrid::reset(double cell_size) {
   inv_h_ = 1.0 / cell_size;
   count_ = 0;
   std::fill(key_.begin(), key_.end(), kAbsent);
-  cells_.clear();
+  table_key_.assign(1024, kAbsent);
+  table_head_.assign(1024, -1);
+  table_used_ = 0;
 }
 
 void VertexGrid::resize(std::size_t n) {
   if (n <= key_.size()) return;
   key_.resize(n, kAbsent);
   pos_.resize(n, edgefront::Vec3(0, 0, 0));
-  slot_.resize(n, 0);
+  next_.resize(n, -1);
+  prev_.resize(n, -1);
 }
 
 std::uint64_t VertexGrid::pack(std::int64_t i, std::int64_t j, std::int64_t k) {
@@ -41,13 +44,75 @@ std::uint64_t VertexGrid::key_of(const edgefront::Vec3& p) const {
   return pack(cell_coord(p[0], inv_h_), cell_coord(p[1], inv_h_), cell_coord(p[2], inv_h_));
 }
 
+namespace {
+// A 64-bit mix (the finalizer of MurmurHash3) so that neighbouring cells spread over the table.
+std::uint64_t mix(std::uint64_t x) {
+  x ^= x >> 33;
+  x *= 0xff51afd7ed558ccdULL;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ULL;
+  x ^= x >> 33;
+  return x;
+}
+}  // namespace
+
+std::int64_t VertexGrid::find_slot(std::uint64_t key) const {
+  if (table_key_.empty()) return -1;
+  const std::size_t mask = table_key_.size() - 1;
+  for (std::size_t s = mix(key) & mask;; s = (s + 1) & mask) {
+    if (table_key_[s] == key) return static_cast<std::int64_t>(s);
+    if (table_key_[s] == kAbsent) return -1;
+  }
+}
+
+std::size_t VertexGrid::slot_for(std::uint64_t key) {
+  if (table_key_.empty()) rehash(1024);
+  const std::int64_t found = find_slot(key);
+  if (found >= 0) return static_cast<std::size_t>(found);
+  if (2 * (table_used_ + 1) > table_key_.size()) {
+    // Full: drop the emptied cells, and double when at least a quarter of the slots hold ids.
+    std::size_t nonempty = 0;
+    for (const int head : table_head_) nonempty += head >= 0;
+    rehash(4 * (nonempty + 1) > table_key_.size() ? 2 * table_key_.size() : table_key_.size());
+  }
+  const std::size_t mask = table_key_.size() - 1;
+  std::size_t s = mix(key) & mask;
+  while (table_key_[s] != kAbsent) s = (s + 1) & mask;
+  table_key_[s] = key;
+  table_head_[s] = -1;
+  ++table_used_;
+  return s;
+}
+
+void VertexGrid::rehash(std::size_t capacity) {
+  std::vector<std::uint64_t> old_key;
+  std::vector<int> old_head;
+  old_key.swap(table_key_);
+  old_head.swap(table_head_);
+  table_key_.assign(capacity, kAbsent);
+  table_head_.assign(capacity, -1);
+  table_used_ = 0;
+  const std::size_t mask = capacity - 1;
+  for (std::size_t i = 0; i < old_key.size(); ++i) {
+    if (old_key[i] == kAbsent || old_head[i] < 0) continue;
+    std::size_t s = mix(old_key[i]) & mask;
+    while (table_key_[s] != kAbsent) s = (s + 1) & mask;
+    table_key_[s] = old_key[i];
+    table_head_[s] = old_head[i];
+    ++table_used_;
+  }
+}
+
 void VertexGrid::insert(int id, const edgefront::Vec3& p) {
   EF_CHECK(id >= 0 && static_cast<std::size_t>(id) < key_.size(), "grid id out of range");
   EF_CHECK(key_[id] == kAbsent, "grid: id inserted twice");
   const std::uint64_t key = key_of(p);
-  std::vector<int>& cell = cells_[key];
-  slot_[id] = static_cast<std::uint32_t>(cell.size());
-  cell.push_back(id);
+  const std::size_t s = slot_for(key);
+  const int head = table_head_[s];
+  next_[id] = head;
+  prev_[id] = -1;
+  if (head >= 0) prev_[head] = id;
+  table_head_[s] = id;
   key_[id] = key;
   pos_[id] = p;
   ++count_;
@@ -55,15 +120,15 @@ void VertexGrid::insert(int id, const edgefront::Vec3& p) {
 
 void VertexGrid::remove(int id) {
   EF_CHECK(contains(id), "grid: removing an absent id");
-  auto it = cells_.find(key_[id]);
-  EF_CHECK(it != cells_.end(), "grid: cell of a stored id is missing");
-  std::vector<int>& cell = it->second;
-  const std::uint32_t s = slot_[id];
-  const int last = cell.back();
-  cell[s] = last;
-  slot_[last] = s;
-  cell.pop_back();
-  if (cell.empty()) cells_.erase(it);
+  const int nx = next_[id], pv = prev_[id];
+  if (nx >= 0) prev_[nx] = pv;
+  if (pv >= 0) {
+    next_[pv] = nx;
+  } else {
+    const std::int64_t s = find_slot(key_[id]);
+    EF_CHECK(s >= 0 && table_head_[static_cast<std::size_t>(s)] == id, "grid: cell of a stored id is missing");
+    table_head_[static_cast<std::size_t>(s)] = nx;
+  }
   key_[id] = kAbsent;
   --count_;
 }
@@ -116,9 +181,9 @@ int VertexGrid::nearest(const edgefront::Vec3& p) const {
       const double gx = gap(px, i), gy = gap(py, j), gz = gap(pz, k);
       if ((gx * gx + gy * gy + gz * gz) * h_ * h_ > best_d) return;
     }
-    auto it = cells_.find(pack(i, j, k));
-    if (it == cells_.end()) return;
-    for (const int id : it->second) {
+    const std::int64_t s = find_slot(pack(i, j, k));
+    if (s < 0) return;
+    for (int id = table_head_[static_cast<std::size_t>(s)]; id >= 0; id = next_[id]) {
       const double d = (pos_[id] - p).sqrnorm();
       if (d < best_d || (d == best_d && id < best)) {
         best_d = d;
@@ -150,9 +215,10 @@ void VertexGrid::check(int id, const edgefront::Vec3& p) const {
   EF_CHECK(contains(id), "vertex " + std::to_string(id) + " is not in the spatial grid");
   EF_CHECK(pos_[id] == p, "vertex " + std::to_string(id) + " moved without a grid update");
   EF_CHECK(key_[id] == key_of(p), "vertex " + std::to_string(id) + " is stored in the wrong grid cell");
-  auto it = cells_.find(key_[id]);
-  EF_CHECK(it != cells_.end() && slot_[id] < it->second.size() && it->second[slot_[id]] == id,
-           "grid cell of vertex " + std::to_string(id) + " does not hold it");
+  const std::int64_t s = find_slot(key_[id]);
+  bool found = false;
+  for (int k = s >= 0 ? table_head_[static_cast<std::size_t>(s)] : -1; k >= 0 && !found; k = next_[k]) found = k == id;
+  EF_CHECK(found, "grid cell of vertex " + std::to_string(id) + " does not hold it");
 }
 
 }  // namespace gcs::detail

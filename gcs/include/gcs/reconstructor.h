@@ -12,7 +12,7 @@
 /// changes are on). Topology (neural-mesh style, Ivrissimtzis et al. 2004): triangles that no
 /// sample supports and overlong edges are removed, creating borders; two border loops that are
 /// close, of similar length and orientation-compatible are joined by a strip of triangles,
-/// creating a handle; border loops of at most 8 vertices whose fan would lie on the samples are
+/// creating a handle (optionally, slits within one loop are zipped the same way); border loops of at most 8 vertices whose fan would lie on the samples are
 /// closed (see ReconstructOptions).
 ///
 /// After each batch of splits the registered Operations (operation.h) are called with the
@@ -75,6 +75,11 @@ struct ReconstructOptions {
   double long_edge_factor = 10.0;
   /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
   bool merge_borders = true;
+  /// Experimental, off by default: also zip slits, i.e. close the gap between two chains of one
+  /// border loop that run within 2 mean edge lengths of each other in opposite directions (a torn
+  /// tube). On kitten.xyz this splits the torn tail loop into several loops that the loop merge
+  /// does not join (no handle yet), so it is not on by default.
+  bool zip_slits = false;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
@@ -129,6 +134,7 @@ struct ReconstructResult {
   std::size_t collapses = 0;
   std::size_t faces_removed = 0;  ///< by the built-in border creation
   std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
+  std::size_t slits_zipped = 0;   ///< border slits (close, opposite-running border chains) closed
   std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan
   std::size_t batches = 0;
   double seconds_total = 0;       ///< wall time of run()
@@ -160,6 +166,11 @@ class Reconstructor {
   /// The returned mesh is a garbage-collected copy in input coordinates.
   /// \throw whatever an operation throws (the reconstructor is then unusable).
   ReconstructResult run(const ProgressCallback& progress = {});
+
+  /// Runs n basic steps (sample, winner move, smoothing, counters) without splits, collapses,
+  /// batches or operations: the mesh keeps its connectivity. For measuring the cost of a basic step
+  /// at a given mesh size (bench/bench_gcs.cpp).
+  void run_basic_steps(std::uint64_t n);
 
   /// The current mesh, in the loop's internal coordinates (the input translated so that the
   /// cloud's bounding-box centre is the origin), with deleted elements not yet collected.

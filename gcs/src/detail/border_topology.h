@@ -56,6 +56,26 @@ struct MergeParams {
 /// pairs joined (each loop in at most one pair per call).
 std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudQuery& cloud, const MergeParams& params);
 
+struct ZipParams {
+  double mean_edge_length = 0;
+  double max_support_distance = 0;    ///< strip face centroids must be this close to the cloud
+  double max_gap_edges = 2.0;         ///< seed pairs closer than this many mean edge lengths
+  double min_opposite_cos = 0.3;      ///< the two borders' directions make a cosine below -this
+  std::size_t min_loop_separation = 5;  ///< same loop: seed vertices at least this many loop steps apart
+  double min_normal_agreement = 0.2;  ///< mean cosine between strip faces and the faces they border
+  std::size_t max_zips = 32;          ///< strips added per call
+  bool across_loops = false;          ///< also zip chains of two different loops (joins them)
+};
+
+/// Closes slits: where two border chains (of the same loop or of two loops) run close to each other
+/// (within max_gap_edges mean edge lengths) in opposite directions, the gap between them is closed
+/// by a strip of triangles, seeded at the closest pair and extended both ways while the chains stay
+/// within max_gap_edges. A slit within one loop splits it in two; between two loops it joins
+/// them. Strips must lie on the cloud and agree with the faces they border (as in
+/// merge_border_loops). This is how a torn handle closes into a tube (the kitten's tail). Returns
+/// the number of strips added.
+std::size_t zip_border_slits(edgefront::Mesh& mesh, const CloudQuery& cloud, const ZipParams& params);
+
 /// Closes small holes: a border loop of at most `max_vertices` vertices whose fan of triangles
 /// around the loop's centroid lies within `max_support_distance` of the cloud and agrees with the
 /// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex).

@@ -11,12 +11,15 @@
 // forest grows by ~7 entries per step (10^7 steps for 100K vertices). This reasoning was not
 // measured against nanoflann; bench/bench_gcs.cpp measures the whole loop (time per basic step).
 //
-// Deterministic: a query returns the nearest point, ties broken by the smaller id; the hash map
+// Deterministic: a query returns the nearest point, ties broken by the smaller id; the hash table
 // is only looked up, never iterated for results.
+//
+// Storage without allocations per move: an open-addressing hash table (linear probing, power-of-
+// two capacity) from cell keys to the head of an intrusive doubly linked list of the ids in the
+// cell. Emptied cells keep their table entry until the table is compacted (when it fills up).
 
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include "edgefront/mesh.h"
@@ -54,14 +57,21 @@ class VertexGrid {
   std::uint64_t key_of(const edgefront::Vec3& p) const;
   static std::uint64_t pack(std::int64_t i, std::int64_t j, std::int64_t k);
   int linear_nearest(const edgefront::Vec3& p) const;
+  /// Table slot of `key`, or -1 when the key has no entry.
+  std::int64_t find_slot(std::uint64_t key) const;
+  /// Table slot of `key`, creating an (empty) entry when missing.
+  std::size_t slot_for(std::uint64_t key);
+  void rehash(std::size_t capacity);
 
   double h_ = 1.0;
   double inv_h_ = 1.0;
   std::size_t count_ = 0;
   std::vector<std::uint64_t> key_;      // per id: its cell key, kAbsent when not stored
   std::vector<edgefront::Vec3> pos_;    // per id: stored position
-  std::vector<std::uint32_t> slot_;     // per id: index in its cell's vector
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<int> next_, prev_;        // per id: neighbours in its cell's list (-1: none)
+  std::vector<std::uint64_t> table_key_;  // per table slot: cell key, kAbsent when free
+  std::vector<int> table_head_;           // per table slot: first id in the cell, -1 when empty
+  std::size_t table_used_ = 0;            // slots with a key
 };
 
 }  // namespace gcs::detail
