@@ -21,6 +21,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kFlatDet = 1e-9;
 // A settled vertex agrees with an unfolded source when their distances differ by this (relative).
 constexpr double kBracketTol = 3e-3;
+// Two virtual sources closer than this (relative to the distance) count as one.
+constexpr double kSameSourceTol = 1e-6;
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
@@ -34,6 +36,14 @@ struct DRec {
   Vec3 origin{0, 0, 0};  // where `source` really lies (the source point or the pseudo-source vertex)
   int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
+  // A second virtual source: the best one offered from a different source position (another
+  // unfolding path, or another (pseudo) source). It does not set `d`, but it is propagated too,
+  // so a neighbour whose line from `source` leaves this vertex's faces gets another chance.
+  double alt_d = kInf;
+  Vec3 alt_source{0, 0, 0};
+  double alt_offset = 0;
+  int alt_face = -1;
+  Vec3 alt_origin{0, 0, 0};
 };
 
 // A point of a 2D frame (see MinimalDistanceFront::Impl::lay_out).
@@ -134,7 +144,26 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // true source; keeping the pseudo source would bend every path continued from it.
     const bool shorter = k.d < r.d * (1 - 1e-12);
     const bool tie_but_straighter = !(k.d > r.d * (1 + 1e-12)) && k.offset < r.offset;
-    if (!shorter && !tie_but_straighter) return;
+    const bool same_source = std::isfinite(r.d) && same_virtual_source(r.source, r.offset, k.source, k.offset, r.d);
+    if (!shorter && !tie_but_straighter) {
+      if (!same_source && k.face >= 0 && k.d < r.alt_d) {
+        r.alt_d = k.d;
+        r.alt_source = k.source;
+        r.alt_offset = k.offset;
+        r.alt_face = k.face;
+        r.alt_origin = k.origin;
+      }
+      return;
+    }
+    if (!same_source && std::isfinite(r.d) && r.face >= 0) {
+      r.alt_d = r.d;
+      r.alt_source = r.source;
+      r.alt_offset = r.offset;
+      r.alt_face = r.face;
+      r.alt_origin = r.origin;
+    } else if (r.alt_d < kInf && same_virtual_source(r.alt_source, r.alt_offset, k.source, k.offset, k.d)) {
+      r.alt_d = kInf;  // the new best is the old second source
+    }
     r.d = k.d;
     r.source = k.source;
     r.offset = k.offset;
@@ -142,6 +171,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     r.origin = k.origin;
     heap.emplace(k.d, v);
     peak_heap = std::max(peak_heap, heap.size());
+  }
+
+  static bool same_virtual_source(const Vec3& a, double oa, const Vec3& b, double ob, double scale) {
+    return std::abs(oa - ob) <= kSameSourceTol * scale && (a - b).norm() <= kSameSourceTol * scale;
   }
 
   // A source point `s` (a real one, not unfolded) in the plane of `face` (-1: s is the vertex itself).
@@ -364,9 +397,29 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     through_x.offset = rx.d;
     through_x.face = f_left >= 0 ? f_left : f_right;
     offer(c, through_x);
-    if (rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0)) return;  // x is the (pseudo) source
     // A straight line is never shorter at c than at x: nothing to gain if c is already there.
     if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && rc->d <= rx.d) return;
+    bool found = false;
+    if (!(rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0))) {  // else x is the (pseudo) source
+      found = propagate_line(x, rx, c, hxc);
+    }
+    if (!found && rx.alt_d < kInf && rx.alt_face >= 0 && (rx.alt_source - px).sqrnorm() > 0) {
+      DRec ra = rx;  // the second source, settled at x's distance
+      ra.source = rx.alt_source;
+      ra.offset = rx.alt_offset;
+      ra.face = rx.alt_face;
+      ra.origin = rx.alt_origin;
+      propagate_line(x, ra, c, hxc);
+    }
+  }
+
+  // The straight-line candidate of `c` from rx's virtual source (rx.d: x's settled distance).
+  bool propagate_line(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
+    const Vec3& px = mesh.point(VertexHandle(x));
+    const Vec3& pc = mesh.point(VertexHandle(c));
+    const double e = (px - pc).norm();
+    const int f_left = mesh.face_handle(hxc).idx();
+    const int f_right = mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
 
     // (2) x's virtual source, unfolded into either face at x-c, when the straight line crosses
     // x's faces in between.
@@ -377,7 +430,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (ring[i].v == c && ic < 0) ic = i;
       if (ring[i].face_after == rx.face) jf = i;
     }
-    if (ic < 0 || jf < 0) return;
+    if (ic < 0 || jf < 0) return false;
     Candidate best;
     Layout L;
     for (const bool after : {true, false}) {
@@ -410,6 +463,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       best = cand;
     }
     if (best.face >= 0) offer(c, best);
+    return best.face >= 0;
   }
 
   void build_ring(int x) {
