@@ -384,19 +384,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // `hxc` is the halfedge x -> c.
   void propagate(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
     const Vec3& px = mesh.point(VertexHandle(x));
-    const Vec3& pc = mesh.point(VertexHandle(c));
-    const double e = (px - pc).norm();
-    const int f_left = mesh.face_handle(hxc).idx();
-    const int f_right = mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
 
     // (1) Through x as a vertex: the Dijkstra bound; x becomes the pseudo source.
+    const FaceHandle f_left = mesh.face_handle(hxc);
     Candidate through_x;
-    through_x.d = rx.d + e;
+    through_x.d = rx.d + (px - mesh.point(VertexHandle(c))).norm();
     through_x.source = px;
     through_x.origin = px;
     through_x.offset = rx.d;
-    through_x.face = f_left >= 0 ? f_left : f_right;
+    through_x.face = f_left.is_valid() ? f_left.idx() : mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
     offer(c, through_x);
+    // (2) The straight lines: from x's virtual source and, when that finds no way to c, from x's
+    // second source (see DRec).
     // A straight line is never shorter at c than at x: nothing to gain if c is already there.
     if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && rc->d <= rx.d) return;
     bool found = false;
