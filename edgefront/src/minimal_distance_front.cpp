@@ -24,6 +24,15 @@ constexpr double kBracketTol = 3e-3;
 // Two virtual sources closer than this (relative to the distance) count as one.
 constexpr double kSameSourceTol = 1e-6;
 
+// A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
+struct Candidate {
+  double d = kInf;
+  Vec3 source{0, 0, 0};
+  double offset = 0;
+  int face = -1;
+  Vec3 origin{0, 0, 0};
+};
+
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
 struct DRec {
@@ -39,11 +48,7 @@ struct DRec {
   // A second virtual source: the best one offered from a different source position (another
   // unfolding path, or another (pseudo) source). It does not set `d`, but it is propagated too,
   // so a neighbour whose line from `source` leaves this vertex's faces gets another chance.
-  double alt_d = kInf;
-  Vec3 alt_source{0, 0, 0};
-  double alt_offset = 0;
-  int alt_face = -1;
-  Vec3 alt_origin{0, 0, 0};
+  Candidate alt;
 };
 
 // A point of a 2D frame (see MinimalDistanceFront::Impl::lay_out).
@@ -53,14 +58,6 @@ struct P2 {
 double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
 double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
 
-// A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
-struct Candidate {
-  double d = kInf;
-  Vec3 source{0, 0, 0};
-  double offset = 0;
-  int face = -1;
-  Vec3 origin{0, 0, 0};
-};
 
 std::string dname(double d) { return std::to_string(d); }
 
@@ -146,23 +143,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     const bool tie_but_straighter = !(k.d > r.d * (1 + 1e-12)) && k.offset < r.offset;
     const bool same_source = std::isfinite(r.d) && same_virtual_source(r.source, r.offset, k.source, k.offset, r.d);
     if (!shorter && !tie_but_straighter) {
-      if (!same_source && k.face >= 0 && k.d < r.alt_d) {
-        r.alt_d = k.d;
-        r.alt_source = k.source;
-        r.alt_offset = k.offset;
-        r.alt_face = k.face;
-        r.alt_origin = k.origin;
-      }
+      if (!same_source && k.face >= 0 && k.d < r.alt.d) r.alt = k;
       return;
     }
     if (!same_source && std::isfinite(r.d) && r.face >= 0) {
-      r.alt_d = r.d;
-      r.alt_source = r.source;
-      r.alt_offset = r.offset;
-      r.alt_face = r.face;
-      r.alt_origin = r.origin;
-    } else if (r.alt_d < kInf && same_virtual_source(r.alt_source, r.alt_offset, k.source, k.offset, k.d)) {
-      r.alt_d = kInf;  // the new best is the old second source
+      r.alt = Candidate{r.d, r.source, r.offset, r.face, r.origin};
+    } else if (r.alt.d < kInf && same_virtual_source(r.alt.source, r.alt.offset, k.source, k.offset, k.d)) {
+      r.alt.d = kInf;  // the new best is the old second source
     }
     r.d = k.d;
     r.source = k.source;
@@ -402,12 +389,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (!(rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0))) {  // else x is the (pseudo) source
       found = propagate_line(x, rx, c, hxc);
     }
-    if (!found && rx.alt_d < kInf && rx.alt_face >= 0 && (rx.alt_source - px).sqrnorm() > 0) {
+    if (!found && rx.alt.d < kInf && rx.alt.face >= 0 && (rx.alt.source - px).sqrnorm() > 0) {
       DRec ra = rx;  // the second source, settled at x's distance
-      ra.source = rx.alt_source;
-      ra.offset = rx.alt_offset;
-      ra.face = rx.alt_face;
-      ra.origin = rx.alt_origin;
+      ra.source = rx.alt.source;
+      ra.offset = rx.alt.offset;
+      ra.face = rx.alt.face;
+      ra.origin = rx.alt.origin;
       propagate_line(x, ra, c, hxc);
     }
   }
