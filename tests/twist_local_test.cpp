@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "edgefront/error.h"
@@ -93,6 +94,26 @@ TEST(TwistFaceGrid, AnswersLikeABruteForceSearchAndFollowsUpdates) {
   grid.update_new(mesh);
   grid.query(mesh, Vec3(9, 9, 9), 0.2, got);
   EXPECT_EQ(got, std::vector<FaceHandle>{nf});
+}
+
+TEST(TwistFaceGrid, HugeQueriesScanTheGridAndBadQueriesAreRefused) {
+  const Mesh mesh = edgefront::shapes::icosphere(2);
+  twist::FaceGrid grid;
+  grid.rebuild(mesh, 0.01);  // small cells: a radius of 1e9 would span ~1e33 of them
+  std::vector<FaceHandle> got;
+  grid.query(mesh, Vec3(0.1, 0, 0), 1e9, got);
+  EXPECT_EQ(got, brute_force(mesh, Vec3(0.1, 0, 0), 1e9));
+  EXPECT_EQ(got.size(), mesh.n_faces());
+  grid.query(mesh, Vec3(1e300, 0, 0), 1.0, got);  // beyond the integer range of cells
+  EXPECT_TRUE(got.empty());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(grid.query(mesh, Vec3(0, 0, 0), nan, got), InvalidInput);
+  EXPECT_THROW(grid.query(mesh, Vec3(0, 0, 0), -1.0, got), InvalidInput);
+  EXPECT_THROW(grid.query(mesh, Vec3(nan, 0, 0), 1.0, got), InvalidInput);
+  EXPECT_THROW(grid.query(mesh, Vec3(0, 0, 0), std::numeric_limits<double>::infinity(), got), InvalidInput);
+  twist::DetectOptions o;
+  o.reference_side_weight = 0.5;  // neither off (0) nor in [1, 100]
+  EXPECT_THROW(twist::detect(mesh, o), InvalidInput);
 }
 
 TEST(TwistLocalDetection, FindsTheSameRegionWithTheFaceGrid) {

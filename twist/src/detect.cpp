@@ -36,13 +36,14 @@ const char* to_string(EvidenceKind kind) {
 }
 
 namespace {
+// 21 bits per axis: far cells may share a key, which only adds candidates (queries check distances).
+std::uint64_t key_of_cell(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto bits = [](std::int64_t c) { return static_cast<std::uint64_t>(c) & 0x1FFFFFu; };
+  return (bits(x) << 42) | (bits(y) << 21) | bits(z);
+}
 std::uint64_t cell_key(const Vec3& p, double cell) {
-  std::uint64_t key = 0;
-  for (int i = 0; i < 3; ++i) {
-    const auto c = static_cast<std::int64_t>(std::floor(p[i] / cell));
-    key = (key << 21) | (static_cast<std::uint64_t>(c) & 0x1FFFFFu);
-  }
-  return key;
+  const auto c = [&](int i) { return static_cast<std::int64_t>(std::floor(p[i] / cell)); };
+  return key_of_cell(c(0), c(1), c(2));
 }
 }  // namespace
 
@@ -89,21 +90,36 @@ void FaceGrid::rebuild(const Mesh& mesh, double cell) {
 
 void FaceGrid::query(const Mesh& mesh, const Vec3& p, double radius, std::vector<FaceHandle>& out) const {
   out.clear();
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || !std::isfinite(radius) || radius < 0)
+    throw InvalidInput("twist::FaceGrid::query: the point and the radius must be finite, the radius >= 0");
   if (!(cell_ > 0)) return;
-  const auto lo = [&](int i) { return static_cast<std::int64_t>(std::floor((p[i] - radius) / cell_)); };
-  const auto hi = [&](int i) { return static_cast<std::int64_t>(std::floor((p[i] + radius) / cell_)); };
   const double r2 = radius * radius;
-  for (std::int64_t x = lo(0); x <= hi(0); ++x) {
-    for (std::int64_t y = lo(1); y <= hi(1); ++y) {
-      for (std::int64_t z = lo(2); z <= hi(2); ++z) {
-        const std::uint64_t key = ((static_cast<std::uint64_t>(x) & 0x1FFFFFu) << 42) |
-                                  ((static_cast<std::uint64_t>(y) & 0x1FFFFFu) << 21) | (static_cast<std::uint64_t>(z) & 0x1FFFFFu);
-        const auto it = cells_.find(key);
-        if (it == cells_.end()) continue;
-        for (int fi : it->second) {
-          const FaceHandle f(fi);
-          if (!edgefront::is_live(mesh, f)) continue;
-          if ((detail::centroid(detail::face_points(mesh, f)) - p).sqrnorm() < r2) out.push_back(f);
+  const auto take = [&](const std::vector<int>& faces) {
+    for (int fi : faces) {
+      const FaceHandle f(fi);
+      if (!edgefront::is_live(mesh, f)) continue;
+      if ((detail::centroid(detail::face_points(mesh, f)) - p).sqrnorm() < r2) out.push_back(f);
+    }
+  };
+  // Cell ranges in doubles first: a query box with more cells than the grid holds (or beyond the
+  // integer range) scans the occupied cells instead of the box.
+  double lo[3], hi[3], span = 1;
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = std::floor((p[i] - radius) / cell_);
+    hi[i] = std::floor((p[i] + radius) / cell_);
+    span *= hi[i] - lo[i] + 1;
+  }
+  const bool in_range = std::abs(lo[0]) < 1e15 && std::abs(hi[0]) < 1e15 && std::abs(lo[1]) < 1e15 &&
+                        std::abs(hi[1]) < 1e15 && std::abs(lo[2]) < 1e15 && std::abs(hi[2]) < 1e15;
+  if (!in_range || span > static_cast<double>(cells_.size())) {
+    for (const auto& cell : cells_) take(cell.second);
+  } else {
+    const auto c = [](double v) { return static_cast<std::int64_t>(v); };
+    for (std::int64_t x = c(lo[0]); x <= c(hi[0]); ++x) {
+      for (std::int64_t y = c(lo[1]); y <= c(hi[1]); ++y) {
+        for (std::int64_t z = c(lo[2]); z <= c(hi[2]); ++z) {
+          const auto it = cells_.find(key_of_cell(x, y, z));
+          if (it != cells_.end()) take(it->second);
         }
       }
     }
