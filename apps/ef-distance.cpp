@@ -35,6 +35,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_parse.h"
 #include "app_render.h"
 #include "app_util.h"
 #include "edgefront/error.h"
@@ -49,60 +50,24 @@ namespace {
 
 using edgefront::render::colormap;
 using edgefront::apps::lower_extension;
+using edgefront::apps::parse_index;
+using edgefront::apps::parse_vertex_list;
+using edgefront::apps::split_list;
 
 using edgefront::VertexHandle;
 
 constexpr const char* kAppName = "ef-distance";
-
-/// Splits at `sep`, trimming blanks around each piece.
-std::vector<std::string> split(const std::string& text, char sep) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (true) {
-    const size_t at = text.find(sep, start);
-    std::string token = text.substr(start, at == std::string::npos ? std::string::npos : at - start);
-    const size_t first = token.find_first_not_of(" \t");
-    const size_t last = token.find_last_not_of(" \t");
-    out.push_back(first == std::string::npos ? std::string() : token.substr(first, last - first + 1));
-    if (at == std::string::npos) break;
-    start = at + 1;
-  }
-  return out;
-}
-
-/// Parses a non-negative index below `count`; `what` names the kind of element in messages.
-/// \throws edgefront::InvalidInput naming `option` and the token.
-size_t parse_index(const std::string& token, size_t count, const std::string& option, const std::string& what) {
-  unsigned long long value = 0;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
-    throw edgefront::InvalidInput(option + ": '" + token + "' is not a " + what + " index (a non-negative integer)");
-  }
-  if (ec == std::errc::result_out_of_range || value >= count) {
-    throw edgefront::InvalidInput(option + ": " + what + " " + token + " is out of range (the mesh has " +
-                                  std::to_string(count) + " " + what + (count == 1 ? "" : "s") + ")");
-  }
-  return static_cast<size_t>(value);
-}
-
-std::vector<VertexHandle> parse_vertex_list(const std::string& text, size_t n_vertices, const std::string& option) {
-  std::vector<VertexHandle> out;
-  for (const std::string& token : split(text, ',')) {
-    out.emplace_back(static_cast<int>(parse_index(token, n_vertices, option, "vertex")));
-  }
-  return out;
-}
 
 /// Parses "F:b0,b1,b2". The library checks the barycentric coordinates themselves.
 edgefront::SurfacePoint parse_point(const std::string& text, size_t n_faces) {
   const std::string option = "--point '" + text + "'";
   const size_t colon = text.find(':');
   if (colon == std::string::npos) throw edgefront::InvalidInput(option + ": expected F:b0,b1,b2");
-  const std::vector<std::string> face_part = split(text.substr(0, colon), ',');
+  // Splitting at ':' (absent before the colon) only trims the face token.
+  const std::string face_token = split_list(text.substr(0, colon), ':').front();
   edgefront::SurfacePoint p;
-  p.face = edgefront::FaceHandle(static_cast<int>(parse_index(face_part.front(), n_faces, option, "face")));
-  const std::vector<std::string> coords = split(text.substr(colon + 1), ',');
+  p.face = edgefront::FaceHandle(static_cast<int>(parse_index(face_token, n_faces, option, "face", "faces")));
+  const std::vector<std::string> coords = split_list(text.substr(colon + 1), ',');
   if (coords.size() != 3) {
     throw edgefront::InvalidInput(option + ": expected 3 barycentric coordinates after ':', got " +
                                   std::to_string(coords.size()));

@@ -35,6 +35,7 @@
 #include "app_output.h"
 #include "app_render.h"
 #include "app_util.h"
+#include "app_parse.h"
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
@@ -48,39 +49,11 @@ namespace {
 
 using edgefront::render::colormap;
 using edgefront::apps::lower_extension;
+using edgefront::apps::parse_vertex_list;
 
 using edgefront::VertexHandle;
 
 constexpr const char* kAppName = "ef-front";
-
-/// Parses a comma-separated list of vertex indices of a mesh with `n_vertices` vertices.
-/// \throws edgefront::InvalidInput naming `option` and the offending entry.
-std::vector<VertexHandle> parse_vertex_list(const std::string& text, size_t n_vertices, const std::string& option) {
-  std::vector<VertexHandle> out;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = text.find(',', start);
-    std::string token = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    const size_t first = token.find_first_not_of(" \t");
-    const size_t last = token.find_last_not_of(" \t");
-    token = first == std::string::npos ? std::string() : token.substr(first, last - first + 1);
-    unsigned long long value = 0;
-    const char* begin = token.data();
-    const char* end = token.data() + token.size();
-    const auto [ptr, ec] = std::from_chars(begin, end, value);
-    if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
-      throw edgefront::InvalidInput(option + ": '" + token + "' is not a vertex index (a non-negative integer)");
-    }
-    if (ec == std::errc::result_out_of_range || value >= n_vertices) {
-      throw edgefront::InvalidInput(option + ": vertex " + token + " is out of range (the mesh has " +
-                                    std::to_string(n_vertices) + " vertices)");
-    }
-    out.emplace_back(static_cast<int>(value));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
-}
 
 /// Counts of the Minimal Edge Front's events.
 struct EventCounts {

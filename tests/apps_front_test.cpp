@@ -381,6 +381,7 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_error(torus + " --point 384:1,0,0", "out of range");
   expect_error(torus + " --point 0:0.5,0.5", "3 barycentric");
   expect_error(torus + " --point 0:0.5,x,0.5", "not a number");
+  expect_error(torus + " --point 3,4:1,0,0", "not a face index");
   expect_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
   expect_error(torus + " --point 0:0.5,0.6,0.5", "sum");
   expect_error(torus + " --point 0:-0.5,1,0.5", "non-negative");
