@@ -13,12 +13,14 @@
 ///   - MEF: `edgefront::MinimalEdgeFront` with default options run to exhaustion (same).
 /// It prints the machine, the sizes and a markdown table per sweep plus the means: time, time
 /// ratio to BFS, levels, peak front (vertices for BFS's queue and VF, halfedges for MEF) and peak
-/// working memory in bytes (BFS: visited array + queue array). Before timing, the levels of all
+/// working memory in bytes (BFS: visited array + queue array), and the ratios of the summed
+/// thread CPU times (not counting time spent waiting for a core). Before timing, the levels of all
 /// three on the first source are checked against each other (one untimed extra sweep each).
 ///
 /// This is a benchmark, not a test: it takes seconds to minutes on large subdivisions.
 
 #include <sched.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -175,6 +177,7 @@ BfsResult bfs(const Mesh& mesh, VertexHandle source, std::vector<int>* level_out
 struct Row {
   int source = 0;
   double t_bfs = 0, t_vf = 0, t_mef = 0;
+  double c_bfs = 0, c_vf = 0, c_mef = 0;  // CPU time of this thread (s)
   int levels_bfs = 0, levels_vf = 0, levels_mef = 0;
   size_t reached = 0;
   size_t peak_bfs = 0, peak_vf = 0, peak_mef = 0;
@@ -182,6 +185,14 @@ struct Row {
 };
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// CPU time of the calling thread (s): unlike the wall clock it does not count the time the
+/// thread waits for a core, which dominates the noise on a shared machine.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 std::string fixed(double x, int digits) {
   std::ostringstream s;
@@ -270,28 +281,34 @@ int run(const Args& args) {
     r.source = s.idx();
     const edgefront::FrontSource src = edgefront::FrontSource::vertex(s);
 
+    double c0 = thread_cpu_seconds();
     t0 = Clock::now();
     const BfsResult b = bfs(mesh, s);
     r.t_bfs = seconds_since(t0);
+    r.c_bfs = thread_cpu_seconds() - c0;
     r.levels_bfs = b.levels;
     r.reached = b.reached;
     r.peak_bfs = b.peak_queue;
     r.bytes_bfs = b.bytes;
 
+    c0 = thread_cpu_seconds();
     t0 = Clock::now();
     if (!vf || !args.reuse) vf.emplace(mesh);
     vf->reset(src);
     vf->run(-1);
     r.t_vf = seconds_since(t0);
+    r.c_vf = thread_cpu_seconds() - c0;
     r.levels_vf = vf->level();
     r.peak_vf = vf->peak_front_size();
     r.bytes_vf = vf->peak_working_memory_bytes();
 
+    c0 = thread_cpu_seconds();
     t0 = Clock::now();
     if (!mef || !args.reuse) mef.emplace(mesh);
     mef->reset(src);
     mef->run(-1);
     r.t_mef = seconds_since(t0);
+    r.c_mef = thread_cpu_seconds() - c0;
     r.levels_mef = mef->level();
     r.peak_mef = mef->peak_front_size();
     r.bytes_mef = mef->peak_working_memory_bytes();
@@ -312,6 +329,9 @@ int run(const Args& args) {
     mean.t_bfs += r.t_bfs;
     mean.t_vf += r.t_vf;
     mean.t_mef += r.t_mef;
+    mean.c_bfs += r.c_bfs;
+    mean.c_vf += r.c_vf;
+    mean.c_mef += r.c_mef;
     mean_ratio_vf += r.t_vf / r.t_bfs;
     mean_ratio_mef += r.t_mef / r.t_bfs;
     peak_bfs += static_cast<double>(r.peak_bfs);
@@ -334,6 +354,10 @@ int run(const Args& args) {
             << " ms (" << fixed(mean_ratio_vf / k, 2) << "x BFS), MEF " << fixed(mean.t_mef / k * 1e3, 1) << " ms ("
             << fixed(mean_ratio_mef / k, 2) << "x BFS); working memory BFS " << human_bytes(bytes_bfs / k) << ", VF "
             << human_bytes(bytes_vf / k) << ", MEF " << human_bytes(bytes_mef / k) << "\n";
+  // Ratios of the summed thread CPU times: the figure to compare on a loaded machine.
+  std::cout << "CPU time: BFS " << fixed(mean.c_bfs / k * 1e3, 1) << " ms, VF " << fixed(mean.c_vf / k * 1e3, 1)
+            << " ms (" << fixed(mean.c_vf / mean.c_bfs, 2) << "x BFS), MEF " << fixed(mean.c_mef / k * 1e3, 1)
+            << " ms (" << fixed(mean.c_mef / mean.c_bfs, 2) << "x BFS)\n";
   return 0;
 }
 

@@ -333,6 +333,28 @@ TEST(Mef, NonManifoldVertexIsAClearErrorNotAHang) {
   EXPECT_EQ(edge_front_levels(mesh, FrontSource::vertex(d1))[d3.idx()], 1);
 }
 
+TEST(Mef, NonManifoldVertexFarFromTheSourceIsStillRefused) {
+  // A large query stops checking each joining vertex after a whole-mesh pass; that pass must see
+  // the non-manifold corner the front reaches last (a triangle hung on the grid by one vertex).
+  Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 16});
+  VertexHandle first, last;
+  for (VertexHandle v : mesh.vertices()) {
+    const auto p = mesh.point(v);
+    if (!first.is_valid() || p[0] + p[1] < mesh.point(first)[0] + mesh.point(first)[1]) first = v;
+    if (!last.is_valid() || p[0] + p[1] > mesh.point(last)[0] + mesh.point(last)[1]) last = v;
+  }
+  const auto p = mesh.point(last);
+  const auto t1 = mesh.add_vertex(p + Vec3(1, 0.2, 0)), t2 = mesh.add_vertex(p + Vec3(1, 0.8, 0));
+  ASSERT_TRUE(mesh.add_face(last, t1, t2).is_valid());
+  ASSERT_FALSE(mesh.is_manifold(last));
+  MinimalEdgeFront front(mesh);
+  size_t enclosed = 0;
+  front.set_enclosed_callback([&](VertexHandle, int) { ++enclosed; });
+  front.reset(FrontSource::vertex(first));
+  EXPECT_THROW(front.run(), TopologyError);
+  EXPECT_GT(enclosed, mesh.n_vertices() / 2);  // the pass ran long before the corner was reached
+}
+
 TEST(Mef, IsolatedSourceVertexIsEnclosedAtOnce) {
   Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 2});
   const VertexHandle lone = mesh.add_vertex({5, 5, 5});
