@@ -8,6 +8,7 @@
 #include <string>
 
 #include "detail/edge_front_core.h"
+#include "detail/min_heap.h"
 
 namespace edgefront {
 
@@ -65,8 +66,8 @@ std::string dname(double d) { return std::to_string(d); }
 
 struct MinimalDistanceFront::Impl : EdgeFrontCore {
   detail::FlatMap<DRec> dt;
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  detail::MinHeap4<double> heap;  // (tentative distance, vertex); stale entries are skipped
+  using Entry = detail::MinHeap4<double>::Entry;
   DistanceOptions opts;
   DistanceStop stop = DistanceStop::NotStarted;
   size_t n_settled = 0;
@@ -84,6 +85,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     int face_after;
     P2 corner;  // see corner_after
     bool corner_known;
+    int he;  // the outgoing halfedge x -> v
   };
   std::vector<Ray> ring;
   bool ring_closed = false;
@@ -106,7 +108,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     check_options(o);
     opts = o;
     dt.clear();
-    heap = decltype(heap)();
+    heap.clear();
     stop = DistanceStop::NotStarted;
     n_settled = 0;
     peak_heap = 0;
@@ -156,7 +158,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     r.offset = k.offset;
     r.face = k.face;
     r.origin = k.origin;
-    heap.emplace(k.d, v);
+    heap.push(k.d, v);
     peak_heap = std::max(peak_heap, heap.size());
   }
 
@@ -452,7 +454,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return best.face >= 0;
   }
 
-  void build_ring(int x) {
+  // The ring's connectivity, walked once per settled vertex: its outgoing halfedges and neighbours,
+  // counter-clockwise, taken before the front expansion at x (the cache misses of the walk are
+  // taken here, and the neighbours' positions are prefetched for build_ring).
+  void start_ring(int x) {
     ring.clear();
     const VertexHandle vx(x);
     const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
@@ -460,16 +465,38 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // At a border vertex OpenMesh's outgoing halfedge has no face: start just after that gap.
     ring_closed = !mesh.is_boundary(h0);
     const HalfedgeHandle start = ring_closed ? h0 : mesh.ccw_rotated_halfedge_handle(h0);
-    const Vec3& px = mesh.point(vx);
     HalfedgeHandle h = start;
     do {
       const VertexHandle y = mesh.to_vertex_handle(h);
-      const Vec3 w = mesh.point(y) - px;
-      const double len = w.norm();
-      const FaceHandle f = mesh.face_handle(h);
-      ring.push_back({y.idx(), len > 0 ? w / len : w, len, f.is_valid() ? f.idx() : -1, P2{1, 0}, false});
+      detail::prefetch(&mesh.point(y));
+      Ray r{};
+      r.v = y.idx();
+      r.he = h.idx();
+      ring.push_back(r);
       h = mesh.ccw_rotated_halfedge_handle(h);
     } while (h != start && ring.size() < (1u << 16));
+  }
+
+  // The ring's geometry (start_ring(x) first).
+  void build_ring(int x) {
+    const Vec3& px = mesh.point(VertexHandle(x));
+    for (Ray& r : ring) {
+      const Vec3 w = mesh.point(VertexHandle(r.v)) - px;
+      const double len = w.norm();
+      const FaceHandle f = mesh.face_handle(HalfedgeHandle(r.he));
+      r.u = len > 0 ? w / len : w;
+      r.len = len;
+      r.face_after = f.is_valid() ? f.idx() : -1;
+      r.corner = P2{1, 0};
+      r.corner_known = false;
+    }
+  }
+
+  // The ring index of the k-th outgoing halfedge in OpenMesh's circulation order (clockwise from
+  // the vertex's halfedge), the order in which neighbours take their offers.
+  int voh_order(int k) const {
+    const int m = static_cast<int>(ring.size());
+    return ring_closed ? (m - k) % m : m - 1 - k;
   }
 
   // The corner angle at x of the face after ray i as (cos, sin) (computed on first use).
@@ -552,28 +579,24 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         if (rn && rn->loop_in == g.idx()) break;
         g = nxt;
       }
-      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(x))) {
-        const VertexHandle y = mesh.to_vertex_handle(h);
-        if (std::find(wedge.begin(), wedge.end(), y.idx()) != wedge.end()) {
-          visit(y.idx(), h);
-        } else if (DRec* ry = dt.find(static_cast<uint32_t>(y.idx()))) {
+      for (int k = 0; k < static_cast<int>(ring.size()); ++k) {
+        const Ray& r = ring[voh_order(k)];
+        if (std::find(wedge.begin(), wedge.end(), r.v) != wedge.end()) {
+          visit(r.v, HalfedgeHandle(r.he));
+        } else if (DRec* ry = dt.find(static_cast<uint32_t>(r.v))) {
           --ry->unsettled;
-          if (ry->settled && ry->unsettled <= 0) dt.erase(static_cast<uint32_t>(y.idx()));
+          if (ry->settled && ry->unsettled <= 0) dt.erase(static_cast<uint32_t>(r.v));
         }
       }
     } else {
-      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(x))) visit(mesh.to_vertex_handle(h).idx(), h);
+      for (int k = 0; k < static_cast<int>(ring.size()); ++k) {
+        const Ray& r = ring[voh_order(k)];
+        visit(r.v, HalfedgeHandle(r.he));
+      }
     }
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));
-  }
-
-  // The neighbours' positions, which settle_neighbours needs after the front expansion at `v`.
-  void prefetch_ring(int v) const {
-    for (const HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
-      detail::prefetch(&mesh.point(mesh.to_vertex_handle(h)));
-    }
   }
 
   bool step() {
@@ -593,7 +616,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       ++n_settled;
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
-      prefetch_ring(v);
+      start_ring(v);
       expand_vertex(v);
       settle_neighbours(v);
       note_memory();
