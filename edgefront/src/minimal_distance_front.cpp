@@ -36,16 +36,17 @@ struct Candidate {
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
+// The fields every lookup reads (d, settled, unsettled) come first, in the record's first cache line.
 struct DRec {
   double d = kInf;
-  Vec3 source{0, 0, 0};  // virtual source: where the source lies, unfolded into the plane of `face`
-  double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
-                         // shortest path bends around, such as a saddle or a border corner)
-  int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
-  int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
-  Vec3 origin{0, 0, 0};  // where `source` really lies (the source point or the pseudo-source vertex)
   int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
+  int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
+  int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
+  double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
+                         // shortest path bends around, such as a saddle or a border corner)
+  Vec3 source{0, 0, 0};  // virtual source: where the source lies, unfolded into the plane of `face`
+  Vec3 origin{0, 0, 0};  // where `source` really lies (the source point or the pseudo-source vertex)
   // A second virtual source: the best one offered from a different source position (another
   // unfolding path, or another (pseudo) source). It does not set `d`, but it is propagated too,
   // so a neighbour whose line from `source` leaves this vertex's faces gets another chance.
