@@ -615,9 +615,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       heap.pop();
       r->settled = true;
       ++n_settled;
+      // The ring walk first: its cache misses overlap the caller's callback.
+      start_ring(v);
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
-      start_ring(v);
       expand_vertex(v);
       settle_neighbours(v);
       note_memory();
