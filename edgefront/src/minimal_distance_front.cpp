@@ -250,6 +250,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     int bend_ray = -1;
     P2 bend{0, 0};
     double to_bend = 0;
+    double worth = kInf;  // c's distance so far: a bent path is of use only below it
   };
 
   // Lays out rx's source for the edge x-c (c = ring[ic].v) in the face after (after = true) or
@@ -364,7 +365,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         if (std::abs(dy - ry->d) <= kBracketTol * ry->d) return true;
       }
     }
-    taut_string(L, rays.data(), ray_index.data(), n_rays);
+    // The string is never shorter than the line: skip it when even the line would not help c.
+    if (rx.offset + std::hypot(L.e - L.s.x, L.s.y) < L.worth) taut_string(L, rays.data(), ray_index.data(), n_rays);
     return false;
   }
 
@@ -433,10 +435,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // (2) The straight lines: from x's virtual source and, when that finds no way to c, from x's
     // second source (see DRec).
     // A straight line is never shorter at c than at x: nothing to gain if c is already there.
-    if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && rc->d <= rx.d) return;
+    const DRec* rc = dt.find(static_cast<uint32_t>(c));
+    if (rc && rc->d <= rx.d) return;
+    const double dc = rc ? rc->d : kInf;
     bool found = false;
     if (!(rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0))) {  // else x is the (pseudo) source
-      found = propagate_line(x, rx, c, hxc);
+      found = propagate_line(x, rx, c, hxc, dc);
     }
     if (!found && rx.alt.d < kInf && rx.alt.face >= 0 && (rx.alt.source - px).sqrnorm() > 0) {
       DRec ra = rx;  // the second source, settled at x's distance
@@ -444,12 +448,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       ra.offset = rx.alt.offset;
       ra.face = rx.alt.face;
       ra.origin = rx.alt.origin;
-      propagate_line(x, ra, c, hxc);
+      propagate_line(x, ra, c, hxc, dc);
     }
   }
 
   // The straight-line candidate of `c` from rx's virtual source (rx.d: x's settled distance).
-  bool propagate_line(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
+  // dc: c's distance before (a bound for the bent path, see Layout::worth).
+  bool propagate_line(int x, const DRec& rx, int c, HalfedgeHandle hxc, double dc) {
     const Vec3& px = mesh.point(VertexHandle(x));
     const Vec3& pc = mesh.point(VertexHandle(c));
     const double e = (px - pc).norm();
@@ -468,6 +473,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (ic < 0 || jf < 0) return false;
     Candidate best, bent;
     Layout L;
+    L.worth = dc;
     for (const bool after : {true, false}) {
       const int t0 = after ? f_left : f_right;
       if (t0 < 0) continue;
