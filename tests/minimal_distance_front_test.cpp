@@ -92,6 +92,8 @@ TEST(Mdf, VertexNearerThanAllItsNeighboursTakesTheFirstNeighboursDistance) {
 // x's dented ring vertex y1, over a spike (w) that makes every way across it longer, so the
 // shortest path is s -> y1 -> c (values from CGAL's exact Surface_mesh_shortest_path).
 // Neither the straight line (2.915, too short) nor the path through x (3.129) may be taken.
+// Here both the taut string around y1 and x's second source (a pseudo source at y1) find it; the
+// string is what helps where the second source holds another way round (the model benchmark).
 TEST(Mdf, GeodesicBendsAroundASaddleVertexNotOverIt) {
   Mesh mesh;
   auto add = [&](double px, double py, double pz) { return mesh.add_vertex(Vec3(px, py, pz)); };
