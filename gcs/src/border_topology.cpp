@@ -340,8 +340,11 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
       }
       agreement += (nf | na) / (nf.norm() * na.norm());
     }
-    if (!ok || agreement / static_cast<double>(n) < min_normal_agreement) continue;
-    if (n == 3) {  // a triangular hole: its own triangle closes it (no fan vertex)
+    // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
+    // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
+    if (!ok || agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
+      continue;
+    if (n == 3) {  // no fan vertex
       const MuteOpenMeshErrors mute;
       if (mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid()) ++filled;
       continue;
