@@ -1,8 +1,12 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step] [--vertices N] [--smoothing K]
+//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K]
+//             [--seeds N]
 //
-// 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences.
+// 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
+//    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
+// 6. (--case nested only) nested spheres (shapes::sample "nested-spheres", 20K points) at 4K
+//    vertices: components, border loops, genus per component (target: two closed spheres).
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape.
@@ -40,6 +44,7 @@ double cpu_seconds() {
 
 double g_last_cpu = 0;  // CPU seconds of the last run()
 int g_smoothing = -1;   // --smoothing K: smoothing passes per basic step (-1: the default)
+std::uint64_t g_seed = 1;
 
 double load_average() {
   double l = -1;
@@ -98,6 +103,7 @@ gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
   o.target_vertices = target;
   if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
+  o.seed = g_seed;
   const double c0 = cpu_seconds();
   gcs::ReconstructResult r = gcs::reconstruct(cloud, o);
   g_last_cpu = cpu_seconds() - c0;
@@ -111,6 +117,7 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string only;
   size_t vertices = 0;
+  size_t seeds = 0;
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
@@ -118,8 +125,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
     else if (!std::strcmp(argv[i], "--vertices") && i + 1 < argc) vertices = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--smoothing") && i + 1 < argc) g_smoothing = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::stoul(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step] [--vertices N] [--smoothing K]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N]\n");
       return 2;
     }
   }
@@ -129,9 +137,28 @@ int main(int argc, char** argv) {
     const auto models = data / "models";
     if (!want("kitten")) {
     } else if (std::filesystem::exists(models / "kitten.xyz")) {
-      print_mesh("kitten.xyz at 5K", run(edgefront::read_points(models / "kitten.xyz"), 5000));
+      const edgefront::PointCloud kitten = edgefront::read_points(models / "kitten.xyz");
+      print_mesh("kitten.xyz at 5K", run(kitten, 5000));
+      size_t closed_genus1 = 0;
+      for (size_t seed = 1; seed <= seeds; ++seed) {
+        g_seed = seed;
+        const gcs::ReconstructResult r = run(kitten, 5000);
+        const edgefront::MeshStats s = edgefront::compute_stats(r.mesh);
+        const double genus = s.per_component.empty() ? 0.0 : s.per_component[0].genus;
+        const bool ok = s.components == 1 && s.border_loops == 0 && s.nonmanifold_vertices == 0 && genus == 1;
+        closed_genus1 += ok;
+        std::printf("  seed %zu: %zu component(s), %zu border loop(s), genus %g, %.2f s CPU%s\n", seed, s.components,
+                    s.border_loops, genus, g_last_cpu, ok ? "  closed genus 1" : "");
+      }
+      g_seed = 1;
+      if (seeds) std::printf("  closed, manifold, genus 1 on %zu of %zu seeds\n", closed_genus1, seeds);
     } else {
       std::printf("kitten.xyz: missing (run data/fetch-models.sh)\n");
+    }
+    if (only == "nested") {
+      edgefront::shapes::SampleOptions so;
+      so.points = 20000;
+      print_mesh("nested spheres (20K points) at 4K", run(edgefront::shapes::sample("nested-spheres", so), 4000));
     }
     if (!want("sphere")) {
     } else if (std::filesystem::exists(models / "sphere_20k.xyz")) {

@@ -1,5 +1,6 @@
 // Tests of the built-in topology changes of the GCS loop (gcs/src/detail/border_topology.h): zipping
-// slits (two border chains running close and opposite) on small flat grids with a planar "cloud".
+// slits (two border chains running close and opposite) and filling slit and triangular holes, on
+// small flat grids with a planar "cloud".
 
 #include <gtest/gtest.h>
 
@@ -62,10 +63,26 @@ void expect_valid(Mesh& m) {
   EXPECT_EQ(s.components, 1u);
 }
 
-TEST(GcsZipSlits, ANarrowHoleClosesAndOnlyTheOuterBorderRemains) {
+// A 12 x 7 grid with a slit hole 8 cells long and 1 wide (a loop of 18 vertices).
+Mesh grid_with_slit() {
   std::set<std::pair<int, int>> slit;
-  for (int i = 2; i <= 9; ++i) slit.insert({i, 3});  // 8 cells long, 1 wide: a loop of 18 vertices
-  Mesh m = grid_without(12, 7, slit);
+  for (int i = 2; i <= 9; ++i) slit.insert({i, 3});
+  return grid_without(12, 7, slit);
+}
+
+// Valid, one disk (genus 0, one border loop), every face in the plane facing +z like the grid.
+void expect_flat_disk(Mesh& m) {
+  expect_valid(m);
+  const edgefront::MeshStats s = edgefront::compute_stats(m);
+  EXPECT_EQ(s.border_loops, 1u);
+  ASSERT_EQ(s.per_component.size(), 1u);
+  EXPECT_EQ(s.per_component[0].genus, 0);
+  m.update_face_normals();
+  for (auto f : m.faces()) EXPECT_GT(m.normal(f)[2], 0.99);
+}
+
+TEST(GcsZipSlits, ANarrowHoleClosesAndOnlyTheOuterBorderRemains) {
+  Mesh m = grid_with_slit();
   ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
   const size_t faces_before = m.n_faces();
   const size_t zipped = gcs::detail::zip_border_slits(m, plane, unit_params());
@@ -73,14 +90,7 @@ TEST(GcsZipSlits, ANarrowHoleClosesAndOnlyTheOuterBorderRemains) {
   EXPECT_GT(m.n_faces(), faces_before);
   // What the strips leave at the slit's ends are small holes; the fan fill closes them.
   gcs::detail::fill_small_holes(m, plane, 8, 1.5, 0.5);
-  expect_valid(m);
-  const edgefront::MeshStats s = edgefront::compute_stats(m);
-  EXPECT_EQ(s.border_loops, 1u);
-  ASSERT_EQ(s.per_component.size(), 1u);
-  EXPECT_EQ(s.per_component[0].genus, 0);
-  // Every new face lies in the plane and faces the same way as the grid (+z).
-  m.update_face_normals();
-  for (auto f : m.faces()) EXPECT_GT(m.normal(f)[2], 0.99);
+  expect_flat_disk(m);
 }
 
 TEST(GcsZipSlits, ANotchInTheOuterBorderCloses) {
@@ -106,9 +116,7 @@ TEST(GcsZipSlits, WideHolesAndUnsupportedStripsStayOpen) {
   EXPECT_EQ(gcs::detail::zip_border_slits(m, plane, unit_params()), 0u);
   EXPECT_EQ(m.n_faces(), faces);
 
-  std::set<std::pair<int, int>> slit;
-  for (int i = 2; i <= 9; ++i) slit.insert({i, 3});
-  Mesh n = grid_without(12, 7, slit);
+  Mesh n = grid_with_slit();
   // A cloud far from the strip: no support, nothing added.
   const gcs::detail::CloudQuery far = [](const Vec3& p) { return gcs::detail::CloudHit{std::abs(p[2]) + 5.0, Vec3(0, 0, 1)}; };
   EXPECT_EQ(gcs::detail::zip_border_slits(n, far, unit_params()), 0u);
@@ -132,6 +140,50 @@ TEST(GcsZipSlits, TheLoopStaysValidWithSlitZippingOn) {
   Mesh m = res.mesh;
   expect_valid(m);
   EXPECT_GE(edgefront::compute_stats(m).border_loops, 1u);  // an open shape keeps its border
+}
+
+TEST(GcsFillSlits, ASlitHoleIsClosedByOneStripAndTheOuterBorderRemains) {
+  Mesh m = grid_with_slit();
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+  const size_t faces_before = m.n_faces();
+  EXPECT_EQ(gcs::detail::fill_slit_holes(m, plane, 9, 64, 1.5, 0.5), 1u);
+  EXPECT_EQ(m.n_faces(), faces_before + 16);  // a strip over 18 loop vertices: 18 - 2 triangles
+  expect_flat_disk(m);
+}
+
+TEST(GcsFillSlits, UnsupportedTooLargeOrTooSmallLoopsStayOpen) {
+  const gcs::detail::CloudQuery far = [](const Vec3& p) { return gcs::detail::CloudHit{std::abs(p[2]) + 5.0, Vec3(0, 0, 1)}; };
+  Mesh a = grid_with_slit();
+  EXPECT_EQ(gcs::detail::fill_slit_holes(a, far, 9, 64, 1.5, 0.5), 0u);  // no samples near the strip
+  EXPECT_EQ(gcs::detail::fill_slit_holes(a, plane, 9, 17, 1.5, 0.5), 0u);  // 18 vertices > 17
+  EXPECT_EQ(gcs::detail::fill_slit_holes(a, plane, 19, 64, 1.5, 0.5), 0u);  // 18 vertices < 19
+  EXPECT_EQ(edgefront::compute_stats(a).border_loops, 2u);
+  // An open sheet's outer border: a strip across it would fold back onto the sheet (normals
+  // opposite to the faces it borders), so it is refused even though it lies on the samples.
+  Mesh b = grid_without(4, 4, {});
+  ASSERT_EQ(edgefront::compute_stats(b).border_loops, 1u);
+  EXPECT_EQ(gcs::detail::fill_slit_holes(b, plane, 9, 64, 1.5, 0.5), 0u);
+  EXPECT_EQ(edgefront::compute_stats(b).border_loops, 1u);
+}
+
+TEST(GcsFillSlits, ATriangularHoleIsClosedByItsOwnTriangle) {
+  Mesh m = grid_without(4, 4, {});
+  // Remove one triangle inside: a 3-vertex hole.
+  for (auto f : m.faces()) {
+    bool inner = true;
+    for (auto v : m.fv_range(f)) inner = inner && !m.is_boundary(v);
+    if (inner) {
+      m.delete_face(f, false);
+      break;
+    }
+  }
+  m.garbage_collection();
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+  const size_t vertices = m.n_vertices();
+  EXPECT_EQ(gcs::detail::fill_small_holes(m, plane, 8, 1.5, 0.5), 1u);
+  EXPECT_EQ(m.n_vertices(), vertices);  // no fan vertex
+  expect_valid(m);
+  EXPECT_EQ(edgefront::compute_stats(m).border_loops, 1u);
 }
 
 }  // namespace

@@ -340,7 +340,15 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
       }
       agreement += (nf | na) / (nf.norm() * na.norm());
     }
-    if (!ok || agreement / static_cast<double>(n) < min_normal_agreement) continue;
+    // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
+    // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
+    if (!ok || agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
+      continue;
+    if (n == 3) {  // no fan vertex
+      const MuteOpenMeshErrors mute;
+      if (mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid()) ++filled;
+      continue;
+    }
     const VertexHandle center = mesh.add_vertex(c);
     std::vector<FaceHandle> added;
     {
@@ -357,6 +365,37 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
       continue;
     }
     ++filled;
+  }
+  return filled;
+}
+
+size_t fill_slit_holes(Mesh& mesh, const CloudQuery& cloud, size_t min_vertices, size_t max_vertices,
+                       double max_support_distance, double min_normal_agreement) {
+  size_t filled = 0;
+  for (const Loop& L : border_loops(mesh)) {
+    const size_t n = L.vertices.size();
+    if (n < std::max<size_t>(min_vertices, 6) || n > max_vertices) continue;
+    std::set<int> distinct;
+    for (auto v : L.vertices) distinct.insert(v.idx());
+    if (distinct.size() != n) continue;
+    // Tips: the pairs of loop vertices half a loop apart, farthest apart first; the strip runs from
+    // tip i along both sides of the loop to tip i + n/2.
+    std::vector<std::pair<double, size_t>> tips;
+    const size_t half = n / 2;
+    for (size_t i = 0; i < half; ++i)
+      tips.push_back({-(mesh.point(L.vertices[i]) - mesh.point(L.vertices[i + half])).norm(), i});
+    std::sort(tips.begin(), tips.end());
+    for (size_t t = 0; t < tips.size() && t < 3; ++t) {
+      const long i0 = static_cast<long>(tips[t].second);
+      const Strip strip{[&](size_t k) { return loop_vertex(L, i0 + long(k)); },
+                        [&](size_t k) { return loop_vertex(L, i0 - 1 - long(k)); },
+                        [&](size_t k) { return loop_halfedge(L, i0 + long(k)); },
+                        [&](size_t k) { return loop_halfedge(L, i0 - 2 - long(k)); }, half, n - half - 2};
+      if (zip_strip(mesh, cloud, strip, max_support_distance, min_normal_agreement)) {
+        ++filled;
+        break;
+      }
+    }
   }
   return filled;
 }

@@ -752,6 +752,10 @@ struct Reconstructor::Impl {
     topology_last_live = live;
     const double ell = mean_edge_length();
     const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
+    // Faces added across a border (loop merges, slit zips, hole fills) may lie up to 1.5 times as
+    // far from the samples as a face may before it is removed: a hysteresis, so that the strip
+    // across a sparsely sampled stretch is not refused by the test that tore it open.
+    const double bridge = 1.5 * support;
     const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
     bool changed = false;
     const auto tally = [&changed](size_t& total, size_t n) {
@@ -769,16 +773,20 @@ struct Reconstructor::Impl {
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
-      mp.max_support_distance = support;
+      mp.max_support_distance = bridge;
       tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
       if (opt.zip_slits) {
         detail::ZipParams zp;
         zp.mean_edge_length = ell;
-        zp.max_support_distance = support;
+        zp.max_support_distance = bridge;
         tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
       }
     }
-    if (opt.create_borders) tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, support, 0.5));
+    if (opt.create_borders) {
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5));
+      if (opt.fill_slits_max_vertices > 8)
+        tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5));
+    }
     if (changed) resync();
     seconds_topology += seconds_since(t0);
   }

@@ -13,7 +13,8 @@
 /// sample supports and overlong edges are removed, creating borders; two border loops that are
 /// close, of similar length and orientation-compatible are joined by a strip of triangles,
 /// creating a handle (optionally, slits within one loop are zipped the same way); border loops of at most 8 vertices whose fan would lie on the samples are
-/// closed (see ReconstructOptions).
+/// closed, and so are slits of up to 64 vertices whose zipping strip would lie on the samples (see
+/// ReconstructOptions).
 ///
 /// After each batch of splits the registered Operations (operation.h) are called with the
 /// elements changed since their last call; the loop then re-synchronizes its own state.
@@ -80,6 +81,11 @@ struct ReconstructOptions {
   /// tube). On kitten.xyz this splits the torn tail loop into several loops that the loop merge
   /// does not join (no handle yet), so it is not on by default.
   bool zip_slits = false;
+  /// Border loops of 9 up to this many vertices are closed by a strip zipping their two halves
+  /// together when that strip lies on the cloud and agrees with the faces around (a slit torn into
+  /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.
+  /// Wide holes (the opening of a hemisphere or cylinder) and open sheets fail these checks.
+  std::size_t fill_slits_max_vertices = 64;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
@@ -135,7 +141,8 @@ struct ReconstructResult {
   std::size_t faces_removed = 0;  ///< by the built-in border creation
   std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
   std::size_t slits_zipped = 0;   ///< border slits (close, opposite-running border chains) closed
-  std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan
+  std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan, and slits
+                                  ///< (up to fill_slits_max_vertices) closed by a strip
   std::size_t batches = 0;
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations

@@ -78,9 +78,19 @@ std::size_t zip_border_slits(edgefront::Mesh& mesh, const CloudQuery& cloud, con
 
 /// Closes small holes: a border loop of at most `max_vertices` vertices whose fan of triangles
 /// around the loop's centroid lies within `max_support_distance` of the cloud and agrees with the
-/// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex).
+/// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex;
+/// a loop of 3 vertices by its own triangle, which only needs a mean cosine above
+/// min(0, min_normal_agreement): it must not fold back).
 /// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
                              double max_support_distance, double min_normal_agreement);
+
+/// Closes elongated holes (slits in a closed surface: a sparsely sampled stretch whose faces were
+/// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one
+/// strip of triangles zipping its two halves together, from the tip pair farthest apart (up to 3
+/// tip pairs are tried). The strip must lie on the cloud and agree with the faces it borders (as in
+/// merge_border_loops). Returns the number of loops filled.
+std::size_t fill_slit_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t min_vertices,
+                            std::size_t max_vertices, double max_support_distance, double min_normal_agreement);
 
 }  // namespace gcs::detail
