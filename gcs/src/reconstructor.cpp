@@ -12,6 +12,7 @@
 
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
+#include "detail/double_layer.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
@@ -85,6 +86,7 @@ struct Reconstructor::Impl {
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
+  bool oriented = false;  // orient_winners with input normals (double_layer.h)
 
   Mesh mesh;
   detail::VertexGrid grid;
@@ -174,6 +176,7 @@ struct Reconstructor::Impl {
       sample_spacing = cnt ? sum / static_cast<double>(cnt) : bbox_diagonal * 1e-3;
     }
 
+    oriented = opt.orient_winners && cloud.has_normals();
     rng.seed(opt.seed);
     build_start_mesh(lo - offset, hi - offset);
     live = mesh.n_vertices();
@@ -323,8 +326,12 @@ struct Reconstructor::Impl {
 
   // ---------------------------------------------------------------- the basic step
   void basic_step() {
-    const Vec3& s = cloud.points[draw_index(rng, cloud.size())];
-    const int wi = grid.nearest(s);
+    const size_t si = draw_index(rng, cloud.size());
+    const Vec3& s = cloud.points[si];
+    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
+    const int wi = oriented && live >= opt.topology_min_vertices
+                       ? detail::oriented_nearest(mesh, grid, s, cloud.normals[si], 8, 2 * grid.cell_size())
+                       : grid.nearest(s);
     EF_CHECK(wi >= 0, "the mesh has no vertex");
     const VertexHandle w(wi);
     mesh.point(w) += opt.winner_rate * (s - mesh.point(w));
@@ -766,6 +773,8 @@ struct Reconstructor::Impl {
       bp.normal_check_distance = normal_gate * ell;
       tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
     }
+    if (opt.create_borders && oriented)
+      tally(faces_removed, detail::remove_opposed_faces(mesh, dist, {.max_distance = support}));
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
