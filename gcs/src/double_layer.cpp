@@ -1,7 +1,14 @@
 #include "detail/double_layer.h"
 
 #include <cmath>
+#include <functional>
+#include <queue>
+#include <tuple>
 #include <vector>
+
+#include <Eigen/Dense>
+
+#include "edgefront/error.h"
 
 namespace gcs::detail {
 
@@ -66,6 +73,79 @@ std::size_t remove_opposed_faces(Mesh& mesh, const CloudQuery& cloud, const Oppo
   if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
   for (auto f : doomed) mesh.delete_face(f, true);
   return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+}
+
+bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
+                    std::size_t k) {
+  const std::size_t n = points.size();
+  EF_CHECK(normals.size() == n && index.size() == n, "orient_normals: sizes differ");
+  const auto usable = [&](std::size_t i) { return std::isfinite(normals[i][0]) && normals[i].sqrnorm() > 0; };
+  // The k-nearest-neighbour graph made symmetric (CSR): a point that is among another's k nearest
+  // is linked both ways, so one far from everybody's list is still reached.
+  std::vector<edgefront::PointIndex::Neighbor> knn;
+  std::vector<std::vector<std::size_t>> adj(n);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!usable(i)) continue;
+    ++total;
+    index.k_nearest(points[i], k + 1, knn);
+    for (const auto& nb : knn) {
+      if (nb.index == i || !usable(nb.index)) continue;
+      adj[i].push_back(nb.index);
+      adj[nb.index].push_back(i);
+    }
+  }
+  std::size_t seed = 0;
+  while (seed < n && !usable(seed)) ++seed;
+  if (seed == n) return false;
+  // Prim's spanning tree, cheapest edge = most parallel normals; each point takes the sign that
+  // agrees with the point it was reached from. Ties by index.
+  using Item = std::tuple<double, std::size_t, std::size_t>;  // (1 - |cos|, to, from)
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  std::vector<char> done(n, 0);
+  std::size_t reached = 0;
+  queue.emplace(0.0, seed, seed);
+  while (!queue.empty()) {
+    const auto [cost, i, from] = queue.top();
+    queue.pop();
+    if (done[i]) continue;
+    done[i] = 1;
+    ++reached;
+    if ((normals[i] | normals[from]) < 0) normals[i] = -normals[i];
+    for (const std::size_t j : adj[i])
+      if (!done[j]) queue.emplace(1.0 - std::abs(normals[i] | normals[j]), j, i);
+  }
+  if (reached != total) return false;  // the graph falls apart: no one orientation
+  // Global sign: outward (sum of n.(p - c) > 0, which is 3 x the volume for a closed surface);
+  // when that sum is small (an open, nearly flat sheet) the normals point along the positive side
+  // of the cloud's thinnest principal axis (its largest coordinate positive).
+  Vec3 c(0, 0, 0);
+  for (const Vec3& p : points) c += p;
+  c /= static_cast<double>(n);
+  double flux = 0, extent = 0;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 d = points[i] - c;
+    extent = std::max(extent, d.norm());
+    const Eigen::Vector3d q(d[0], d[1], d[2]);
+    cov += q * q.transpose();
+    if (usable(i)) flux += normals[i] | d;
+  }
+  double sign = flux;
+  if (!(std::abs(flux) > 0.05 * extent * static_cast<double>(total))) {
+    const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    int big = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::abs(e[a]) > std::abs(e[big])) big = a;
+    const Vec3 axis = Vec3(e[0], e[1], e[2]) * (e[big] < 0 ? -1.0 : 1.0);
+    sign = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (usable(i)) sign += normals[i] | axis;
+  }
+  if (sign < 0)
+    for (Vec3& m : normals)
+      if (std::isfinite(m[0])) m = -m;
+  return true;
 }
 
 }  // namespace gcs::detail

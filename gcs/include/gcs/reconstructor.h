@@ -80,10 +80,14 @@ struct ReconstructOptions {
   /// tube). On kitten.xyz this splits the torn tail loop into several loops that the loop merge
   /// does not join (no handle yet), so it is not on by default.
   bool zip_slits = false;
-  /// With input normals: a sample's winner is the nearest vertex whose normal agrees with the
-  /// sample's (among its 8 nearest), and faces that face against the nearest sample's normal are
-  /// removed with the unsupported ones, so that an open or planar cloud does not end as a box
-  /// collapsed onto it from both sides (a double layer). No effect on clouds without normals.
+  /// Oriented samples keep an open or planar cloud from ending as the start box collapsed onto it
+  /// from both sides (a double layer): once the mesh has topology_min_vertices vertices, a
+  /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
+  /// nearest), and faces that face against the nearest sample's normal are removed with the
+  /// unsupported ones. The samples' normals are the input normals; without them, normals fitted to
+  /// each point's 20 neighbours and oriented consistently over the neighbour graph (outward, or for
+  /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
+  /// graph is not connected.
   bool orient_winners = true;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.

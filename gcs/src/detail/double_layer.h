@@ -6,7 +6,7 @@
 // bottom both land on the samples with opposite orientations, both win samples, each gets holes
 // where the other wins, and the unsigned support test of the border creation keeps both (many
 // border loops, self-intersections, half of the area wrongly oriented). With oriented samples
-// (input normals) two things prevent it:
+// (input normals, or fitted normals oriented by orient_normals) two things prevent it:
 //  - oriented_nearest: the winner of a sample is the nearest mesh vertex whose normal agrees with
 //    the sample's normal (dot > 0), so the layer that faces away never wins, goes inactive and is
 //    collapsed;
@@ -16,10 +16,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "detail/border_topology.h"
-#include "detail/vertex_grid.h"
+#include "border_topology.h"
+#include "vertex_grid.h"
 #include "edgefront/mesh.h"
 #include "edgefront/point_cloud.h"
+#include "edgefront/point_index.h"
 
 namespace gcs::detail {
 
@@ -46,5 +47,15 @@ struct OpposedParams {
 /// `cloud` must return oriented normals (NaN normal: that face is not judged). Never removes 90%
 /// or more of the faces. Returns the number of faces removed.
 std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params);
+
+/// Orients unsigned normals (e.g. fitted to each point's neighbours) consistently, for clouds
+/// without normals: a spanning tree of the k-nearest-neighbour graph that prefers parallel
+/// normals (Hoppe et al. 1992) carries one point's sign to all; then the global sign is outward
+/// (sum of n.(p - c) over the points positive) or, when that sum is below 5% of what a sphere would
+/// give (an open, nearly flat sheet), along the positive side of the thinnest principal axis.
+/// Normals with a NaN or zero are left alone and skipped. Returns false (normals then partly
+/// flipped, not to be used) when the graph does not connect all usable points.
+bool orient_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
+                    std::vector<edgefront::Vec3>& normals, std::size_t k = 8);
 
 }  // namespace gcs::detail
