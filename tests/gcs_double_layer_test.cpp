@@ -140,6 +140,35 @@ TEST(GcsOpposedFaces, RemovesTheLayerFacingAwayFromTheSamples) {
   EXPECT_EQ(gcs::detail::remove_opposed_faces(flipped, plane_down, p), faces / 2);
 }
 
+TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
+  // A 20 x 2 strip facing +z; the cloud's normal is -z over the cells with 16 < x < 17, so those
+  // faces go, which cuts the strip into 16 cells (64 faces) and 3 cells (12 faces, < 25%).
+  Mesh strip;
+  std::vector<VertexHandle> v;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 20; ++i) v.push_back(strip.add_vertex(Vec3(i, j, 0)));
+  const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * 21 + i)]; };
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 20; ++i) {
+      strip.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      strip.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  const auto cloud = [](const Vec3& q) {
+    return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, q[0] > 16 && q[0] < 17 ? -1.0 : 1.0)};
+  };
+  gcs::detail::OpposedParams p;
+  p.max_distance = 0.5;
+  Mesh kept_piece = strip;
+  p.split_fraction = 0;
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(kept_piece, cloud, p), 4u);
+  EXPECT_EQ(edgefront::compute_stats(kept_piece).components, 2u);
+  p.split_fraction = 0.25;
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(strip, cloud, p), 4u + 12u);
+  strip.garbage_collection();
+  EXPECT_EQ(strip.n_faces(), 64u);
+  EXPECT_EQ(edgefront::compute_stats(strip).components, 1u);
+}
+
 struct SheetCase {
   std::string shape;
   bool normals;

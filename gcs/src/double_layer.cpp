@@ -1,5 +1,6 @@
 #include "detail/double_layer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <queue>
@@ -9,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
 
 namespace gcs::detail {
 
@@ -71,8 +73,34 @@ std::size_t remove_opposed_faces(Mesh& mesh, const CloudQuery& cloud, const Oppo
     if (ln > 0 && lh > 0 && (n | hit.normal) < -params.min_cos * ln * lh) doomed.push_back(f);
   }
   if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
+  std::vector<VertexHandle> touched;
+  for (auto f : doomed)
+    for (auto v : mesh.fv_range(f)) touched.push_back(v);
   for (auto f : doomed) mesh.delete_face(f, true);
-  return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+  size_t removed = doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+  // Pieces of the kept layer that hung on the removed one only: components that lost faces here
+  // and have less than split_fraction of the largest component's faces go too (the loop regrows
+  // the sheet over their samples; left alone they stay apart, since loop merging joins only loops
+  // of similar length).
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  if (labels.count > 1 && params.split_fraction > 0) {
+    std::vector<size_t> faces(labels.count, 0);
+    for (auto f : mesh.faces()) ++faces[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])];
+    const double largest = static_cast<double>(*std::max_element(faces.begin(), faces.end()));
+    std::vector<char> split(labels.count, 0);
+    for (auto v : touched) {
+      if (mesh.status(v).deleted()) continue;
+      const int c = labels.vertex_component[static_cast<size_t>(v.idx())];
+      if (c >= 0 && static_cast<double>(faces[static_cast<size_t>(c)]) < params.split_fraction * largest)
+        split[static_cast<size_t>(c)] = 1;
+    }
+    for (auto f : mesh.faces()) {
+      if (!split[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
+      mesh.delete_face(f, true);
+      ++removed;
+    }
+  }
+  return removed;
 }
 
 bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,

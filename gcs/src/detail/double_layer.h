@@ -38,12 +38,16 @@ int oriented_nearest(const edgefront::Mesh& mesh, VertexGrid& grid, const edgefr
 struct OpposedParams {
   double max_distance = 0;  ///< only faces whose centroid is this close to the cloud are judged
   double min_cos = 0.3;     ///< removed when cos(face normal, sample normal) < -min_cos
+  /// components that lost faces and have fewer than this share of the largest one's faces go too
+  double split_fraction = 0.25;
   std::size_t min_component_faces = 8;   ///< then components smaller than this are removed
   double min_component_fraction = 0.05;  ///< ... or smaller than this share of the largest
 };
 
 /// Removes the faces whose normal points against the (oriented) normal of the input sample
-/// nearest to their centroid, then cleans non-manifold fans and tiny components (clean_topology).
+/// nearest to their centroid, then cleans non-manifold fans and tiny components (clean_topology),
+/// then removes the pieces that the removal cut off and that have fewer than split_fraction of the
+/// largest component's faces.
 /// `cloud` must return oriented normals (NaN normal: that face is not judged). Never removes 90%
 /// or more of the faces. Returns the number of faces removed.
 std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params);
