@@ -180,8 +180,8 @@ class GcsSheet : public ::testing::TestWithParam<SheetCase> {};
 // as the samples. Without input normals the orientation is the documented convention (+z for
 // these clouds, which is also their analytic normal). Not every seed gets there: at this size
 // (2000 points, 300 vertices) seed 2 of the grid and seed 1 of the landscape end with a piece torn
-// off along a slit (2-4 components, each with one loop, still oriented and without
-// self-intersections); see /work/notes/gcsplane-report.md. The cases below are seeds that do.
+// off along a slit (2 components, each with one loop); see the README section "Planar and open
+// clouds". The cases below are seeds that do.
 TEST_P(GcsSheet, OpenCloudGivesOneCleanSheet) {
   const SheetCase& c = GetParam();
   const PointCloud gt = cloud_of(c.shape, 2000);
