@@ -12,6 +12,7 @@
 
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
+#include "detail/double_layer.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
@@ -85,6 +86,8 @@ struct Reconstructor::Impl {
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
+  bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
+  std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
 
   Mesh mesh;
   detail::VertexGrid grid;
@@ -174,6 +177,12 @@ struct Reconstructor::Impl {
       sample_spacing = cnt ? sum / static_cast<double>(cnt) : bbox_diagonal * 1e-3;
     }
 
+    oriented = opt.orient_winners && cloud.has_normals();
+    if (opt.orient_winners && !cloud.has_normals()) {
+      for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
+      oriented_fitted = fitted_normal;
+      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted);
+    }
     rng.seed(opt.seed);
     build_start_mesh(lo - offset, hi - offset);
     live = mesh.n_vertices();
@@ -305,6 +314,8 @@ struct Reconstructor::Impl {
     return n;
   }
 
+  const Vec3& oriented_normal(size_t i) const { return cloud.has_normals() ? cloud.normals[i] : oriented_fitted[i]; }
+
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
     return {std::sqrt(nb.distance2), point_normal(nb.index)};
@@ -323,8 +334,12 @@ struct Reconstructor::Impl {
 
   // ---------------------------------------------------------------- the basic step
   void basic_step() {
-    const Vec3& s = cloud.points[draw_index(rng, cloud.size())];
-    const int wi = grid.nearest(s);
+    const size_t si = draw_index(rng, cloud.size());
+    const Vec3& s = cloud.points[si];
+    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
+    const int wi = oriented && live >= opt.topology_min_vertices
+                       ? detail::oriented_nearest(mesh, grid, s, oriented_normal(si), 8, 2 * grid.cell_size())
+                       : grid.nearest(s);
     EF_CHECK(wi >= 0, "the mesh has no vertex");
     const VertexHandle w(wi);
     mesh.point(w) += opt.winner_rate * (s - mesh.point(w));
@@ -770,6 +785,11 @@ struct Reconstructor::Impl {
       bp.normal_check_distance = normal_gate * ell;
       tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
     }
+    if (opt.create_borders && oriented)
+      tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
+        const PointIndex::Neighbor nb = tree->nearest(p);
+        return {std::sqrt(nb.distance2), oriented_normal(nb.index)};
+      }, {.max_distance = support}));
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;

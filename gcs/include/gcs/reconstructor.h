@@ -86,6 +86,15 @@ struct ReconstructOptions {
   /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.
   /// Wide holes (the opening of a hemisphere or cylinder) and open sheets fail these checks.
   std::size_t fill_slits_max_vertices = 64;
+  /// Oriented samples keep an open or planar cloud from ending as the start box collapsed onto it
+  /// from both sides (a double layer): once the mesh has topology_min_vertices vertices, a
+  /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
+  /// nearest), and faces that face against the nearest sample's normal are removed with the
+  /// unsupported ones. The samples' normals are the input normals; without them, normals fitted to
+  /// each point's 20 neighbours and oriented consistently over the neighbour graph (outward, or for
+  /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
+  /// graph is not connected.
+  bool orient_winners = true;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;

@@ -1,0 +1,65 @@
+#pragma once
+// Keeping the GCS loop from ending as a collapsed double layer on open (planar, near-planar,
+// landscape) clouds.
+//
+// The problem: the closed start box collapses onto an open sheet from both sides; its top and its
+// bottom both land on the samples with opposite orientations, both win samples, each gets holes
+// where the other wins, and the unsigned support test of the border creation keeps both (many
+// border loops, self-intersections, half of the area wrongly oriented). With oriented samples
+// (input normals, or fitted normals oriented by orient_normals) two things prevent it:
+//  - oriented_nearest: the winner of a sample is the nearest mesh vertex whose normal agrees with
+//    the sample's normal (dot > 0), so the layer that faces away never wins, goes inactive and is
+//    collapsed;
+//  - remove_opposed_faces: faces that lie on the cloud but face against the nearest sample's
+//    normal are removed (a signed support test), which removes what is left of that layer.
+
+#include <cstddef>
+#include <vector>
+
+#include "border_topology.h"
+#include "vertex_grid.h"
+#include "edgefront/mesh.h"
+#include "edgefront/point_cloud.h"
+#include "edgefront/point_index.h"
+
+namespace gcs::detail {
+
+/// The area-weighted normal of v (sum of the cross products of its faces; not normalized).
+edgefront::Vec3 vertex_normal_sum(const edgefront::Mesh& mesh, edgefront::VertexHandle v);
+
+/// The nearest vertex of `grid` to `sample` whose vertex normal agrees with `normal` (positive
+/// dot product), among the `max_candidates` nearest vertices and no farther than the nearest one's
+/// distance plus `max_extra_distance`. When none agrees, returns the plain nearest vertex. -1 only
+/// for an empty grid. The grid is left exactly as it was (candidates are taken out one by one and
+/// put back); ties as in VertexGrid::nearest (smaller id), so the result is deterministic.
+int oriented_nearest(const edgefront::Mesh& mesh, VertexGrid& grid, const edgefront::Vec3& sample,
+                     const edgefront::Vec3& normal, int max_candidates, double max_extra_distance);
+
+struct OpposedParams {
+  double max_distance = 0;  ///< only faces whose centroid is this close to the cloud are judged
+  double min_cos = 0.3;     ///< removed when cos(face normal, sample normal) < -min_cos
+  /// components that lost faces and have fewer than this share of the largest one's faces go too
+  double split_fraction = 0.25;
+  std::size_t min_component_faces = 8;   ///< then components smaller than this are removed
+  double min_component_fraction = 0.05;  ///< ... or smaller than this share of the largest
+};
+
+/// Removes the faces whose normal points against the (oriented) normal of the input sample
+/// nearest to their centroid, then cleans non-manifold fans and tiny components (clean_topology),
+/// then removes the pieces that the removal cut off and that have fewer than split_fraction of the
+/// largest component's faces.
+/// `cloud` must return oriented normals (NaN normal: that face is not judged). Never removes 90%
+/// or more of the faces. Returns the number of faces removed.
+std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params);
+
+/// Orients unsigned normals (e.g. fitted to each point's neighbours) consistently, for clouds
+/// without normals: a spanning tree of the k-nearest-neighbour graph that prefers parallel
+/// normals (Hoppe et al. 1992) carries one point's sign to all; then the global sign is outward
+/// (sum of n.(p - c) over the points positive) or, when that sum is below 5% of what a sphere would
+/// give (an open, nearly flat sheet), along the positive side of the thinnest principal axis.
+/// Normals with a NaN or zero are left alone and skipped. Returns false (normals then partly
+/// flipped, not to be used) when the graph does not connect all usable points.
+bool orient_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
+                    std::vector<edgefront::Vec3>& normals, std::size_t k = 8);
+
+}  // namespace gcs::detail

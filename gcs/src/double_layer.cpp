@@ -1,0 +1,179 @@
+#include "detail/double_layer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
+
+namespace gcs::detail {
+
+using edgefront::FaceHandle;
+using edgefront::Mesh;
+using edgefront::Vec3;
+using edgefront::VertexHandle;
+
+Vec3 vertex_normal_sum(const Mesh& mesh, VertexHandle v) {
+  Vec3 n(0, 0, 0);
+  const Vec3& x = mesh.point(v);
+  for (auto h : mesh.voh_range(v)) {
+    if (!mesh.face_handle(h).is_valid()) continue;
+    const Vec3& a = mesh.point(mesh.to_vertex_handle(h));
+    const Vec3& b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+    n += (a - x) % (b - x);
+  }
+  return n;
+}
+
+int oriented_nearest(const Mesh& mesh, VertexGrid& grid, const Vec3& sample, const Vec3& normal,
+                     int max_candidates, double max_extra_distance) {
+  const int first = grid.nearest(sample);
+  if (first < 0) return first;
+  const auto agrees = [&](int id) { return (vertex_normal_sum(mesh, VertexHandle(id)) | normal) > 0; };
+  if (agrees(first)) return first;
+  const double limit = (grid.position(first) - sample).norm() + max_extra_distance;
+  // Take disagreeing candidates out of the grid until an agreeing one is nearest, then put them
+  // back at their stored positions (the grid's answers do not depend on insertion order).
+  std::vector<std::pair<int, Vec3>> taken;
+  taken.reserve(static_cast<size_t>(max_candidates));
+  taken.emplace_back(first, grid.position(first));
+  grid.remove(first);
+  int found = -1;
+  while (static_cast<int>(taken.size()) < max_candidates) {
+    const int id = grid.nearest(sample);
+    if (id < 0 || (grid.position(id) - sample).norm() > limit) break;
+    if (agrees(id)) {
+      found = id;
+      break;
+    }
+    taken.emplace_back(id, grid.position(id));
+    grid.remove(id);
+  }
+  for (const auto& [id, p] : taken) grid.insert(id, p);
+  return found >= 0 ? found : first;
+}
+
+std::size_t remove_opposed_faces(Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params) {
+  std::vector<FaceHandle> doomed;
+  size_t live_faces = 0;
+  for (auto f : mesh.faces()) {
+    ++live_faces;
+    auto it = mesh.cfv_iter(f);
+    const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+    const CloudHit hit = cloud((a + b + c) / 3.0);
+    if (!(hit.distance <= params.max_distance) || !std::isfinite(hit.normal[0])) continue;
+    const Vec3 n = (b - a) % (c - a);
+    const double ln = n.norm(), lh = hit.normal.norm();
+    if (ln > 0 && lh > 0 && (n | hit.normal) < -params.min_cos * ln * lh) doomed.push_back(f);
+  }
+  if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
+  std::vector<VertexHandle> touched;
+  for (auto f : doomed)
+    for (auto v : mesh.fv_range(f)) touched.push_back(v);
+  for (auto f : doomed) mesh.delete_face(f, true);
+  size_t removed = doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+  // Pieces of the kept layer that hung on the removed one only: components that lost faces here
+  // and have less than split_fraction of the largest component's faces go too (the loop regrows
+  // the sheet over their samples; left alone they stay apart, since loop merging joins only loops
+  // of similar length).
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  if (labels.count > 1 && params.split_fraction > 0) {
+    std::vector<size_t> faces(labels.count, 0);
+    for (auto f : mesh.faces()) ++faces[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])];
+    const double largest = static_cast<double>(*std::max_element(faces.begin(), faces.end()));
+    std::vector<char> split(labels.count, 0);
+    for (auto v : touched) {
+      if (mesh.status(v).deleted()) continue;
+      const int c = labels.vertex_component[static_cast<size_t>(v.idx())];
+      if (c >= 0 && static_cast<double>(faces[static_cast<size_t>(c)]) < params.split_fraction * largest)
+        split[static_cast<size_t>(c)] = 1;
+    }
+    for (auto f : mesh.faces()) {
+      if (!split[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
+      mesh.delete_face(f, true);
+      ++removed;
+    }
+  }
+  return removed;
+}
+
+bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
+                    std::size_t k) {
+  const std::size_t n = points.size();
+  EF_CHECK(normals.size() == n && index.size() == n, "orient_normals: sizes differ");
+  const auto usable = [&](std::size_t i) { return std::isfinite(normals[i][0]) && normals[i].sqrnorm() > 0; };
+  // The k-nearest-neighbour graph made symmetric (CSR): a point that is among another's k nearest
+  // is linked both ways, so one far from everybody's list is still reached.
+  std::vector<edgefront::PointIndex::Neighbor> knn;
+  std::vector<std::vector<std::size_t>> adj(n);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!usable(i)) continue;
+    ++total;
+    index.k_nearest(points[i], k + 1, knn);
+    for (const auto& nb : knn) {
+      if (nb.index == i || !usable(nb.index)) continue;
+      adj[i].push_back(nb.index);
+      adj[nb.index].push_back(i);
+    }
+  }
+  std::size_t seed = 0;
+  while (seed < n && !usable(seed)) ++seed;
+  if (seed == n) return false;
+  // Prim's spanning tree, cheapest edge = most parallel normals; each point takes the sign that
+  // agrees with the point it was reached from. Ties by index.
+  using Item = std::tuple<double, std::size_t, std::size_t>;  // (1 - |cos|, to, from)
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  std::vector<char> done(n, 0);
+  std::size_t reached = 0;
+  queue.emplace(0.0, seed, seed);
+  while (!queue.empty()) {
+    const auto [cost, i, from] = queue.top();
+    queue.pop();
+    if (done[i]) continue;
+    done[i] = 1;
+    ++reached;
+    if ((normals[i] | normals[from]) < 0) normals[i] = -normals[i];
+    for (const std::size_t j : adj[i])
+      if (!done[j]) queue.emplace(1.0 - std::abs(normals[i] | normals[j]), j, i);
+  }
+  if (reached != total) return false;  // the graph falls apart: no one orientation
+  // Global sign: outward (sum of n.(p - c) > 0, which is 3 x the volume for a closed surface);
+  // when that sum is small (an open, nearly flat sheet) the normals point along the positive side
+  // of the cloud's thinnest principal axis (its largest coordinate positive).
+  Vec3 c(0, 0, 0);
+  for (const Vec3& p : points) c += p;
+  c /= static_cast<double>(n);
+  double flux = 0, extent = 0;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 d = points[i] - c;
+    extent = std::max(extent, d.norm());
+    const Eigen::Vector3d q(d[0], d[1], d[2]);
+    cov += q * q.transpose();
+    if (usable(i)) flux += normals[i] | d;
+  }
+  double sign = flux;
+  if (!(std::abs(flux) > 0.05 * extent * static_cast<double>(total))) {
+    const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    int big = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::abs(e[a]) > std::abs(e[big])) big = a;
+    const Vec3 axis = Vec3(e[0], e[1], e[2]) * (e[big] < 0 ? -1.0 : 1.0);
+    sign = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (usable(i)) sign += normals[i] | axis;
+  }
+  if (sign < 0)
+    for (Vec3& m : normals)
+      if (std::isfinite(m[0])) m = -m;
+  return true;
+}
+
+}  // namespace gcs::detail
