@@ -5,6 +5,7 @@
 ///
 ///   bench_paths --mesh FILE [--subdiv N] [--reference PREFIX] [--sources a,b,...]
 ///               [--random-sources K] [--targets T] [--seed S] [--only NAME,NAME,...] [--no-many]
+///               [--band R] [--steiner K]
 ///   bench_paths --grid-check [--large CELLS]
 ///
 /// Pairs: for each source vertex, T random target vertices (std::mt19937_64(S)). With --reference,
@@ -191,6 +192,8 @@ struct Args {
   int large = 2000;
   std::vector<std::string> only;  // --only: variant names to run (default: all)
   bool many = true;               // --no-many: skip the find_many comparison
+  double band = -1;               // --band R: polyline band radius / path length (default: the option's)
+  int steiner = -1;               // --steiner K: Steiner points per edge of the band step
 };
 
 Args parse(int argc, char** argv) {
@@ -216,6 +219,8 @@ Args parse(int argc, char** argv) {
       std::stringstream ss(value());
       for (std::string tok; std::getline(ss, tok, ',');) a.only.push_back(tok);
     } else if (f == "--no-many") a.many = false;
+    else if (f == "--band") a.band = std::stod(value());
+    else if (f == "--steiner") a.steiner = std::stoi(value());
     else throw InvalidInput("unknown flag " + f + " (see the comment at the top of bench/bench_paths.cpp)");
   }
   if (!a.grid_check && a.mesh.empty()) throw InvalidInput("--mesh FILE or --grid-check is required");
@@ -262,6 +267,9 @@ int run_mesh(const Args& a) {
       {"MDF directed (A* edge path)", {.method = PathMethod::MinimalDistance, .directed = true}},
       {"MDF + polyline", {.method = PathMethod::MinimalDistance, .polyline = true}},
       {"MDF directed + polyline", {.method = PathMethod::MinimalDistance, .polyline = true, .directed = true}},
+      {"MDF + polyline without band step", {.method = PathMethod::MinimalDistance, .polyline = true, .polyline_band = 0}},
+      {"MDF directed + polyline without band step",
+       {.method = PathMethod::MinimalDistance, .polyline = true, .directed = true, .polyline_band = 0}},
       {"VF confined", {.method = PathMethod::VertexFront, .confine = true}},
       {"MEF confined", {.method = PathMethod::MinimalEdgeFront, .confine = true}},
       {"MDF recursive (paper's halves)", {.method = PathMethod::MinimalDistance, .mdf_recursion = true}},
@@ -271,6 +279,11 @@ int run_mesh(const Args& a) {
       return std::find(a.only.begin(), a.only.end(), v.name) == a.only.end();
     });
     EF_CHECK(!variants.empty(), "--only names no variant");
+  }
+  for (Variant& v : variants) {
+    if (!v.options.polyline || v.options.polyline_band == 0) continue;
+    if (a.band >= 0) v.options.polyline_band = a.band;
+    if (a.steiner >= 0) v.options.polyline_steiner = a.steiner;
   }
   std::vector<Series> series(variants.size());
   Series dijkstra, one_sided;
@@ -445,16 +458,7 @@ int run_grid_check(const Args& a) {
   for (int cells : {100, a.large}) {
     auto t0 = Clock::now();
     Mesh mesh = shapes::grid({.cells = cells, .half_size = cells / 100.0});
-    // A 10-triangle island above the grid.
-    std::vector<VertexHandle> top, bottom;
-    for (int i = 0; i < 6; ++i) {
-      top.push_back(mesh.add_vertex(Vec3(0.02 * i, 0.02, 1)));
-      bottom.push_back(mesh.add_vertex(Vec3(0.02 * i, 0, 1)));
-    }
-    for (int i = 0; i < 5; ++i) {
-      mesh.add_face(bottom[i], bottom[i + 1], top[i + 1]);
-      mesh.add_face(bottom[i], top[i + 1], top[i]);
-    }
+    const std::vector<VertexHandle> island_vertices = shapes::add_island(mesh);  // 10 triangles above the grid
     std::cerr << "grid " << cells << "x" << cells << ": " << mesh.n_faces() << " faces in " << fixed(since(t0), 1)
               << " s\n";
     ConnectionPathFinder finder(mesh);
@@ -467,7 +471,7 @@ int run_grid_check(const Args& a) {
         work[{q, m}].push_back(p.processed);
       }
     }
-    const VertexHandle g = nearest(mesh, Vec3(0, 0, 0)), island = top[2];
+    const VertexHandle g = nearest(mesh, Vec3(0, 0, 0)), island = island_vertices[4];  // upper row, third vertex
     for (size_t m = 0; m < 3; ++m) {
       const ConnectionPath p = finder.find(g, island, methods[m].second);
       EF_CHECK(p.status == PathStatus::NoPath, "the island is connected?");

@@ -261,6 +261,94 @@ TEST(ConnectionPath, EqualAdjacentAndBorderEndpoints) {
   }
 }
 
+// A 40x40 grid on [-1,1]^2 with a tall round bump (height 1, width 0.15) centred a little above
+// the x axis, and a vertex chain from (-0.9, 0) to (0.9, 0) that passes the bump on its upper
+// (+y) side through the waypoints or on its lower side.
+struct BumpCase {
+  Mesh mesh;
+  std::vector<VertexHandle> upper, lower;
+};
+BumpCase bump_case() {
+  BumpCase c;
+  c.mesh = shapes::grid({.cells = 40});
+  for (VertexHandle v : c.mesh.vertices()) {
+    Vec3 p = c.mesh.point(v);
+    const double r2 = p[0] * p[0] + (p[1] - 0.05) * (p[1] - 0.05);
+    p[2] = std::exp(-r2 / (0.15 * 0.15));
+    c.mesh.set_point(v, p);
+  }
+  // Greedy walk over edges towards each waypoint in the xy plane (a regular grid: always arrives).
+  auto walk = [&](std::vector<Vec3> waypoints) {
+    std::vector<VertexHandle> chain{nearest(c.mesh, Vec3(-0.9, 0, 0))};
+    auto xy = [&](VertexHandle v, const Vec3& w) {
+      const Vec3 p = c.mesh.point(v);
+      return std::hypot(p[0] - w[0], p[1] - w[1]);
+    };
+    for (const Vec3& w : waypoints) {
+      while (xy(chain.back(), w) > 1e-9) {
+        VertexHandle best;
+        for (VertexHandle u : c.mesh.vv_range(chain.back())) {
+          if (!best.is_valid() || xy(u, w) < xy(best, w)) best = u;
+        }
+        EF_CHECK(xy(best, w) < xy(chain.back(), w), "bump test: the walk is stuck");
+        chain.push_back(best);
+      }
+    }
+    return chain;
+  };
+  c.upper = walk({Vec3(-0.5, 0.5, 0), Vec3(0.5, 0.5, 0), Vec3(0.9, 0, 0)});
+  c.lower = walk({Vec3(-0.5, -0.5, 0), Vec3(0.5, -0.5, 0), Vec3(0.9, 0, 0)});
+  return c;
+}
+
+TEST(ConnectionPath, BandStepMovesALocallyShortestPolylineToTheShorterSideOfABump) {
+  const BumpCase c = bump_case();
+  bool converged = false;
+  const auto upper = geodesic_polyline(c.mesh, c.upper, 10000, &converged);
+  EXPECT_TRUE(converged);
+  const auto lower = geodesic_polyline(c.mesh, c.lower);
+  const double lu = polyline_length(upper), ll = polyline_length(lower);
+  // The premise: straightening from the upper chain ends on the upper side, a locally shortest
+  // path clearly longer than the lower side's.
+  ASSERT_GT(lu, 1.01 * ll) << "upper " << lu << ", lower " << ll;
+  size_t band = 0;
+  const auto fixed = band_polyline(c.mesh, upper, 0.5 * lu, 3, 10000, &converged, &band);
+  const double lf = polyline_length(fixed);
+  EXPECT_NEAR(lf, ll, 1e-6 * ll) << "band step: " << lf << ", upper " << lu << ", lower " << ll;
+  EXPECT_TRUE(converged);
+  EXPECT_GT(band, 0u);
+  EXPECT_LT(band, c.mesh.n_vertices());
+  expect_polyline_on_surface(c.mesh, fixed);
+  EXPECT_EQ(fixed.front().vertex, c.upper.front());
+  EXPECT_EQ(fixed.back().vertex, c.upper.back());
+  for (const PathPoint& p : fixed) EXPECT_LT(p.position[1], 0.05) << "a point on the upper side";
+  // Already on the shorter side: the band step keeps the polyline.
+  const auto again = band_polyline(c.mesh, lower, 0.5 * ll);
+  EXPECT_NEAR(polyline_length(again), ll, 1e-12 * ll);
+  // A band too narrow to reach the lower side cannot help: the polyline stays as it was.
+  const auto narrow = band_polyline(c.mesh, upper, 0.0);
+  EXPECT_LE(polyline_length(narrow), lu);
+  EXPECT_GT(polyline_length(narrow), 1.01 * ll);
+  // Through connection_path: the MDF polyline from the upper chain's ends is the lower side's.
+  const ConnectionPath p = connection_path(c.mesh, c.upper.front(), c.upper.back(), {.polyline = true});
+  EXPECT_NEAR(p.polyline_length, ll, 1e-6 * ll);
+}
+
+TEST(ConnectionPath, BandStepRejectsBadInput) {
+  const Mesh mesh = shapes::grid({.cells = 4});
+  const auto line = geodesic_polyline(mesh, {VertexHandle(0), VertexHandle(1), VertexHandle(2)});
+  EXPECT_THROW(band_polyline(mesh, line, -1.0), InvalidInput);
+  EXPECT_THROW(band_polyline(mesh, line, std::nan("")), InvalidInput);
+  EXPECT_THROW(band_polyline(mesh, line, 1.0, -1), InvalidInput);
+  EXPECT_THROW(band_polyline(mesh, line, 1.0, 65), InvalidInput);
+  EXPECT_THROW(band_polyline(mesh, {}, 1.0), InvalidInput);
+  std::vector<PathPoint> open = line;
+  open.back().vertex = VertexHandle();
+  EXPECT_THROW(band_polyline(mesh, open, 1.0), InvalidInput);
+  EXPECT_THROW(connection_path(mesh, VertexHandle(0), VertexHandle(2), {.polyline_band = -0.1}), InvalidInput);
+  EXPECT_THROW(connection_path(mesh, VertexHandle(0), VertexHandle(2), {.polyline_steiner = 100}), InvalidInput);
+}
+
 TEST(ConnectionPath, InvalidAndDeletedHandlesAndBadOptionsThrow) {
   Mesh mesh = shapes::grid({.cells = 4});
   EXPECT_THROW(connection_path(mesh, VertexHandle(), VertexHandle(0)), InvalidInput);
@@ -283,15 +371,7 @@ TEST(ConnectionPath, InvalidAndDeletedHandlesAndBadOptionsThrow) {
 // A large grid with a 10-triangle strip floating above it (another component).
 Mesh grid_with_island(int cells) {
   Mesh mesh = shapes::grid({.cells = cells, .half_size = cells / 100.0});
-  std::vector<VertexHandle> top, bottom;
-  for (int i = 0; i < 6; ++i) {
-    top.push_back(mesh.add_vertex(Vec3(0.02 * i, 0.02, 1)));
-    bottom.push_back(mesh.add_vertex(Vec3(0.02 * i, 0, 1)));
-  }
-  for (int i = 0; i < 5; ++i) {
-    mesh.add_face(bottom[i], bottom[i + 1], top[i + 1]);
-    mesh.add_face(bottom[i], top[i + 1], top[i]);
-  }
+  shapes::add_island(mesh);
   return mesh;
 }
 

@@ -181,6 +181,14 @@ struct ConnectionPathFinder::Impl {
     }
   }
   static void check_options(const ConnectionPathOptions& o) {
+    if (!(std::isfinite(o.polyline_band) && o.polyline_band >= 0)) {
+      throw InvalidInput("connection path: polyline_band must be finite and not negative, got " +
+                         std::to_string(o.polyline_band));
+    }
+    if (o.polyline_steiner < 0 || o.polyline_steiner > 64) {
+      throw InvalidInput("connection path: polyline_steiner must be in 0..64, got " +
+                         std::to_string(o.polyline_steiner));
+    }
     if (o.max_polyline_flips <= 0) {
       throw InvalidInput("connection path: max_polyline_flips must be positive, got " +
                          std::to_string(o.max_polyline_flips));
@@ -388,6 +396,19 @@ struct ConnectionPathFinder::Impl {
         const double len = polyline_length(other);
         if (len < r.polyline_length) {
           r.polyline.swap(other);
+          r.polyline_length = len;
+          r.polyline_converged = converged;
+        }
+      }
+      if (o.polyline_band > 0 && r.polyline.size() >= 3) {
+        size_t band = 0;
+        bool converged = false;
+        auto wide = band_polyline(msh, r.polyline, o.polyline_band * r.polyline_length, o.polyline_steiner,
+                                  o.max_polyline_flips, &converged, &band);
+        r.processed += band;
+        const double len = polyline_length(wide);
+        if (len < r.polyline_length) {
+          r.polyline.swap(wide);
           r.polyline_length = len;
           r.polyline_converged = converged;
         }

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <string>
 #include <unordered_map>
 
@@ -315,7 +318,13 @@ class Straightener {
       if (converged) *converged = true;
       return out;
     }
-    std::vector<FaceHandle> strip = corridor(chain);
+    return straighten(corridor(chain), s, t, max_flips, converged);
+  }
+
+  // Straightens the corridor `strip` (consecutive faces share an edge; s a corner of the first
+  // face, t of the last): funnel, then corridor moves around the corners while they shorten it.
+  std::vector<PathPoint> straighten(std::vector<FaceHandle> strip, VertexHandle s, VertexHandle t, int max_flips,
+                                    bool* converged) {
     tidy(strip, s, t);
     std::vector<Portal> portals, trial_portals;
     unfold(strip, s, t, portals);
@@ -419,7 +428,237 @@ class Straightener {
   const Mesh& mesh_;
 };
 
+// The band step: the shortest path from s to t over the vertices and `k` Steiner points per edge
+// of a band of faces around a polyline (A* with the straight-line bound; inside a face the
+// straight segment between two of its boundary points is exact), then the corridor of the faces
+// that path crosses, straightened as above. The band is every face with a vertex within `radius`
+// (edge-path distance) of the polyline's edges, so the work follows the band, not the mesh.
+class BandSearch {
+ public:
+  explicit BandSearch(const Mesh& mesh) : mesh_(mesh), st_(mesh) {}
+
+  // Returns false when the band holds no path (cannot happen when the polyline is valid).
+  bool corridor(const std::vector<PathPoint>& polyline, double radius, int k, std::vector<FaceHandle>& strip) {
+    collect_band(polyline, radius);
+    index_band(k);
+    // Steiner paths are longer than the geodesics they follow (a few percent with one point per
+    // edge); a way through the band that is longer than this bound cannot straighten into a
+    // shorter polyline in practice, so the search does not queue it.
+    bound_ = kSteinerSlack * polyline_length(polyline);
+    const int s = vertex_local_.at(polyline.front().vertex.idx());
+    const int t = vertex_local_.at(polyline.back().vertex.idx());
+    if (!search(s, t)) return false;
+    // The faces the path crosses, joined around the path's vertices.
+    std::vector<int> faces;
+    for (int n = t; n != s; n = pred_[static_cast<size_t>(n)]) faces.push_back(pred_face_[static_cast<size_t>(n)]);
+    std::reverse(faces.begin(), faces.end());
+    strip.clear();
+    std::vector<FaceHandle> a, b;
+    int node = s;
+    std::vector<int> nodes;
+    for (int n = t; n != s; n = pred_[static_cast<size_t>(n)]) nodes.push_back(n);
+    std::reverse(nodes.begin(), nodes.end());
+    for (size_t i = 0; i < faces.size(); ++i) {
+      const FaceHandle f = band_[static_cast<size_t>(faces[i])];
+      if (!strip.empty() && f != strip.back() && !share_edge(strip.back(), f)) {
+        // The path passes the vertex `node` between two faces around it: add the fan between them.
+        EF_CHECK(node < nv_, "band polyline: faces of an edge point share no edge");
+        const VertexHandle w = verts_[static_cast<size_t>(node)];
+        const bool ok_a = st_.fan_between(strip.back(), f, w, true, a);
+        const bool ok_b = st_.fan_between(strip.back(), f, w, false, b);
+        EF_CHECK(ok_a || ok_b, "band polyline: no way around a path vertex");
+        const auto& way = ok_a && (!ok_b || a.size() <= b.size()) ? a : b;
+        strip.insert(strip.end(), way.begin(), way.end());
+      }
+      if (strip.empty() || f != strip.back()) strip.push_back(f);
+      node = nodes[i];
+    }
+    return !strip.empty();
+  }
+
+  size_t band_vertices() const { return verts_.size(); }
+  Straightener& straightener() { return st_; }
+
+ private:
+  bool share_edge(FaceHandle f, FaceHandle g) const {
+    for (HalfedgeHandle h : mesh_.fh_range(f)) {
+      if (mesh_.face_handle(mesh_.opposite_halfedge_handle(h)) == g) return true;
+    }
+    return false;
+  }
+
+  void collect_band(const std::vector<PathPoint>& polyline, double radius) {
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    reach_.clear();
+    auto seed = [&](VertexHandle v) {
+      if (reach_.emplace(v.idx(), 0.0).second) queue.emplace(0.0, v.idx());
+    };
+    for (const PathPoint& p : polyline) {
+      if (p.vertex.is_valid()) {
+        seed(p.vertex);
+      } else {
+        seed(mesh_.from_vertex_handle(p.halfedge));
+        seed(mesh_.to_vertex_handle(p.halfedge));
+      }
+    }
+    while (!queue.empty()) {
+      const auto [d, vi] = queue.top();
+      queue.pop();
+      if (d > reach_.at(vi)) continue;
+      const VertexHandle v(vi);
+      for (HalfedgeHandle h : mesh_.voh_range(v)) {
+        const VertexHandle u = mesh_.to_vertex_handle(h);
+        const double du = d + mesh_.calc_edge_length(h);
+        if (du > radius) continue;
+        auto [it, fresh] = reach_.emplace(u.idx(), du);
+        if (!fresh && du >= it->second) continue;
+        it->second = du;
+        queue.emplace(du, u.idx());
+      }
+    }
+    band_.clear();
+    face_local_.clear();
+    for (const auto& [vi, d] : reach_) {
+      for (FaceHandle f : mesh_.vf_range(VertexHandle(vi))) {
+        if (face_local_.emplace(f.idx(), static_cast<int>(band_.size())).second) band_.push_back(f);
+      }
+    }
+  }
+
+  int vertex_id(VertexHandle v) {
+    auto [it, fresh] = vertex_local_.emplace(v.idx(), static_cast<int>(verts_.size()));
+    if (fresh) verts_.push_back(v);
+    return it->second;
+  }
+
+  void index_band(int k) {
+    k_ = k;
+    vertex_local_.clear();
+    verts_.clear();
+    for (FaceHandle f : band_) {
+      for (VertexHandle v : mesh_.fv_range(f)) vertex_id(v);
+    }
+    nv_ = static_cast<int>(verts_.size());
+    std::unordered_map<int, int> edge_local;
+    edges_.clear();
+    const size_t per_face = static_cast<size_t>(3 + 3 * k);
+    face_nodes_.assign(band_.size() * per_face, -1);
+    for (size_t fi = 0; fi < band_.size(); ++fi) {
+      size_t at = fi * per_face;
+      for (HalfedgeHandle h : mesh_.fh_range(band_[fi])) {
+        face_nodes_[at++] = vertex_local_.at(mesh_.to_vertex_handle(h).idx());
+        const EdgeHandle e = mesh_.edge_handle(h);
+        auto [it, fresh] = edge_local.emplace(e.idx(), static_cast<int>(edges_.size()));
+        if (fresh) edges_.push_back(e);
+        for (int j = 0; j < k; ++j) face_nodes_[at++] = nv_ + it->second * k + j;
+      }
+    }
+    const size_t n = static_cast<size_t>(nv_) + edges_.size() * static_cast<size_t>(k);
+    pos_.resize(n);
+    for (int i = 0; i < nv_; ++i) pos_[static_cast<size_t>(i)] = mesh_.point(verts_[static_cast<size_t>(i)]);
+    for (size_t e = 0; e < edges_.size(); ++e) {
+      const HalfedgeHandle h = mesh_.halfedge_handle(edges_[e], 0);
+      const Vec3 a = mesh_.point(mesh_.from_vertex_handle(h)), b = mesh_.point(mesh_.to_vertex_handle(h));
+      for (int j = 0; j < k; ++j) {
+        const double u = static_cast<double>(j + 1) / (k + 1);
+        pos_[static_cast<size_t>(nv_) + e * static_cast<size_t>(k) + static_cast<size_t>(j)] = a + u * (b - a);
+      }
+    }
+    // Node -> band faces (compressed rows).
+    first_.assign(n + 1, 0);
+    for (int id : face_nodes_) ++first_[static_cast<size_t>(id) + 1];
+    for (size_t i = 0; i < n; ++i) first_[i + 1] += first_[i];
+    node_faces_.resize(face_nodes_.size());
+    std::vector<size_t> fill(first_.begin(), first_.end() - 1);
+    for (size_t i = 0; i < face_nodes_.size(); ++i)
+      node_faces_[fill[static_cast<size_t>(face_nodes_[i])]++] = static_cast<int>(i / per_face);
+  }
+
+  bool search(int s, int t) {
+    const size_t n = pos_.size();
+    dist_.assign(n, std::numeric_limits<double>::infinity());
+    pred_.assign(n, -1);
+    pred_face_.assign(n, -1);
+    const Vec3 target = pos_[static_cast<size_t>(t)];
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    dist_[static_cast<size_t>(s)] = 0;
+    queue.emplace((pos_[static_cast<size_t>(s)] - target).norm(), s);
+    const size_t per_face = static_cast<size_t>(3 + 3 * k_);
+    while (!queue.empty()) {
+      const auto [key, a] = queue.top();
+      queue.pop();
+      const size_t ai = static_cast<size_t>(a);
+      if (key > dist_[ai] + (pos_[ai] - target).norm() + 1e-12 * (1 + key)) continue;
+      if (a == t) return true;
+      for (size_t j = first_[ai]; j < first_[ai + 1]; ++j) {
+        const int f = node_faces_[j];
+        for (size_t q = static_cast<size_t>(f) * per_face; q < static_cast<size_t>(f + 1) * per_face; ++q) {
+          const size_t b = static_cast<size_t>(face_nodes_[q]);
+          const double db = dist_[ai] + (pos_[b] - pos_[ai]).norm();
+          if (db >= dist_[b]) continue;
+          const double fb = db + (pos_[b] - target).norm();
+          if (fb > bound_) continue;
+          dist_[b] = db;
+          pred_[b] = a;
+          pred_face_[b] = f;
+          queue.emplace(fb, static_cast<int>(b));
+        }
+      }
+    }
+    return false;
+  }
+
+  const Mesh& mesh_;
+  Straightener st_;
+  std::unordered_map<int, double> reach_;
+  std::vector<FaceHandle> band_;
+  std::unordered_map<int, int> face_local_, vertex_local_;
+  std::vector<VertexHandle> verts_;
+  std::vector<EdgeHandle> edges_;
+  static constexpr double kSteinerSlack = 1.1;
+  int nv_ = 0, k_ = 0;
+  double bound_ = 0;
+  std::vector<int> face_nodes_, node_faces_, pred_, pred_face_;
+  std::vector<size_t> first_;
+  std::vector<Vec3> pos_;
+  std::vector<double> dist_;
+};
+
 }  // namespace
+
+std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoint>& polyline, double band_radius,
+                                     int steiner_points, int max_flips, bool* converged, size_t* band_vertices) {
+  if (!(std::isfinite(band_radius) && band_radius >= 0))
+    throw InvalidInput("band polyline: the band radius must be finite and not negative, got " +
+                       std::to_string(band_radius));
+  if (steiner_points < 0 || steiner_points > 64)
+    throw InvalidInput("band polyline: steiner_points must be in 0..64, got " + std::to_string(steiner_points));
+  if (max_flips < 0) throw InvalidInput("band polyline: max_flips must not be negative");
+  if (polyline.empty()) throw InvalidInput("band polyline: the polyline is empty");
+  if (!polyline.front().vertex.is_valid() || !polyline.back().vertex.is_valid() ||
+      !is_live(mesh, polyline.front().vertex) || !is_live(mesh, polyline.back().vertex))
+    throw InvalidInput("band polyline: the polyline must start and end at live mesh vertices");
+  for (const PathPoint& p : polyline) {
+    if (!p.vertex.is_valid() && !(p.halfedge.is_valid() && p.halfedge.idx() < static_cast<int>(mesh.n_halfedges())))
+      throw InvalidInput("band polyline: a point is neither a vertex nor on a valid halfedge");
+  }
+  if (band_vertices) *band_vertices = 0;
+  if (converged) *converged = true;
+  const VertexHandle s = polyline.front().vertex, t = polyline.back().vertex;
+  if (s == t || polyline.size() < 3) return polyline;
+  BandSearch band(mesh);
+  std::vector<FaceHandle> strip;
+  const bool found = band.corridor(polyline, band_radius, steiner_points, strip);
+  if (band_vertices) *band_vertices = band.band_vertices();
+  if (!found) return polyline;
+  bool done = false;
+  auto out = band.straightener().straighten(std::move(strip), s, t, max_flips, &done);
+  if (!(polyline_length(out) < polyline_length(polyline))) return polyline;
+  if (converged) *converged = done;
+  return out;
+}
 
 std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain, int max_flips,
                                          bool* converged) {

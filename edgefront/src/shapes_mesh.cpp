@@ -823,4 +823,23 @@ std::vector<std::array<VertexHandle, 3>> find_minimum_pathways(const Mesh& mesh)
   return found;
 }
 
+std::vector<VertexHandle> add_island(Mesh& mesh, const Vec3& corner, double spacing) {
+  if (!(std::isfinite(corner[0]) && std::isfinite(corner[1]) && std::isfinite(corner[2])))
+    throw InvalidInput("add_island: the corner must be finite");
+  if (!(std::isfinite(spacing) && spacing > 0))
+    throw InvalidInput("add_island: the spacing must be finite and > 0, got " + std::to_string(spacing));
+  std::vector<VertexHandle> vs, top, bottom;
+  for (int i = 0; i < 6; ++i) {
+    top.push_back(mesh.add_vertex(corner + Vec3(spacing * i, spacing, 0)));
+    bottom.push_back(mesh.add_vertex(corner + Vec3(spacing * i, 0, 0)));
+    vs.push_back(top.back());
+    vs.push_back(bottom.back());
+  }
+  for (size_t i = 0; i < 5; ++i) {
+    mesh.add_face(bottom[i], bottom[i + 1], top[i + 1]);
+    mesh.add_face(bottom[i], top[i + 1], top[i]);
+  }
+  return vs;
+}
+
 }  // namespace edgefront::shapes

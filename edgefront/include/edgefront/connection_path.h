@@ -64,6 +64,13 @@ struct ConnectionPathOptions {
   /// before the straightening stops (status stays Found; `polyline_converged` says whether it
   /// converged). > 0.
   int max_polyline_flips = 10000;
+  /// Polyline: after the straightening, the band step (`band_polyline`: shortest path over Steiner
+  /// points in a band of faces around the polyline, straightened in its corridor, kept when shorter)
+  /// with a band radius of this fraction of the polyline's length; 0 turns it off. Finite, >= 0.
+  /// Its band's vertices count in `processed`.
+  double polyline_band = 0.1;
+  /// Polyline: Steiner points per edge in the band step's search (0..64).
+  int polyline_steiner = 3;
 };
 
 /// Why a query ended.
@@ -165,6 +172,19 @@ ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle
 ///         vertices that are not joined by an edge.
 std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain,
                                          int max_flips = 10000, bool* converged = nullptr);
+
+/// The band step after the straightening (which stops at a *locally* shortest path, possibly on the
+/// wrong side of a bump): the faces with a vertex within `band_radius` (edge-path distance) of the
+/// polyline form a band; the shortest path over the band's vertices and `steiner_points` points per
+/// edge (A*, straight segments inside faces) picks the way through the band, and the corridor of the
+/// faces it crosses is straightened as in `geodesic_polyline`. Returns that polyline when it is
+/// shorter than `polyline`, otherwise `polyline` itself. Work and memory follow the band, not the
+/// mesh; `band_vertices` (optional) receives the number of vertices of the band.
+/// \throws InvalidInput for a negative or non-finite radius, steiner_points outside 0..64, an empty
+///         polyline or one that does not start and end at mesh vertices.
+std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoint>& polyline, double band_radius,
+                                     int steiner_points = 3, int max_flips = 10000, bool* converged = nullptr,
+                                     size_t* band_vertices = nullptr);
 
 /// Sum of the distances between consecutive points.
 double polyline_length(const std::vector<PathPoint>& points);

@@ -212,6 +212,13 @@ bool is_minimum_pathway(const Mesh& mesh, VertexHandle v0, VertexHandle v1, Vert
 /// sorted. O(E · valence²).
 std::vector<std::array<VertexHandle, 3>> find_minimum_pathways(const Mesh& mesh);
 
+/// Appends a small separate component to `mesh`: a flat strip of 10 triangles, two rows of six
+/// vertices at x = corner.x + i·spacing (rows y = corner.y + spacing and y = corner.y, z = corner.z).
+/// Returns its 12 vertices in the order they were added (upper row i, lower row i, for i = 0..5).
+/// Used to test and measure "no path" answers beside a large mesh.
+/// \throws InvalidInput for a non-finite corner or a spacing that is not finite and > 0.
+std::vector<VertexHandle> add_island(Mesh& mesh, const Vec3& corner = Vec3(0, 0, 1), double spacing = 0.02);
+
 /// Shape parameters shared by `make` and `sample`. Each shape reads only the fields its row in
 /// the table above names; the others are ignored (and not validated).
 struct ShapeParams {
