@@ -546,12 +546,32 @@ class BandSearch {
     face_nodes_.assign(band_.size() * per_face, -1);
     for (size_t fi = 0; fi < band_.size(); ++fi) {
       size_t at = fi * per_face;
+      // The face's boundary nodes as a ring: per halfedge its Steiner points from its from-vertex
+      // on, then its to-vertex.
       for (HalfedgeHandle h : mesh_.fh_range(band_[fi])) {
-        face_nodes_[at++] = vertex_local_.at(mesh_.to_vertex_handle(h).idx());
         const EdgeHandle e = mesh_.edge_handle(h);
         auto [it, fresh] = edge_local.emplace(e.idx(), static_cast<int>(edges_.size()));
         if (fresh) edges_.push_back(e);
-        for (int j = 0; j < k; ++j) face_nodes_[at++] = nv_ + it->second * k + j;
+        const bool forward = mesh_.halfedge_handle(e, 0) == h;
+        for (int j = 0; j < k; ++j) face_nodes_[at++] = nv_ + it->second * k + (forward ? j : k - 1 - j);
+        face_nodes_[at++] = vertex_local_.at(mesh_.to_vertex_handle(h).idx());
+      }
+    }
+    // Two nodes on one side of a face that are not neighbours on the ring: the straight segment
+    // between them runs through the nodes in between, so the search need not relax it.
+    const int m = static_cast<int>(per_face);
+    collinear_.assign(per_face * per_face, 0);
+    auto sides = [&](int slot) {  // sides holding a slot (side i: slots i(k+1)-1 .. i(k+1)+k)
+      const int side = slot / (k + 1);
+      return slot % (k + 1) == k ? std::pair<int, int>{side, (side + 1) % 3} : std::pair<int, int>{side, side};
+    };
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) {
+        const int gap = std::abs(a - b), ring = std::min(gap, m - gap);
+        const auto [a1, a2] = sides(a);
+        const auto [b1, b2] = sides(b);
+        const bool shared = a1 == b1 || a1 == b2 || a2 == b1 || a2 == b2;
+        collinear_[static_cast<size_t>(a * m + b)] = shared && ring > 1 ? 1 : 0;
       }
     }
     const size_t n = static_cast<size_t>(nv_) + edges_.size() * static_cast<size_t>(k);
@@ -572,7 +592,7 @@ class BandSearch {
     node_faces_.resize(face_nodes_.size());
     std::vector<size_t> fill(first_.begin(), first_.end() - 1);
     for (size_t i = 0; i < face_nodes_.size(); ++i)
-      node_faces_[fill[static_cast<size_t>(face_nodes_[i])]++] = static_cast<int>(i / per_face);
+      node_faces_[fill[static_cast<size_t>(face_nodes_[i])]++] = static_cast<int>(i);  // face * per_face + slot
   }
 
   bool search(int s, int t) {
@@ -593,8 +613,10 @@ class BandSearch {
       if (key > dist_[ai] + (pos_[ai] - target).norm() + 1e-12 * (1 + key)) continue;
       if (a == t) return true;
       for (size_t j = first_[ai]; j < first_[ai + 1]; ++j) {
-        const int f = node_faces_[j];
-        for (size_t q = static_cast<size_t>(f) * per_face; q < static_cast<size_t>(f + 1) * per_face; ++q) {
+        const size_t f = static_cast<size_t>(node_faces_[j]) / per_face, slot = static_cast<size_t>(node_faces_[j]) % per_face;
+        const unsigned char* skip = &collinear_[slot * per_face];
+        for (size_t q = f * per_face; q < (f + 1) * per_face; ++q) {
+          if (skip[q - f * per_face]) continue;
           const size_t b = static_cast<size_t>(face_nodes_[q]);
           const double db = dist_[ai] + (pos_[b] - pos_[ai]).norm();
           if (db >= dist_[b]) continue;
@@ -602,7 +624,7 @@ class BandSearch {
           if (fb > bound_) continue;
           dist_[b] = db;
           pred_[b] = a;
-          pred_face_[b] = f;
+          pred_face_[b] = static_cast<int>(f);
           queue.emplace(fb, static_cast<int>(b));
         }
       }
@@ -622,6 +644,7 @@ class BandSearch {
   double bound_ = 0;
   std::vector<int> face_nodes_, node_faces_, pred_, pred_face_;
   std::vector<size_t> first_;
+  std::vector<unsigned char> collinear_;
   std::vector<Vec3> pos_;
   std::vector<double> dist_;
 };

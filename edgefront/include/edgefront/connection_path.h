@@ -68,7 +68,7 @@ struct ConnectionPathOptions {
   /// points in a band of faces around the polyline, straightened in its corridor, kept when shorter)
   /// with a band radius of this fraction of the polyline's length; 0 turns it off. Finite, >= 0.
   /// Its band's vertices count in `processed`.
-  double polyline_band = 0.1;
+  double polyline_band = 0.3;
   /// Polyline: Steiner points per edge in the band step's search (0..64).
   int polyline_steiner = 3;
 };
