@@ -90,18 +90,22 @@ class Straightener {
       along.push_back(f);
     }
     std::vector<FaceHandle> strip{along[0]};
-    std::vector<FaceHandle> a, b;
     for (size_t i = 1; i < along.size(); ++i) {
-      if (along[i] != strip.back()) {
-        const bool ok_a = fan_between(strip.back(), along[i], chain[i], true, a);
-        const bool ok_b = fan_between(strip.back(), along[i], chain[i], false, b);
-        EF_CHECK(ok_a || ok_b, "geodesic polyline: no way around a chain vertex");
-        const auto& way = ok_a && (!ok_b || a.size() <= b.size()) ? a : b;
-        strip.insert(strip.end(), way.begin(), way.end());
-      }
+      if (along[i] != strip.back()) append_fan(strip, along[i], chain[i]);
       strip.push_back(along[i]);
     }
     return strip;
+  }
+
+  // Appends the faces strictly between strip.back() and f around their common vertex w, the
+  // shorter way round (the straightening's flips correct the side where that was wrong).
+  void append_fan(std::vector<FaceHandle>& strip, FaceHandle f, VertexHandle w) const {
+    std::vector<FaceHandle> a, b;
+    const bool ok_a = fan_between(strip.back(), f, w, true, a);
+    const bool ok_b = fan_between(strip.back(), f, w, false, b);
+    EF_CHECK(ok_a || ok_b, "geodesic polyline: no way around a path vertex");
+    const auto& way = ok_a && (!ok_b || a.size() <= b.size()) ? a : b;
+    strip.insert(strip.end(), way.begin(), way.end());
   }
 
   // Removes loops (a face met again) and the faces at either end that only turn around the end
@@ -448,27 +452,18 @@ class BandSearch {
     const int s = vertex_local_.at(polyline.front().vertex.idx());
     const int t = vertex_local_.at(polyline.back().vertex.idx());
     if (!search(s, t)) return false;
-    // The faces the path crosses, joined around the path's vertices.
-    std::vector<int> faces;
-    for (int n = t; n != s; n = pred_[static_cast<size_t>(n)]) faces.push_back(pred_face_[static_cast<size_t>(n)]);
-    std::reverse(faces.begin(), faces.end());
-    strip.clear();
-    std::vector<FaceHandle> a, b;
-    int node = s;
+    // The faces the path crosses (each node was reached through one), joined around its vertices.
     std::vector<int> nodes;
     for (int n = t; n != s; n = pred_[static_cast<size_t>(n)]) nodes.push_back(n);
     std::reverse(nodes.begin(), nodes.end());
-    for (size_t i = 0; i < faces.size(); ++i) {
-      const FaceHandle f = band_[static_cast<size_t>(faces[i])];
+    strip.clear();
+    int node = s;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      const FaceHandle f = band_[static_cast<size_t>(pred_face_[static_cast<size_t>(nodes[i])])];
       if (!strip.empty() && f != strip.back() && !share_edge(strip.back(), f)) {
         // The path passes the vertex `node` between two faces around it: add the fan between them.
         EF_CHECK(node < nv_, "band polyline: faces of an edge point share no edge");
-        const VertexHandle w = verts_[static_cast<size_t>(node)];
-        const bool ok_a = st_.fan_between(strip.back(), f, w, true, a);
-        const bool ok_b = st_.fan_between(strip.back(), f, w, false, b);
-        EF_CHECK(ok_a || ok_b, "band polyline: no way around a path vertex");
-        const auto& way = ok_a && (!ok_b || a.size() <= b.size()) ? a : b;
-        strip.insert(strip.end(), way.begin(), way.end());
+        st_.append_fan(strip, f, verts_[static_cast<size_t>(node)]);
       }
       if (strip.empty() || f != strip.back()) strip.push_back(f);
       node = nodes[i];
