@@ -24,6 +24,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_parse.h"
 #include "app_render.h"
 #include "app_util.h"
 #include "edgefront/connection_path.h"
@@ -34,20 +35,6 @@
 namespace {
 
 constexpr const char* kAppName = "ef-path";
-
-edgefront::VertexHandle parse_vertex(const std::string& token, size_t count, const char* what) {
-  unsigned long long value = 0;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
-    throw edgefront::apps::AppUsageError(std::string(what) + ": '" + token + "' is not a vertex index (a non-negative integer)");
-  }
-  if (ec == std::errc::result_out_of_range || value >= count) {
-    throw edgefront::InvalidInput(std::string(what) + ": vertex " + token + " is out of range (the mesh has " +
-                                  std::to_string(count) + " vertices)");
-  }
-  return edgefront::VertexHandle(static_cast<int>(value));
-}
 
 std::string number(double x) {
   char buf[64];
@@ -81,8 +68,8 @@ int main(int argc, char** argv) {
     const edgefront::MeshReadResult read = edgefront::read_mesh(input);
     for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
     const edgefront::Mesh& mesh = read.mesh;
-    const edgefront::VertexHandle from = parse_vertex(from_text, mesh.n_vertices(), "FROM");
-    const edgefront::VertexHandle to = parse_vertex(to_text, mesh.n_vertices(), "TO");
+    const edgefront::VertexHandle from = edgefront::apps::parse_vertex(from_text, mesh.n_vertices(), "FROM");
+    const edgefront::VertexHandle to = edgefront::apps::parse_vertex(to_text, mesh.n_vertices(), "TO");
     edgefront::ConnectionPathOptions options;
     options.method = method == "vf"    ? edgefront::PathMethod::VertexFront
                      : method == "mef" ? edgefront::PathMethod::MinimalEdgeFront

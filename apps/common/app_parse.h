@@ -8,6 +8,7 @@
 #include <system_error>
 #include <vector>
 
+#include "app_util.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
 
@@ -32,15 +33,15 @@ inline std::vector<std::string> split_list(const std::string& text, char sep) {
 
 /// Parses a non-negative index below `count`. `what` is the element's name in the singular
 /// ("vertex", "face"), `whats` its plural.
-/// \throws edgefront::InvalidInput "<option>: '<token>' is not a <what> index ..." or
-///         "<option>: <what> <token> is out of range (the mesh has N <whats>)".
+/// \throws AppUsageError "<option>: '<token>' is not a <what> index ..." (not a number: exit 2) or
+///         edgefront::InvalidInput "<option>: <what> <token> is out of range (the mesh has N <whats>)".
 inline size_t parse_index(const std::string& token, size_t count, const std::string& option, const std::string& what,
                           const std::string& whats) {
   unsigned long long value = 0;
   const char* end = token.data() + token.size();
   const auto [ptr, ec] = std::from_chars(token.data(), end, value);
   if (token.empty() || ec == std::errc::invalid_argument || ptr != end) {
-    throw InvalidInput(option + ": '" + token + "' is not a " + what + " index (a non-negative integer)");
+    throw AppUsageError(option + ": '" + token + "' is not a " + what + " index (a non-negative integer)");
   }
   if (ec == std::errc::result_out_of_range || value >= count) {
     throw InvalidInput(option + ": " + what + " " + token + " is out of range (the mesh has " + std::to_string(count) +
