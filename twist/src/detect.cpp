@@ -47,22 +47,45 @@ std::uint64_t cell_key(const Vec3& p, double cell) {
 }
 }  // namespace
 
+FaceGeometry face_geometry(const Mesh& mesh, FaceHandle f) {
+  FaceGeometry g;
+  std::array<Vec3, 3> p;
+  size_t i = 0;
+  for (VertexHandle v : mesh.fv_range(f)) {
+    EF_CHECK(i < 3, "face " + std::to_string(f.idx()) + " is not a triangle");
+    p[i] = mesh.point(v);
+    g.vertices[i++] = v.idx();
+  }
+  EF_CHECK(i == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
+  g.normal = detail::unit_normal(p);
+  g.centre = detail::centroid(p);
+  for (size_t k = 0; k < 3; ++k) g.longest = std::max(g.longest, (p[k] - p[(k + 1) % 3]).norm());
+  return g;
+}
+
 void FaceGrid::insert(const Mesh& mesh, FaceHandle f) {
   if (!edgefront::is_live(mesh, f)) return;
-  const std::uint64_t key = cell_key(detail::centroid(detail::face_points(mesh, f)), cell_);
-  const auto [it, fresh] = key_of_.emplace(f.idx(), key);
-  if (!fresh) {
-    if (it->second == key) return;
-    auto& old = cells_[it->second];
-    const auto pos = std::find(old.begin(), old.end(), f.idx());
+  const FaceGeometry g = face_geometry(mesh, f);
+  const std::uint64_t key = cell_key(g.centre, cell_);
+  const size_t i = static_cast<size_t>(f.idx());
+  if (i >= records_.size()) records_.resize(std::max(i + 1, 2 * records_.size()));
+  Record& r = records_[i];
+  r.geometry = g;
+  if (r.key != kNoKey) {
+    auto& old = cells_[r.key];
+    const auto pos = std::find_if(old.begin(), old.end(), [&](const Entry& e) { return e.face == f.idx(); });
+    if (r.key == key && pos != old.end()) {
+      pos->centre = g.centre;
+      return;
+    }
     if (pos != old.end()) {
       *pos = old.back();
       old.pop_back();
       --size_;
     }
-    it->second = key;
   }
-  cells_[key].push_back(f.idx());
+  r.key = key;
+  cells_[key].push_back(Entry{f.idx(), g.centre});
   ++size_;
 }
 
@@ -81,7 +104,7 @@ void FaceGrid::rebuild(const Mesh& mesh, double cell) {
   if (!(cell > 0) || !std::isfinite(cell)) throw InvalidInput("twist::FaceGrid: the cell size must be finite and > 0");
   cell_ = cell;
   cells_.clear();
-  key_of_.clear();
+  records_.assign(mesh.n_faces(), Record{});
   size_ = 0;
   ++rebuilds_;
   for (FaceHandle f : mesh.faces()) insert(mesh, f);
@@ -94,11 +117,11 @@ void FaceGrid::query(const Mesh& mesh, const Vec3& p, double radius, std::vector
     throw InvalidInput("twist::FaceGrid::query: the point and the radius must be finite, the radius >= 0");
   if (!(cell_ > 0)) return;
   const double r2 = radius * radius;
-  const auto take = [&](const std::vector<int>& faces) {
-    for (int fi : faces) {
-      const FaceHandle f(fi);
-      if (!edgefront::is_live(mesh, f)) continue;
-      if ((detail::centroid(detail::face_points(mesh, f)) - p).sqrnorm() < r2) out.push_back(f);
+  const auto take = [&](const std::vector<Entry>& entries) {
+    for (const Entry& e : entries) {
+      if ((e.centre - p).sqrnorm() >= r2) continue;
+      const FaceHandle f(e.face);
+      if (edgefront::is_live(mesh, f)) out.push_back(f);
     }
   };
   // Cell ranges in doubles first: a query box with more cells than the grid holds (or beyond the
@@ -161,16 +184,20 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
 /// Per-face geometry and the evidence tests.
 class Detector {
  public:
-  Detector(const Mesh& mesh, const DetectOptions& o) : mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
+  Detector(const Mesh& mesh, const DetectOptions& o)
+      : collect_behind_(o.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
     if (!grid_) {
       // Full mode (or no incremental index given): a k-d tree over every live face's centroid.
+      geo_.resize(mesh.n_faces());
+      has_geo_.assign(mesh.n_faces(), 0);
       std::vector<Vec3> centers;
       for (FaceHandle f : mesh.faces()) {
         live_.push_back(f);
-        centers.push_back(geo(f).center);
+        centers.push_back(geo(f).centre);
       }
       index_ = std::make_unique<edgefront::PointIndex>(std::move(centers));
     }
+    scan_intersections_ = o.self_intersections;
     mean_edge_ = o.mean_edge_length > 0 ? o.mean_edge_length : detail::mean_edge_length(mesh);
     if (!(mean_edge_ > 0)) throw InvalidInput("twist::detect: every edge of the mesh has zero length");
     radius_ = o.radius > 0 ? o.radius : 2.0 * mean_edge_;
@@ -187,39 +214,67 @@ class Detector {
     });
   }
 
-  struct FaceGeo {
-    Vec3 normal, center;
-    double longest = 0;
-    int vote = 2;  ///< the reference's verdict (`reference_vote`), 2 until asked
-  };
   /// The reference's verdict on f, asked once per face and detection.
   int vote(FaceHandle f) {
-    geo(f);
-    FaceGeo& g = geo_.at(f.idx());
-    if (g.vote == 2) g.vote = reference_vote(*o_.reference, o_, g.center, g.normal);
-    return g.vote;
+    const auto it = votes_.find(f.idx());
+    if (it != votes_.end()) return it->second;
+    const FaceGeometry& g = geo(f);
+    return votes_.emplace(f.idx(), reference_vote(*o_.reference, o_, g.centre, g.normal)).first->second;
   }
-  /// Geometry of a face, computed on first use (only the faces a detection looks at).
-  const FaceGeo& geo(FaceHandle f) {
-    const auto it = geo_.find(f.idx());
-    if (it != geo_.end()) return it->second;
-    const auto p = detail::face_points(mesh_, f);
-    FaceGeo g{detail::unit_normal(p), detail::centroid(p), 0.0};
-    for (size_t i = 0; i < 3; ++i) g.longest = std::max(g.longest, (p[i] - p[(i + 1) % 3]).norm());
-    return geo_.emplace(f.idx(), g).first->second;
+  /// Geometry of a face: the face grid's (kept current by the caller) or computed on first use.
+  const FaceGeometry& geo(FaceHandle f) {
+    if (grid_) {
+      if (const FaceGeometry* g = grid_->geometry(f)) return *g;
+      const auto it = extra_geo_.find(f.idx());
+      if (it != extra_geo_.end()) return it->second;
+      return extra_geo_.emplace(f.idx(), face_geometry(mesh_, f)).first->second;
+    }
+    const size_t i = static_cast<size_t>(f.idx());
+    if (!has_geo_[i]) {
+      geo_[i] = face_geometry(mesh_, f);
+      has_geo_[i] = 1;
+    }
+    return geo_[i];
+  }
+  /// Do the faces share a vertex?
+  bool shares_vertex(FaceHandle f, FaceHandle g) {
+    const std::array<int, 3> a = geo(f).vertices;
+    for (int b : geo(g).vertices) {
+      if (b == a[0] || b == a[1] || b == a[2]) return true;
+    }
+    return false;
+  }
+  std::array<Vec3, 3> points(FaceHandle f) {
+    const std::array<int, 3>& v = geo(f).vertices;
+    return {mesh_.point(VertexHandle(v[0])), mesh_.point(VertexHandle(v[1])), mesh_.point(VertexHandle(v[2]))};
   }
   const Vec3& normal(FaceHandle f) { return geo(f).normal; }
-  const Vec3& center(FaceHandle f) { return geo(f).center; }
+  const Vec3& center(FaceHandle f) { return geo(f).centre; }
 
-  /// Live faces whose centroid lies within `radius` of `p`, in increasing index order.
-  void near_faces(const Vec3& p, double radius, std::vector<FaceHandle>& out) {
-    out.clear();
+  /// How far the self-intersection scan of f looks: a partner's centroid lies within the sum of
+  /// the two longest edges; without incremental mode only partners with no longer edges are
+  /// looked for (see `scan_intersections`), in incremental mode edges up to max(lf, 2 mean edges).
+  double scan_radius(FaceHandle f) {
+    const double lf = geo(f).longest;
+    return collect_behind_ ? lf + std::max(lf, 2 * mean_edge_) : 2 * lf;
+  }
+  /// Live faces whose centroid lies within max(radius, scan radius) of f's centroid, in
+  /// increasing index order; one query per face serves the layer, confirmation and
+  /// self-intersection tests (the last face's answer is kept).
+  const std::vector<FaceHandle>& around(FaceHandle f) {
+    const double r = std::max(radius_, scan_intersections_ ? scan_radius(f) : 0.0);
+    if (around_of_ == f && around_radius_ >= r) return around_;
+    around_of_ = f;
+    around_radius_ = r;
+    around_.clear();
+    const Vec3& p = center(f);
     if (grid_) {
-      grid_->query(mesh_, p, radius, out);
-      return;
+      grid_->query(mesh_, p, r, around_);
+    } else {
+      index_->radius_search(p, r, near_);
+      for (size_t k : near_) around_.push_back(live_[k]);
     }
-    index_->radius_search(p, radius, near_);
-    for (size_t k : near_) out.push_back(live_[k]);
+    return around_;
   }
 
   /// Evaluates the evidence of one face; returns true and fills `ev` when it is flagged.
@@ -251,7 +306,7 @@ class Detector {
         return true;
       }
     }
-    if (o_.self_intersections) {
+    if (scan_intersections_) {
       scan_intersections(f);
       const auto it = si_partner_.find(f.idx());
       if (it != si_partner_.end()) {
@@ -270,12 +325,11 @@ class Detector {
     if (nf.sqrnorm() == 0) return false;
     const Vec3 cf = center(f);
     if (o_.reference) return vote(f) > 0;
-    near_faces(cf, radius_, near_faces_);
-    for (FaceHandle g : near_faces_) {
+    for (FaceHandle g : around(f)) {
       if (g == f) continue;
       const Vec3 d = center(g) - cf;
       const double dist = d.norm();
-      if (dist > 0 && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.parallel_cos &&
+      if (dist > 0 && dist <= radius_ && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.parallel_cos &&
           !shares_vertex(f, g)) {
         return true;
       }
@@ -295,39 +349,30 @@ class Detector {
 
   bool ambiguous(FaceHandle f) const { return ambiguous_.count(f.idx()) > 0; }
 
-  bool shares_vertex(FaceHandle f, FaceHandle g) const {
-    for (VertexHandle a : mesh_.fv_range(f)) {
-      for (VertexHandle b : mesh_.fv_range(g)) {
-        if (a == b) return true;
-      }
-    }
-    return false;
-  }
-
   /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
   /// -1: behind) that is far along the surface, or an invalid handle.
   FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false) {
     const Vec3 nf = normal(f);
     const Vec3 cf = center(f);
-    std::array<VertexHandle, 3> fv;
-    {
-      int i = 0;
-      for (VertexHandle v : mesh_.fv_range(f)) fv[static_cast<size_t>(i++)] = v;
-    }
-    near_faces(cf, radius_, near_faces_);
     layers_.clear();
-    for (FaceHandle g : near_faces_) {
+    for (FaceHandle g : around(f)) {
       if (g == f) continue;
-      bool shares = false;
-      for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
-      if (shares) continue;
       const Vec3 d = center(g) - cf;
       const double dist = d.norm();
-      const Vec3 ng = normal(g);
-      const double cos_ng = OpenMesh::dot(nf, ng);
-      if (dist > 0 && dist <= radius_ && side * OpenMesh::dot(nf, d) >= o_.facing_cos * dist &&
-          (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.parallel_cos) {
+      if (!(dist > 0 && dist <= radius_)) continue;
+      const double along = OpenMesh::dot(nf, d);
+      const double cos_ng = OpenMesh::dot(nf, normal(g));
+      const bool layer = side * along >= o_.facing_cos * dist &&
+                         (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.parallel_cos;
+      // Behind f with the same orientation: g may point at f's back, so its evidence changed with f.
+      const bool behind = !layer && collect_behind_ && side > 0 && !same_orientation_only &&
+                          -along >= o_.facing_cos * dist && cos_ng >= o_.parallel_cos;
+      if (!layer && !behind) continue;
+      if (shares_vertex(f, g)) continue;
+      if (layer) {
         layers_.emplace_back(dist, g);
+      } else if (!o_.reference || vote(g) == 0) {
+        behind_.push_back(g);  // (a reference that decides g either way is not changed by f)
       }
     }
     if (layers_.empty()) return FaceHandle();
@@ -338,12 +383,31 @@ class Detector {
     double reach = 0;
     cand_of_vertex_.clear();
     near_flag_.assign(layers_.size(), 0);
+    unresolved_ = layers_.size();
+    // A two-leg path on the surface first (f's centroid to one of its corners inside f, then
+    // along one edge) bounds the geodesic distance from above: a layer with a vertex reached
+    // within its limit that way is near, and needs no distance front.
+    const FaceGeometry& gf = geo(f);
     for (size_t i = 0; i < layers_.size(); ++i) {
       const double limit = o_.surface_factor * layers_[i].first + mean_edge_;
+      const std::array<int, 3>& gv = geo(layers_[i].second).vertices;
+      for (size_t k = 0; k < 3 && !near_flag_[i]; ++k) {
+        const VertexHandle v(gf.vertices[k]);
+        const double first = (mesh_.point(v) - cf).norm();
+        if (first >= limit) continue;
+        for (VertexHandle w : mesh_.vv_range(v)) {
+          if ((w.idx() == gv[0] || w.idx() == gv[1] || w.idx() == gv[2]) && first + (mesh_.point(w) - mesh_.point(v)).norm() <= limit) {
+            near_flag_[i] = 1;
+            --unresolved_;
+            break;
+          }
+        }
+      }
+      if (near_flag_[i]) continue;
       reach = std::max(reach, limit);
-      for (VertexHandle v : mesh_.fv_range(layers_[i].second)) cand_of_vertex_[v.idx()].emplace_back(i, limit);
+      for (int v : gv) cand_of_vertex_[v].emplace_back(i, limit);
     }
-    unresolved_ = layers_.size();
+    if (unresolved_ == 0) return FaceHandle();
     ++stats.distance_queries;
     edgefront::DistanceOptions dopt;
     dopt.max_distance = reach;
@@ -360,50 +424,65 @@ class Detector {
 
   /// Finds the faces intersecting f that have no longer edge than f (ties: lower index), and
   /// records both sides: a pair is found from its face with the longer edge, so scanning every
-  /// face finds every pair (in incremental mode, pairs with a longer untested face can be missed).
+  /// face finds every pair. In incremental mode longer faces are taken too (up to twice the mean
+  /// edge, or f's longest edge), since the longer face of a pair may not be tested.
   void scan_intersections(FaceHandle f) {
     if (!scanned_.emplace(f.idx(), 1).second) return;
     const double lf = geo(f).longest;
     const Vec3 cf = center(f);
-    near_faces(cf, 2 * lf, si_near_);
-    std::array<VertexHandle, 3> fv;
-    {
-      int i = 0;
-      for (VertexHandle v : mesh_.fv_range(f)) fv[static_cast<size_t>(i++)] = v;
-    }
-    std::array<Vec3, 3> pf;
-    bool have_pf = false;
-    for (FaceHandle g : si_near_) {
+    const double reach = scan_radius(f);
+    for (FaceHandle g : around(f)) {
       if (g == f) continue;
-      const double lg = geo(g).longest;
-      if (lg > lf || (lg == lf && g.idx() < f.idx())) continue;
-      if ((center(g) - cf).norm() > lf + lg) continue;
-      bool shares = false;
-      for (VertexHandle v : mesh_.fv_range(g)) shares = shares || v == fv[0] || v == fv[1] || v == fv[2];
-      if (shares) continue;
-      if (!have_pf) {
-        pf = detail::face_points(mesh_, f);
-        have_pf = true;
-      }
-      if (detail::triangles_intersect(pf, detail::face_points(mesh_, g))) {
+      const FaceGeometry& gg = geo(g);
+      const double lg = gg.longest;
+      const bool longer = lg > lf || (lg == lf && g.idx() < f.idx());
+      if (longer && (!collect_behind_ || scanned_.count(g.idx()))) continue;  // g's own scan finds the pair
+      const Vec3 d = gg.centre - cf;
+      const double dist = d.norm();
+      if (dist > lf + lg || dist > reach) continue;
+      // Every corner lies within the longest edge of its centroid: a centroid farther than that
+      // from the other's plane puts the whole triangle on one side.
+      if (std::abs(OpenMesh::dot(normal(f), d)) > lg || std::abs(OpenMesh::dot(gg.normal, d)) > lf) continue;
+      if (shares_vertex(f, g)) continue;
+      if (detail::triangles_intersect(points(f), points(g))) {
         si_partner_.emplace(f.idx(), g.idx());
         si_partner_.emplace(g.idx(), f.idx());
       }
     }
   }
 
+  /// Faces found right behind tested faces with the same orientation (they point at the tested
+  /// face's back) since the last call; collected only in incremental mode.
+  std::vector<FaceHandle> take_behind() {
+    std::vector<FaceHandle> out;
+    out.swap(behind_);
+    return out;
+  }
+
+  /// Whether `test` looks for self-intersections (`DetectOptions::self_intersections`, and in
+  /// incremental mode only once the candidates are tested: see `detect_regions`).
+  void set_scan_intersections(bool on) { scan_intersections_ = on && o_.self_intersections; }
+
   DetectStats stats;
 
  private:
+  bool scan_intersections_ = false;
+  bool collect_behind_ = false;
+  std::vector<FaceHandle> behind_;
   std::unordered_map<int, int> si_partner_;
   std::unordered_map<int, char> ambiguous_, tested_;
   std::unordered_map<int, char> scanned_;
-  std::vector<FaceHandle> si_near_, near_faces_;
+  std::vector<FaceHandle> around_;
+  FaceHandle around_of_;
+  double around_radius_ = 0;
   const Mesh& mesh_;
   const DetectOptions& o_;
   edgefront::MinimalDistanceFront mdf_;
   const FaceGrid* grid_;
-  std::unordered_map<int, FaceGeo> geo_;
+  std::vector<FaceGeometry> geo_;  ///< without a face grid: by face index
+  std::vector<char> has_geo_;
+  std::unordered_map<int, FaceGeometry> extra_geo_;  ///< with a face grid: faces it does not hold
+  std::unordered_map<int, int> votes_;
   std::vector<FaceHandle> live_;
   std::unique_ptr<edgefront::PointIndex> index_;
   double mean_edge_ = 0, radius_ = 0;
@@ -521,12 +600,20 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
       if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(k)))) candidates.push_back(FaceHandle(static_cast<int>(k)));
     }
     std::deque<std::pair<FaceHandle, int>> queue;
-    if (options.self_intersections) {
-      for (FaceHandle f : candidates) det.scan_intersections(f);
-    }
+    // Self-intersections only mark where a twist line runs (a region needs orientation evidence,
+    // see `require_orientation_evidence`), so the candidates are not scanned for them: only the
+    // faces grown around flagged ones are (the scan is the costliest test, and most candidates
+    // of a batch are right).
+    det.set_scan_intersections(!options.require_orientation_evidence);
     for (FaceHandle f : candidates) {
       if (run_test(f)) queue.emplace_back(f, 0);
     }
+    // Faces that point at a candidate's back from right behind: their evidence changed with the
+    // candidate although they did not move (one level: partners of partners are not followed).
+    for (FaceHandle g : det.take_behind()) {
+      if (run_test(g)) queue.emplace_back(g, 0);
+    }
+    det.set_scan_intersections(true);
     // Grow the evidence: test faces within grow_levels hops of a flagged face, so a twisted
     // region is found whole although only changed faces were candidates.
     while (!queue.empty()) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <limits>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <unordered_map>
@@ -381,6 +383,12 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (!(o.max_border_ratio >= 0) || !std::isfinite(o.max_border_ratio)) {
     throw InvalidInput("twist::repair: option max_border_ratio must be finite and >= 0");
   }
+  if (!(o.retest_turn_degrees >= 0 && o.retest_turn_degrees <= 180)) {
+    throw InvalidInput("twist::repair: option retest_turn_degrees must lie in [0, 180]");
+  }
+  if (!(o.retest_move >= 0) || !std::isfinite(o.retest_move)) {
+    throw InvalidInput("twist::repair: option retest_move must be finite and >= 0");
+  }
   RepairReport report;
   // Reversed seams, except those of our own earlier cuts (a flipped side meets its old
   // neighbours with opposite orientation along the cut: that is the repair, not the input).
@@ -493,11 +501,50 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
 TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
     : options_(std::move(options)), max_retwists_(max_retwists) {}
 
+std::vector<FaceHandle> TwistRepairer::retest(const Mesh& mesh, const std::vector<FaceHandle>& changed, double mean_edge_length,
+                                              std::vector<std::pair<int, Snapshot>>& current) const {
+  current.clear();
+  const bool all = options_.retest_turn_degrees == 0 && options_.retest_move == 0;
+  const double min_cos = std::cos(options_.retest_turn_degrees * std::numbers::pi / 180.0);
+  const double max_move2 = std::pow(options_.retest_move * mean_edge_length, 2);
+  std::vector<FaceHandle> out;
+  for (FaceHandle f : changed) {
+    if (!edgefront::is_live(mesh, f)) continue;
+    Snapshot s;
+    size_t i = 0;
+    for (VertexHandle v : mesh.fv_range(f)) {
+      if (i < 3) s.corners[i] = mesh.point(v);
+      ++i;
+    }
+    if (i != 3) {
+      out.push_back(f);  // not a triangle: detect reports it
+      continue;
+    }
+    s.normal = detail::unit_normal(s.corners);
+    s.valid = true;
+    const size_t k = static_cast<size_t>(f.idx());
+    bool test = all || k >= tested_.size() || !tested_[k].valid;
+    if (!test) {
+      const Snapshot& t = tested_[k];
+      const Vec3 moved = detail::centroid(s.corners) - detail::centroid(t.corners);
+      const double across = OpenMesh::dot(t.normal, moved);
+      test = OpenMesh::dot(t.normal, s.normal) < min_cos || across * across > max_move2 ||
+             moved.sqrnorm() > 16 * max_move2;
+    }
+    if (!test) continue;
+    out.push_back(f);
+    current.emplace_back(f.idx(), s);
+  }
+  return out;
+}
+
 RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHandle>& changed, double mean_edge_length) {
   ++calls_;
   RepairOptions o = options_;
-  o.detect.restrict_to = changed;
-  if (mean_edge_length > 0 && std::isfinite(mean_edge_length)) {
+  std::vector<std::pair<int, Snapshot>> snapshots;
+  const bool local = mean_edge_length > 0 && std::isfinite(mean_edge_length);
+  o.detect.restrict_to = local ? retest(mesh, changed, mean_edge_length, snapshots) : changed;
+  if (local) {
     // Local mode: keep the face grid current (a rebuild only when the edge length drifted by 2x).
     o.detect.mean_edge_length = mean_edge_length;
     const double cell = o.detect.radius > 0 ? o.detect.radius : 2.0 * mean_edge_length;
@@ -528,12 +575,22 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
     places_.push_back(Place{centre, radius, 1});
     return false;
   };
-  return repair_impl(mesh, o, rule, cuts_, grid_.cell() > 0 && o.detect.mean_edge_length > 0 ? &grid_ : nullptr);
+  RepairReport report = repair_impl(mesh, o, rule, cuts_, grid_.cell() > 0 && o.detect.mean_edge_length > 0 ? &grid_ : nullptr);
+  // Remember what the tested faces looked like; when the repairs were capped, regions may be
+  // left over: everything is tested again next time.
+  if (!report.capped) {
+    for (const auto& [idx, snap] : snapshots) {
+      if (static_cast<size_t>(idx) >= tested_.size()) tested_.resize(static_cast<size_t>(idx) + 1);
+      tested_[static_cast<size_t>(idx)] = snap;
+    }
+  }
+  return report;
 }
 
 RepairReport TwistRepairer::finish(Mesh& mesh) {
   RepairReport r = repair_impl(mesh, options_, nullptr, cuts_);
   grid_ = FaceGrid();  // the final repair may garbage-collect: handles change
+  tested_.clear();
   return r;
 }
 

@@ -28,6 +28,7 @@
 /// join it (hole filling, explored with a budget of the region's size); the largest piece stays
 /// outside.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <unordered_map>
@@ -71,11 +72,24 @@ struct TwistRegion {
   double area = 0;                          ///< total area of `faces`
 };
 
+/// The geometry of a triangle as the detector uses it.
+struct FaceGeometry {
+  edgefront::Vec3 normal;                  ///< unit normal, zero for a degenerate face
+  edgefront::Vec3 centre;                  ///< centroid
+  double longest = 0;                      ///< longest edge length
+  std::array<int, 3> vertices{-1, -1, -1};  ///< vertex indices in circulation order
+};
+
+/// The geometry of a live triangle of the mesh.
+/// \throws edgefront::InternalError when the face is not a triangle.
+FaceGeometry face_geometry(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
+
 /// An incremental spatial hash of face centroids, for repeated local detection on a mesh that
 /// changes a little at a time (see `DetectOptions::face_grid`): updating it costs O(changed
-/// faces), a query O(faces in the cells it covers). It holds face indices; the mesh must not be
-/// garbage-collected while it is used (rebuild after). Queries check the faces' current
-/// centroids, so a stale entry costs time, never a wrong answer about a face it finds.
+/// faces), a query O(faces in the cells it covers). It holds each face's geometry as of the last
+/// `update`/`rebuild` of that face: queries answer for those stored centroids (no mesh access
+/// but the deleted flag) and `geometry` returns the stored geometry, so the caller updates every
+/// face that moved. The mesh must not be garbage-collected while it is used (rebuild after).
 class FaceGrid {
  public:
   /// (Re)inserts these faces at their current centroids; deleted handles are skipped.
@@ -88,16 +102,30 @@ class FaceGrid {
   /// Live faces whose current centroid lies within `radius` of `p`, in increasing index order.
   void query(const edgefront::Mesh& mesh, const edgefront::Vec3& p, double radius,
              std::vector<edgefront::FaceHandle>& out) const;
+  /// The stored geometry of a face, or null when the grid does not hold it.
+  const FaceGeometry* geometry(edgefront::FaceHandle f) const {
+    const size_t i = static_cast<size_t>(f.idx());
+    return f.is_valid() && i < records_.size() && records_[i].key != kNoKey ? &records_[i].geometry : nullptr;
+  }
   double cell() const { return cell_; }
   size_t size() const { return size_; }
   size_t rebuilds() const { return rebuilds_; }
 
  private:
+  struct Entry {
+    int face = -1;
+    edgefront::Vec3 centre;
+  };
+  static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
   void insert(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
   double cell_ = 0;
   size_t size_ = 0, rebuilds_ = 0, seen_faces_ = 0;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-  std::unordered_map<int, std::uint64_t> key_of_;
+  struct Record {
+    FaceGeometry geometry;
+    std::uint64_t key = kNoKey;  ///< the cell holding the face, kNoKey when not held
+  };
+  std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+  std::vector<Record> records_;  ///< by face index
 };
 
 /// Options of `detect`. Lengths are absolute; 0 means "automatic" where stated.

@@ -16,7 +16,9 @@
 /// vertices stay valid unless `garbage_collect` removes deleted vertices (only those of removed
 /// tiny pieces or cut-out regions); cut vertices get new copies appended at the end.
 
+#include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "edgefront/mesh.h"
@@ -40,6 +42,17 @@ struct RepairOptions {
   /// region has a border snaking through the surface, and cutting along it shreds it. A disk
   /// of n faces has a border of about 3.5 sqrt(n) edges. 0 = no limit; >= 0.
   double max_border_ratio = 6.0;
+  /// `TwistRepairer::repair_changed` only: a changed face is tested again only when it is new,
+  /// its normal turned by more than `retest_turn_degrees`, or one of its corners moved by more
+  /// than `retest_move` mean edge lengths since it was last tested (a corner replaced by another
+  /// vertex counts as moved to that vertex's position). In a
+  /// GCS loop the smoothing moves almost every vertex a little in every batch, so without this
+  /// every face would be tested after every batch (the whole mesh per call, and the same stable
+  /// folds found again and again). Faces a tested face points at from behind are tested too
+  /// (see `DetectOptions::restrict_to`), and the audit still samples the rest. Both 0: every
+  /// changed face is tested. In [0, 180] and >= 0.
+  double retest_turn_degrees = 10.0;
+  double retest_move = 0.25;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
@@ -116,8 +129,18 @@ class TwistRepairer {
     double radius = 0;
     size_t count = 0;
   };
+  /// A face as it was when last tested (see `RepairOptions::retest_turn_degrees`).
+  struct Snapshot {
+    edgefront::Vec3 normal;
+    std::array<edgefront::Vec3, 3> corners;
+    bool valid = false;
+  };
+  /// The changed faces worth testing again; fills `current` with their snapshots.
+  std::vector<edgefront::FaceHandle> retest(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& changed,
+                                            double mean_edge_length, std::vector<std::pair<int, Snapshot>>& current) const;
   RepairOptions options_;
   size_t max_retwists_;
+  std::vector<Snapshot> tested_;  ///< by face index
   size_t calls_ = 0;
   std::vector<Place> places_;
   FaceGrid grid_;
