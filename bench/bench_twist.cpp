@@ -4,7 +4,19 @@
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
+///               [--edge-per-thickness K] [--retest-all]
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
+///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all]
+///                                     GCS on a point file with and without the twist operation:
+///                                     wall and CPU time, the twist operation's share, faces tested
+///
+/// Resolution rule for the thin shells (`--edge-per-thickness K`): a user reconstructing a thin
+/// shell uses enough vertices to resolve its walls, so for vault-shell cases the vertex count is
+/// chosen such that the expected mean edge is K times the wall thickness t: a mesh of V vertices
+/// has about 2V faces, and with near-equilateral faces of edge e it covers A = 2V (sqrt(3)/4) e²,
+/// hence V = ceil(2 A / (sqrt(3) (K t)²)), with A the area of the shell (summed over
+/// `shapes::make("vault-shell")` at resolution 256). The point count becomes
+/// max(P, 3 V), so the samples resolve the walls too. K = 0.5 gives an edge of half the wall.
 ///
 /// For every shape and seed: sample P oriented points (shapes::sample, exact normals), run GCS
 /// from the box start to N vertices with and without the twist operation, and report the
@@ -18,6 +30,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -27,6 +41,7 @@
 #include <vector>
 
 #include "edgefront/mesh_stats.h"
+#include "edgefront/point_cloud_io.h"
 #include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
@@ -136,6 +151,66 @@ void detect_scaling() {
   }
 }
 
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+/// Surface area of a shape's reference mesh (for the resolution rule).
+double shape_area(const std::string& shape, double thickness) {
+  edgefront::shapes::MeshOptions mo;
+  mo.resolution = 256;
+  mo.shape.thickness = thickness;
+  const Mesh mesh = edgefront::shapes::make(shape, mo);
+  double area = 0;
+  for (edgefront::FaceHandle f : mesh.faces()) area += mesh.calc_face_area(f);
+  return area;
+}
+
+/// The vertex count whose expected mean edge is `edge` on a surface of this area (see the file comment).
+size_t vertices_for_edge(double area, double edge) {
+  return static_cast<size_t>(std::ceil(2.0 * area / (std::sqrt(3.0) * edge * edge)));
+}
+
+/// GCS on a point file with and without the twist operation (the cost of twist handling on a
+/// closed scan, issue 7's Speed).
+void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool retest_all) {
+  const edgefront::PointCloud cloud = edgefront::read_points(path);
+  std::printf("%s: %zu points%s, %zu vertices%s\n\n", path.c_str(), cloud.size(), cloud.has_normals() ? " with normals" : "",
+              vertices, retest_all ? ", every changed face retested" : "");
+  std::printf("| seed | no twist: wall s | CPU s | consistency | with twist: wall s | CPU s | twist wall s | twist CPU s | twist share wall | twist share CPU | calls | faces tested | found | repaired | cut out | consistency |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (size_t seed = 1; seed <= seeds; ++seed) {
+    double wall[2] = {0, 0}, cpu[2] = {0, 0}, cons[2] = {0, 0};
+    gcs::TwistOperationStats stats;
+    double op_wall = 0;
+    for (int with = 0; with < 2; ++with) {
+      gcs::ReconstructOptions ro;
+      ro.target_vertices = vertices;
+      ro.seed = seed;
+      gcs::Reconstructor rec(cloud, ro);
+      std::shared_ptr<gcs::TwistOperation> op;
+      if (with) {
+        gcs::TwistOperationOptions to;
+        if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
+        op = std::make_shared<gcs::TwistOperation>(to);
+        rec.add_operation(op);
+      }
+      const double c0 = cpu_seconds();
+      const gcs::ReconstructResult r = rec.run();
+      cpu[with] = cpu_seconds() - c0;
+      wall[with] = r.seconds_total;
+      if (with) {
+        stats = op->stats();
+        op_wall = r.seconds_operations;
+      }
+      if (cloud.has_normals()) cons[with] = gcs::orientation_consistency(r.mesh, cloud).per_component;
+    }
+    std::printf("| %zu | %.2f | %.2f | %.4f | %.2f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% | %zu | %zu | %zu | %zu | %zu | %.4f |\n", seed,
+                wall[0], cpu[0], cons[0], wall[1], cpu[1], op_wall, stats.cpu_seconds, 100 * op_wall / wall[1],
+                100 * stats.cpu_seconds / cpu[1], stats.calls, stats.faces_tested, stats.regions_found, stats.repairs,
+                stats.regions_cut_out, cons[1]);
+    std::fflush(stdout);
+  }
+}
+
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream ss(s);
@@ -148,8 +223,9 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
-  bool normals = true, regrow = false, local = true;
-  std::string only;
+  bool normals = true, regrow = false, local = true, retest_all = false;
+  double edge_per_thickness = 0;
+  std::string only, cloud_path;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -170,15 +246,27 @@ int main(int argc, char** argv) {
     else if (a == "--min-flagged") min_flagged = std::stoul(next());
     else if (a == "--global-index") local = false;
     else if (a == "--border-ratio") border_ratio = std::stod(next());
+    else if (a == "--edge-per-thickness") edge_per_thickness = std::stod(next());
+    else if (a == "--retest-all") retest_all = true;
+    else if (a == "--cloud") cloud_path = next();
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
     }
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
-                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals] | --detect-scaling\n";
+                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
+                   " [--edge-per-thickness K] [--retest-all] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
       return 2;
     }
+  }
+  if (!(edge_per_thickness >= 0) || !std::isfinite(edge_per_thickness)) {
+    std::cerr << "bench_twist: --edge-per-thickness must be finite and >= 0\n";
+    return 2;
+  }
+  if (!cloud_path.empty()) {
+    cloud_run(cloud_path, vertices, seeds, retest_all);
+    return 0;
   }
   std::vector<Case> cases = {{"vault-shell t/R=0.2", "vault-shell", 0.2},   {"vault-shell t/R=0.1", "vault-shell", 0.1},
                              {"vault-shell t/R=0.05", "vault-shell", 0.05}, {"vault-shell t/R=0.02", "vault-shell", 0.02},
@@ -194,12 +282,21 @@ int main(int argc, char** argv) {
     cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.thickness != only_thickness; }),
                 cases.end());
   }
-  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g\n\n",
+  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g%s",
               vertices, points, normals ? " with exact normals" : " without normals", first_seed, first_seed + seeds - 1,
-              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio);
-  std::printf("| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio,
+              retest_all ? ", every changed face retested" : "");
+  if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
+  std::printf("\n\n| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share | twist CPU share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
+    size_t case_vertices = vertices, case_points = points;
+    std::string label = c.label;
+    if (edge_per_thickness > 0 && c.shape == "vault-shell") {
+      case_vertices = vertices_for_edge(shape_area(c.shape, c.thickness), edge_per_thickness * c.thickness);
+      case_points = std::max(points, 3 * case_vertices);
+      label += " (" + std::to_string(case_vertices) + " v, " + std::to_string(case_points) + " pts)";
+    }
     edgefront::shapes::SampleOptions dense;
     dense.points = 200000;
     dense.seed = 999;
@@ -208,19 +305,19 @@ int main(int argc, char** argv) {
     const twist::ReferenceNormals truth(dense_cloud);
     for (size_t seed = first_seed; seed < first_seed + seeds; ++seed) {
       edgefront::shapes::SampleOptions so;
-      so.points = points;
+      so.points = case_points;
       so.seed = seed;
       so.shape.thickness = c.thickness;
       edgefront::PointCloud cloud = edgefront::shapes::sample(c.shape, so);
       if (!normals) cloud.normals.clear();
       gcs::ReconstructOptions ro;
-      ro.target_vertices = vertices;
+      ro.target_vertices = case_vertices;
       ro.seed = seed;
       Consistency cons[2];
       gcs::OrientationConsistency eval[2];
       size_t left[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
       gcs::TwistOperationStats stats;
-      double share = 0;
+      double share = 0, cpu_share = 0;
       for (int with = 0; with < 2; ++with) {
         gcs::Reconstructor rec(cloud, ro);
         std::shared_ptr<gcs::TwistOperation> op;
@@ -233,10 +330,13 @@ int main(int argc, char** argv) {
           to.repair.max_border_ratio = border_ratio;
           to.max_retwists = max_retwists;
           to.repair.regrow_cut_outs = regrow;
+          if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
           op = std::make_shared<gcs::TwistOperation>(to);
           rec.add_operation(op);
         }
+        const double c0 = cpu_seconds();
         const gcs::ReconstructResult r = rec.run();
+        const double run_cpu = cpu_seconds() - c0;
         cons[with] = consistency(r.mesh, truth);
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
         left[with] = twist::count_same_orientation_layers(r.mesh);
@@ -246,13 +346,14 @@ int main(int argc, char** argv) {
         if (with) {
           stats = op->stats();
           share = r.seconds_total > 0 ? r.seconds_operations / r.seconds_total : 0;
+          cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% |\n",
-                  c.label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].per_component, cons[0].judged,
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
+                  label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].per_component, cons[0].judged,
                   cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, eval[1].per_component,
                   cons[1].judged, cons[1].undecided, left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

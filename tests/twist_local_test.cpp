@@ -223,3 +223,99 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
 }
 
 }  // namespace
+
+namespace {
+
+double mean_edge_of(const Mesh& mesh) {
+  double sum = 0;
+  for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
+  return sum / static_cast<double>(mesh.n_edges());
+}
+
+TEST(TwistRetest, StableFacesAreNotTestedAgainButMovedOnesAndTwistsAre) {
+  // A correct sphere handed over as "all changed" in every call (as GCS smoothing does): after
+  // the first call only faces that turned or moved across their plane are tested again.
+  Mesh mesh = edgefront::shapes::icosphere(3);
+  const double edge = mean_edge_of(mesh);
+  twist::RepairOptions o;
+  o.detect.audit_faces = 0;
+  o.garbage_collect = false;
+  twist::TwistRepairer repairer(o);
+  std::vector<FaceHandle> all(mesh.faces().begin(), mesh.faces().end());
+  const twist::RepairReport first = repairer.repair_changed(mesh, all, edge);
+  EXPECT_EQ(first.repairs, 0u);
+  EXPECT_GE(first.detect_stats.faces_tested, mesh.n_faces());
+  // Tangential jitter (along the surface, a tenth of an edge): nothing is tested.
+  const edgefront::VertexHandle v0(0);
+  const Vec3 p0 = mesh.point(v0);
+  Vec3 tangent = OpenMesh::cross(p0.normalized(), Vec3(0, 0, 1));
+  if (tangent.norm() < 0.1) tangent = OpenMesh::cross(p0.normalized(), Vec3(1, 0, 0));
+  mesh.set_point(v0, p0 + tangent.normalized() * (0.1 * edge));
+  EXPECT_EQ(repairer.repair_changed(mesh, all, edge).detect_stats.faces_tested, 0u);
+  // Pushed out across the faces' planes by half an edge: the vertex's faces (and no more than
+  // their neighbourhood) are tested again.
+  mesh.set_point(v0, p0 * (1 + 0.5 * edge));
+  const size_t ring = static_cast<size_t>(std::distance(mesh.vf_range(v0).begin(), mesh.vf_range(v0).end()));
+  const size_t again = repairer.repair_changed(mesh, all, edge).detect_stats.faces_tested;
+  EXPECT_GE(again, ring);
+  EXPECT_LT(again, mesh.n_faces() / 4);
+  // Every changed face tested every time when both thresholds are 0.
+  o.retest_turn_degrees = o.retest_move = 0;
+  twist::TwistRepairer all_again(o);
+  all_again.repair_changed(mesh, all, edge);
+  EXPECT_GE(all_again.repair_changed(mesh, all, edge).detect_stats.faces_tested, mesh.n_faces());
+  o.retest_move = -1;
+  EXPECT_THROW(twist::TwistRepairer(o).repair_changed(mesh, all, edge), InvalidInput);
+  o.retest_move = 0;
+  o.retest_turn_degrees = 181;
+  EXPECT_THROW(twist::TwistRepairer(o).repair_changed(mesh, all, edge), InvalidInput);
+}
+
+TEST(TwistRetest, AfterARepairOnlyTheNewFacesAreTestedAgain) {
+  // A plate with a disk turned inside out: the first call repairs it; a second call that calls
+  // every face changed (nothing moved) tests only the faces the repair created.
+  const twist::TwistedShape twisted = twist::flipped_disk_plate();
+  Mesh mesh = twisted.mesh;
+  const double edge = mean_edge_of(mesh);
+  const twist::ReferenceNormals ref(twist::truth_points(twisted));
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.garbage_collect = false;
+  twist::TwistRepairer repairer(o);
+  std::vector<FaceHandle> all(mesh.faces().begin(), mesh.faces().end());
+  const twist::RepairReport r = repairer.repair_changed(mesh, all, edge);
+  EXPECT_EQ(r.repairs, 1u);
+  // A second call with every face "changed" but nothing moved: only the faces the repair made
+  // (the flipped disk, now its own component, which the global orientation judges) are tested
+  // again, and nothing more is cut.
+  std::vector<FaceHandle> now(mesh.faces().begin(), mesh.faces().end());
+  const twist::RepairReport again = repairer.repair_changed(mesh, now, edge);
+  EXPECT_EQ(again.repairs, 0u);
+  EXPECT_LE(again.detect_stats.faces_tested, 2 * r.faces_flipped);
+  EXPECT_LT(again.detect_stats.faces_tested, mesh.n_faces() / 4);
+  EXPECT_GT(twist::truth_consistency(mesh, twisted), 0.99);
+}
+
+TEST(TwistFaceGrid, StoresTheGeometryOfTheFacesItHolds) {
+  Mesh mesh = edgefront::shapes::icosphere(2);
+  twist::FaceGrid grid;
+  grid.rebuild(mesh, 0.3);
+  const FaceHandle f(5);
+  const twist::FaceGeometry* g = grid.geometry(f);
+  ASSERT_NE(g, nullptr);
+  const twist::FaceGeometry direct = twist::face_geometry(mesh, f);
+  EXPECT_LT((g->centre - mesh.calc_face_centroid(f)).norm(), 1e-12);
+  EXPECT_LT((g->normal - mesh.calc_face_normal(f).normalized()).norm(), 1e-12);
+  EXPECT_EQ(g->vertices, direct.vertices);
+  EXPECT_DOUBLE_EQ(g->longest, direct.longest);
+  EXPECT_EQ(grid.geometry(FaceHandle(static_cast<int>(mesh.n_faces()) + 10)), nullptr);
+  EXPECT_EQ(grid.geometry(FaceHandle()), nullptr);
+  // After a move and an update the stored geometry follows.
+  const edgefront::VertexHandle v(*mesh.cfv_begin(f));
+  mesh.set_point(v, mesh.point(v) * 1.5);
+  std::vector<FaceHandle> ring(mesh.vf_range(v).begin(), mesh.vf_range(v).end());
+  grid.update(mesh, ring);
+  EXPECT_LT((grid.geometry(f)->centre - mesh.calc_face_centroid(f)).norm(), 1e-12);
+}
+
+}  // namespace

@@ -1,5 +1,6 @@
 #include "gcs/twist_operation.h"
 
+#include <ctime>
 #include <string>
 
 namespace gcs {
@@ -16,6 +17,12 @@ const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& 
 }
 
 OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) {
+  const std::clock_t cpu0 = std::clock();
+  struct AddCpu {
+    double& total;
+    std::clock_t start;
+    ~AddCpu() { total += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
+  } add_cpu{stats_.cpu_seconds, cpu0};
   OperationResult result;
   ++stats_.calls;
   if (!reference_checked_) {
@@ -35,6 +42,7 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
       context.final_call ? repairer_->finish(mesh)
                          : repairer_->repair_changed(mesh, changed.faces, options_.local ? context.mean_edge_length : 0.0);
   stats_.regions_found += r.regions_found;
+  stats_.faces_tested += r.detect_stats.faces_tested;
   stats_.repairs += r.repairs;
   stats_.regions_cut_out += r.regions_cut_out;
   stats_.faces_flipped += r.faces_flipped;

@@ -47,6 +47,8 @@ struct TwistOperationStats {
   std::size_t regions_scattered = 0;   ///< left alone: not compact (`twist::RepairOptions::max_border_ratio`)
   std::size_t components_flipped = 0;  ///< by the global orientation of the final call
   bool non_orientable = false;
+  double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
+  std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
 };
 
 class TwistOperation : public Operation {
