@@ -1,8 +1,10 @@
 #pragma once
 /// \file twist_operation.h
 /// The twist repair as a hook of the GCS loop (see `operation.h` and `twist/repair.h`): after
-/// each batch, twisted regions are searched near the changed faces (plus a small audit sample),
-/// cut off and flipped; a place that re-twists repeatedly is cut out so the loop re-grows it; the
+/// each batch, twisted regions are searched near the changed faces that turned or moved across
+/// their plane since they were last tested (`twist::RepairOptions::retest_turn_degrees`; the
+/// smoothing moves almost every face a little in every batch) plus a small audit sample, cut off
+/// and flipped; a place that re-twists repeatedly is cut out so the loop re-grows it; the
 /// final call repairs the whole mesh and applies the global orientation. When the input points
 /// have normals, they decide which side is right.
 

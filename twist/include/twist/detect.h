@@ -168,8 +168,12 @@ struct DetectOptions {
   double reference_side_weight = 0.0;
   double reference_margin = 1.5;  ///< see `reference_side_weight`; in [1, 100]
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
-  /// `audit_offset`) are tested first; faces within `grow_levels` of a flagged face are then
-  /// tested too, so a twisted region is found whole. Invalid or deleted handles throw.
+  /// `audit_offset`) are tested first, then the faces right behind them with the same
+  /// orientation (they point at a candidate's back; with a reference only those it leaves
+  /// undecided); faces within `grow_levels` of a flagged face are then tested too, so a twisted
+  /// region is found whole. With `require_orientation_evidence`, self-intersections are looked
+  /// for only on those grown faces, not on the candidates (they mark a twist line, never a
+  /// region on their own, and the scan is the costliest test). Invalid or deleted handles throw.
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
   size_t audit_faces = 64;
   size_t audit_offset = 0;
