@@ -4,7 +4,7 @@
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
-///               [--edge-per-thickness K] [--retest-all]
+///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners]
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
 ///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all]
 ///                                     GCS on a point file with and without the twist operation:
@@ -26,6 +26,9 @@
 /// reference), faces with a same-orientation layer (close in space, far along the surface, same
 /// orientation: `twist::count_same_orientation_layers`), border loops and components, the regions
 /// repaired, and the share of the run spent in the twist operation.
+/// `--no-orient-winners` runs GCS with `ReconstructOptions::orient_winners` off (plain winners, as
+/// in the published loop): with oriented samples the oriented winner search keeps most runs from
+/// twisting at all, so this is the setting that shows what the repair does on a twisted GCS.
 /// Prints a markdown table.
 
 #include <algorithm>
@@ -223,7 +226,7 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
-  bool normals = true, regrow = false, local = true, retest_all = false;
+  bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
   std::string only, cloud_path;
   for (int i = 1; i < argc; ++i) {
@@ -248,6 +251,7 @@ int main(int argc, char** argv) {
     else if (a == "--border-ratio") border_ratio = std::stod(next());
     else if (a == "--edge-per-thickness") edge_per_thickness = std::stod(next());
     else if (a == "--retest-all") retest_all = true;
+    else if (a == "--no-orient-winners") orient_winners = false;
     else if (a == "--cloud") cloud_path = next();
     else if (a == "--detect-scaling") {
       detect_scaling();
@@ -256,7 +260,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
       return 2;
     }
   }
@@ -282,10 +286,11 @@ int main(int argc, char** argv) {
     cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.thickness != only_thickness; }),
                 cases.end());
   }
-  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g%s",
+  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g%s%s",
               vertices, points, normals ? " with exact normals" : " without normals", first_seed, first_seed + seeds - 1,
               side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio,
-              retest_all ? ", every changed face retested" : "");
+              retest_all ? ", every changed face retested" : "",
+              orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
   std::printf("\n\n| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share | twist CPU share |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -313,6 +318,7 @@ int main(int argc, char** argv) {
       gcs::ReconstructOptions ro;
       ro.target_vertices = case_vertices;
       ro.seed = seed;
+      ro.orient_winners = orient_winners;
       Consistency cons[2];
       gcs::OrientationConsistency eval[2];
       size_t left[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
