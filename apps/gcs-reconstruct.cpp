@@ -1,6 +1,7 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
-///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--quiet]
+///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
+///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
 ///
@@ -50,6 +51,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
                "shells such as the bundled vault are torn apart by the border creation otherwise)");
+  bool no_orient = false;
+  app.add_flag("--no-orient-winners", no_orient,
+               "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
+               "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
+               "ending as a torn double layer)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
@@ -66,6 +72,7 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.progress_interval = 50;
     options.create_borders = options.merge_borders = !no_borders;
+    options.orient_winners = !no_orient;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");
