@@ -59,6 +59,22 @@ TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
   EXPECT_EQ(eftest::slurp(d), eftest::slurp(e));
 }
 
+TEST_F(GcsCli, NoOrientWinnersSwitchesTheOrientedWinnersOff) {
+  // The vault cloud has normals, so the oriented winner search is on by default from 150 vertices:
+  // switching it off changes the mesh, and the result is still deterministic.
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off", c = dir_ / "c.off";
+  const std::string common = " --vertices 300 --seed 7 --no-twist";
+  ASSERT_EQ(run(q(vault()) + " -o " + q(a) + common).exit_code, 0);
+  const eftest::CommandResult rb = run(q(vault()) + " -o " + q(b) + common + " --no-orient-winners");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  ASSERT_EQ(run(q(vault()) + " -o " + q(c) + common + " --no-orient-winners").exit_code, 0);
+  EXPECT_NE(eftest::slurp(a), eftest::slurp(b));
+  EXPECT_EQ(eftest::slurp(b), eftest::slurp(c));
+  const edgefront::MeshStats s = edgefront::compute_stats(edgefront::load_mesh(b));
+  EXPECT_EQ(s.nonmanifold_vertices, 0u);
+  EXPECT_GT(s.faces, 400u);
+}
+
 TEST_F(GcsCli, PictureAndSnapshots) {
   const fs::path snaps = dir_ / "snaps";
   fs::create_directories(snaps);
@@ -111,6 +127,7 @@ TEST_F(GcsCli, ErrorsAndUsage) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--no-twist"), std::string::npos);
   EXPECT_NE(r.out.find("twist repair"), std::string::npos);
+  EXPECT_NE(r.out.find("--no-orient-winners"), std::string::npos);
 }
 
 }  // namespace
