@@ -32,12 +32,11 @@ Vec3 vertex_normal_sum(const Mesh& mesh, VertexHandle v) {
 }
 
 int oriented_nearest(const Mesh& mesh, VertexGrid& grid, const Vec3& sample, const Vec3& normal,
-                     int max_candidates, double max_extra_distance, double opposed_cos) {
+                     int max_candidates, double max_extra_distance) {
   const int first = grid.nearest(sample);
   if (first < 0) return first;
   const auto agrees = [&](int id) { return (vertex_normal_sum(mesh, VertexHandle(id)) | normal) > 0; };
-  const Vec3 vn = vertex_normal_sum(mesh, VertexHandle(first));
-  if ((vn | normal) > -opposed_cos * vn.norm() * normal.norm()) return first;
+  if (agrees(first)) return first;
   const double limit = (grid.position(first) - sample).norm() + max_extra_distance;
   // Take disagreeing candidates out of the grid until an agreeing one is nearest, then put them
   // back at their stored positions (the grid's answers do not depend on insertion order).

@@ -45,14 +45,6 @@ std::string to_string(StopReason reason) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Double-layer guards (detail/double_layer.h) act only on clearly opposed orientations: a
-// collapsed double layer has cos ~ -1 between a vertex/face normal and the sample's normal; a film
-// bridging a thin gap, or a face on a sharp or thin feature whose nearest sample lies on the other
-// side, has cos near 0. Measured (bench_gcs --case kitten --seeds 8, grid/landscape at 1500 vertices):
-// the former thresholds 0 (winner) and 0.3 (faces) closed the kitten on 2 of 8 seeds, these on 5.
-constexpr double kOpposedWinnerCos = 0.5;
-constexpr double kOpposedFaceCos = 0.6;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 Vec3 face_normal_of(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
@@ -344,13 +336,9 @@ struct Reconstructor::Impl {
   void basic_step() {
     const size_t si = draw_index(rng, cloud.size());
     const Vec3& s = cloud.points[si];
-    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h). The nearest
-    // vertex is passed over only when it clearly faces away (cos < -kOpposedWinnerCos): a collapsed
-    // double layer faces away at cos ~ -1, while the vertices of a thin gap's bridging film (the
-    // kitten's tail/body tunnel) face sideways and must keep winning, or the film is not torn open.
+    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
     const int wi = oriented && live >= opt.topology_min_vertices
-                       ? detail::oriented_nearest(mesh, grid, s, oriented_normal(si), 8, 2 * grid.cell_size(),
-                                                  kOpposedWinnerCos)
+                       ? detail::oriented_nearest(mesh, grid, s, oriented_normal(si), 8, 2 * grid.cell_size())
                        : grid.nearest(s);
     EF_CHECK(wi >= 0, "the mesh has no vertex");
     const VertexHandle w(wi);
@@ -801,7 +789,7 @@ struct Reconstructor::Impl {
       tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
         const PointIndex::Neighbor nb = tree->nearest(p);
         return {std::sqrt(nb.distance2), oriented_normal(nb.index)};
-      }, {.max_distance = support, .min_cos = kOpposedFaceCos}));
+      }, {.max_distance = support}));
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;

@@ -29,14 +29,11 @@ edgefront::Vec3 vertex_normal_sum(const edgefront::Mesh& mesh, edgefront::Vertex
 
 /// The nearest vertex of `grid` to `sample` whose vertex normal agrees with `normal` (positive
 /// dot product), among the `max_candidates` nearest vertices and no farther than the nearest one's
-/// distance plus `max_extra_distance`. When none agrees, returns the plain nearest vertex. With
-/// `opposed_cos` > 0 the plain nearest vertex is kept unless it clearly faces away (cosine between
-/// its normal and `normal` below -opposed_cos); only then is an agreeing one searched. -1 only
+/// distance plus `max_extra_distance`. When none agrees, returns the plain nearest vertex. -1 only
 /// for an empty grid. The grid is left exactly as it was (candidates are taken out one by one and
 /// put back); ties as in VertexGrid::nearest (smaller id), so the result is deterministic.
 int oriented_nearest(const edgefront::Mesh& mesh, VertexGrid& grid, const edgefront::Vec3& sample,
-                     const edgefront::Vec3& normal, int max_candidates, double max_extra_distance,
-                     double opposed_cos = 0);
+                     const edgefront::Vec3& normal, int max_candidates, double max_extra_distance);
 
 struct OpposedParams {
   double max_distance = 0;  ///< only faces whose centroid is this close to the cloud are judged
