@@ -10,6 +10,7 @@
 #include <queue>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "edgefront/connection_path.h"
 #include "edgefront/error.h"
@@ -513,10 +514,10 @@ class BandSearch {
       }
     }
     band_.clear();
-    face_local_.clear();
+    in_band_.clear();
     for (const auto& [vi, d] : reach_) {
       for (FaceHandle f : mesh_.vf_range(VertexHandle(vi))) {
-        if (face_local_.emplace(f.idx(), static_cast<int>(band_.size())).second) band_.push_back(f);
+        if (in_band_.insert(f.idx()).second) band_.push_back(f);
       }
     }
   }
@@ -631,7 +632,8 @@ class BandSearch {
   Straightener st_;
   std::unordered_map<int, double> reach_;
   std::vector<FaceHandle> band_;
-  std::unordered_map<int, int> face_local_, vertex_local_;
+  std::unordered_set<int> in_band_;
+  std::unordered_map<int, int> vertex_local_;
   std::vector<VertexHandle> verts_;
   std::vector<EdgeHandle> edges_;
   static constexpr double kSteinerSlack = 1.1;

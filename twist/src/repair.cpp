@@ -510,23 +510,13 @@ std::vector<FaceHandle> TwistRepairer::retest(const Mesh& mesh, const std::vecto
   std::vector<FaceHandle> out;
   for (FaceHandle f : changed) {
     if (!edgefront::is_live(mesh, f)) continue;
-    Snapshot s;
-    size_t i = 0;
-    for (VertexHandle v : mesh.fv_range(f)) {
-      if (i < 3) s.corners[i] = mesh.point(v);
-      ++i;
-    }
-    if (i != 3) {
-      out.push_back(f);  // not a triangle: detect reports it
-      continue;
-    }
-    s.normal = detail::unit_normal(s.corners);
-    s.valid = true;
+    const FaceGeometry g = face_geometry(mesh, f);
+    const Snapshot s{g.normal, g.centre, true};
     const size_t k = static_cast<size_t>(f.idx());
     bool test = all || k >= tested_.size() || !tested_[k].valid;
     if (!test) {
       const Snapshot& t = tested_[k];
-      const Vec3 moved = detail::centroid(s.corners) - detail::centroid(t.corners);
+      const Vec3 moved = s.centre - t.centre;
       const double across = OpenMesh::dot(t.normal, moved);
       test = OpenMesh::dot(t.normal, s.normal) < min_cos || across * across > max_move2 ||
              moved.sqrnorm() > 16 * max_move2;

@@ -132,7 +132,7 @@ class TwistRepairer {
   /// A face as it was when last tested (see `RepairOptions::retest_turn_degrees`).
   struct Snapshot {
     edgefront::Vec3 normal;
-    std::array<edgefront::Vec3, 3> corners;
+    edgefront::Vec3 centre;
     bool valid = false;
   };
   /// The changed faces worth testing again; fills `current` with their snapshots.
