@@ -316,6 +316,22 @@ TEST(TwistFaceGrid, StoresTheGeometryOfTheFacesItHolds) {
   std::vector<FaceHandle> ring(mesh.vf_range(v).begin(), mesh.vf_range(v).end());
   grid.update(mesh, ring);
   EXPECT_LT((grid.geometry(f)->centre - mesh.calc_face_centroid(f)).norm(), 1e-12);
+  // Handles that name no live face are refused.
+  EXPECT_THROW(twist::face_geometry(mesh, FaceHandle()), InvalidInput);
+  EXPECT_THROW(twist::face_geometry(mesh, FaceHandle(static_cast<int>(mesh.n_faces()))), InvalidInput);
+  mesh.delete_face(FaceHandle(7), false);
+  EXPECT_THROW(twist::face_geometry(mesh, FaceHandle(7)), InvalidInput);
+}
+
+TEST(TwistRetest, AbsurdRetestOptionsAreRefused) {
+  Mesh mesh = edgefront::shapes::icosphere(2);
+  for (const auto& [turn, move] : std::vector<std::pair<double, double>>{
+           {-1, 0.25}, {181, 0.25}, {std::nan(""), 0.25}, {10, -1}, {10, std::numeric_limits<double>::infinity()}}) {
+    twist::RepairOptions o;
+    o.retest_turn_degrees = turn;
+    o.retest_move = move;
+    EXPECT_THROW(twist::repair(mesh, o), InvalidInput) << turn << " " << move;
+  }
 }
 
 }  // namespace

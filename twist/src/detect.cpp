@@ -48,6 +48,10 @@ std::uint64_t cell_key(const Vec3& p, double cell) {
 }  // namespace
 
 FaceGeometry face_geometry(const Mesh& mesh, FaceHandle f) {
+  if (!edgefront::is_live(mesh, f)) {
+    throw InvalidInput("twist::face_geometry: face " + std::to_string(f.idx()) +
+                       " is not a live face of the mesh (invalid, out of range or deleted)");
+  }
   FaceGeometry g;
   std::array<Vec3, 3> p;
   size_t i = 0;

@@ -81,7 +81,8 @@ struct FaceGeometry {
 };
 
 /// The geometry of a live triangle of the mesh.
-/// \throws edgefront::InternalError when the face is not a triangle.
+/// \throws edgefront::InvalidInput for an invalid, out-of-range or deleted face;
+///         edgefront::InternalError when the face is not a triangle.
 FaceGeometry face_geometry(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
 
 /// An incremental spatial hash of face centroids, for repeated local detection on a mesh that
