@@ -375,6 +375,19 @@ Mesh grid_with_island(int cells) {
   return mesh;
 }
 
+TEST(ConnectionPath, IslandBuilderRefusesBadGeometryAndAddsTenTriangles) {
+  Mesh mesh;
+  const std::vector<VertexHandle> vs = shapes::add_island(mesh, Vec3(1, 2, 3), 0.5);
+  EXPECT_EQ(vs.size(), 12u);
+  EXPECT_EQ(mesh.n_faces(), 10u);
+  EXPECT_EQ(mesh.point(vs[1]), Vec3(1, 2, 3));
+  EXPECT_THROW(shapes::add_island(mesh, Vec3(std::nan(""), 0, 0)), InvalidInput);
+  EXPECT_THROW(shapes::add_island(mesh, Vec3(0, 0, 0), 0.0), InvalidInput);
+  EXPECT_THROW(shapes::add_island(mesh, Vec3(0, 0, 0), -1.0), InvalidInput);
+  EXPECT_THROW(shapes::add_island(mesh, Vec3(0, 0, 0), std::numeric_limits<double>::infinity()), InvalidInput);
+  EXPECT_EQ(mesh.n_faces(), 10u);  // refused calls add nothing
+}
+
 TEST(ConnectionPath, NoPathToAnIslandCostsTheSameBesideASmallAndALargeMesh) {
   std::vector<std::vector<size_t>> processed(2);
   for (int size = 0; size < 2; ++size) {
