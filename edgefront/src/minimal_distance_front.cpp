@@ -21,9 +21,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Three unit edge directions at a vertex with a smaller triple product count as one plane.
 constexpr double kFlatDet = 1e-9;
 // A settled vertex agrees with an unfolded source when their distances differ by this (relative).
-constexpr double kBracketTol = 3e-3;
+constexpr double kBracketTol = 1e-3;
 // Two virtual sources closer than this (relative to the distance) count as one.
 constexpr double kSameSourceTol = 1e-6;
+constexpr double kTwoPi = 6.283185307179586;
 
 // A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
 struct Candidate {
@@ -367,9 +368,71 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         const double dy = rx.offset + std::sqrt((L.s.x - L.y.x) * (L.s.x - L.y.x) + (L.s.y - L.y.y) * (L.s.y - L.y.y));
         if (std::abs(dy - ry->d) <= kBracketTol * ry->d) return true;
       }
+    } else if (lit_around_c(rx, c, HalfedgeHandle(ring[ic].he), after, L)) {
+      return true;
     }
     // The string is never shorter than the line: skip it when even the line would not help c.
     if (rx.offset + std::hypot(L.e - L.s.x, L.s.y) < L.worth) taut_string(L, rays.data(), ray_index.data(), n_rays);
+    return false;
+  }
+
+  // The bracket (above) one face further: a line that passes beyond y reaches c through another
+  // face of c. c's faces after t0, away from x, are unfolded about c until the one whose corner at
+  // c the line comes through; it is taken when both ends of that face's edge opposite c are
+  // settled from the same source at the distances this unfolding gives them (the fast-marching
+  // update of that face). At most kAroundC faces, less than a half turn.
+  static constexpr int kAroundC = 4;
+  bool lit_around_c(const DRec& rx, int c, HalfedgeHandle hxc, bool after, const Layout& L) const {
+    const P2 pc{L.e, 0};
+    const P2 toward{L.s.x - pc.x, L.s.y - pc.y};
+    auto lit = [&](int v, P2 p) {
+      const DRec* r = dt.find(static_cast<uint32_t>(v));
+      if (!r || !r->settled || r->offset != rx.offset || !(r->origin == rx.origin)) return false;
+      return std::abs(rx.offset + std::hypot(L.s.x - p.x, L.s.y - p.y) - r->d) <= kBracketTol * r->d;
+    };
+    // h: the halfedge c -> w (w_1 = y), in the face after it on the walk; prev: the corner before.
+    HalfedgeHandle h = after ? mesh.next_halfedge_handle(hxc)
+                             : mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(mesh.opposite_halfedge_handle(hxc)));
+    P2 pw = L.y, prev{0, 0};
+    int w = mesh.to_vertex_handle(h).idx();
+    double turned = std::atan2(std::abs(cross2(P2{-pc.x, 0}, P2{pw.x - pc.x, pw.y - pc.y})),
+                               dot2(P2{-pc.x, 0}, P2{pw.x - pc.x, pw.y - pc.y}));
+    for (int k = 0; k < kAroundC; ++k) {
+      // The next face about c and its corner w2.
+      const HalfedgeHandle g = after ? mesh.opposite_halfedge_handle(h) : h;  // the face's halfedge on c-w
+      if (!mesh.face_handle(g).is_valid()) return false;
+      const HalfedgeHandle h2 = after ? mesh.next_halfedge_handle(g)
+                                      : mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(g));
+      const int w2 = mesh.to_vertex_handle(h2).idx();
+      // Unfold w2 across c-w, on the side away from prev.
+      const P2 cw{pw.x - pc.x, pw.y - pc.y};
+      const double lcw = std::hypot(cw.x, cw.y);
+      if (!(lcw > 0)) return false;
+      const Vec3& p3 = mesh.point(VertexHandle(w2));
+      const double lc = (p3 - mesh.point(VertexHandle(c))).norm(), lw = (p3 - mesh.point(VertexHandle(w))).norm();
+      const double along = (lc * lc - lw * lw + lcw * lcw) / (2 * lcw);
+      const double hgt = std::sqrt(std::max(lc * lc - along * along, 0.0));
+      const double side = cross2(cw, P2{prev.x - pc.x, prev.y - pc.y}) > 0 ? -1 : 1;
+      const P2 u{cw.x / lcw, cw.y / lcw};
+      const P2 pw2{pc.x + u.x * along - u.y * side * hgt, pc.y + u.y * along + u.x * side * hgt};
+      const P2 cw2{pw2.x - pc.x, pw2.y - pc.y};
+      turned += std::atan2(std::abs(cross2(cw, cw2)), dot2(cw, cw2));
+      if (turned >= kTwoPi / 2) return false;
+      // Does the line come through this corner (between c->w and c->w2)?
+      const double s1 = cross2(cw, toward), s2 = cross2(toward, cw2), s0 = cross2(cw, cw2);
+      if (s1 * s0 > 0 && s2 * s0 > 0) {
+        // ...across the edge w-w2 (the source lies beyond it), both ends lit.
+        if (cross2(P2{pw2.x - pw.x, pw2.y - pw.y}, P2{L.s.x - pw.x, L.s.y - pw.y}) *
+                cross2(P2{pw2.x - pw.x, pw2.y - pw.y}, P2{pc.x - pw.x, pc.y - pw.y}) >= 0) {
+          return false;
+        }
+        return lit(w, pw) && lit(w2, pw2);
+      }
+      prev = pw;
+      pw = pw2;
+      w = w2;
+      h = h2;
+    }
     return false;
   }
 
