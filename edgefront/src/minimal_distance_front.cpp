@@ -25,6 +25,8 @@ constexpr double kBracketTol = 1e-3;
 // Two virtual sources closer than this (relative to the distance) count as one.
 constexpr double kSameSourceTol = 1e-6;
 constexpr double kTwoPi = 6.283185307179586;
+// A vertex whose corner angles sum to a full turn within this is intrinsically flat.
+constexpr double kFlatDefect = 1e-10;
 
 // A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
 struct Candidate {
@@ -343,6 +345,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (theta.y < 1e-12 && (theta.y < 0 || theta.x < 0)) return false;  // it would pass x on the other side
     L.s = {rs * theta.x, rs * theta.y};
     bool leaves_fan = false, enters_xy = true;
+    std::array<bool, kMaxCross> beyond{};
     for (int k = 0; k < n_rays; ++k) {
       const P2 d = rays[k].dir;
       const double denom = d.x * L.s.y - d.y * (L.s.x - c2.x);
@@ -353,16 +356,25 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (rho > rays[k].len * (1 + 1e-9)) {
         if (k == 0) enters_xy = false;  // it must enter t0 through x-y
         leaves_fan = true;  // passes beyond the edge's far end
+        beyond[k] = true;
       }
     }
     if (!leaves_fan) return true;
+    // Where every ring vertex the line passes beyond is intrinsically flat (corner angles summing
+    // to a full turn: a plane, or a plane folded or rolled without stretching), the faces around it
+    // unfold into the plane of x's without a gap or overlap: the line is as good as one inside them.
+    if (enters_xy && fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
+    bool flat = true;
+    for (int k = 0; k < n_rays && flat; ++k) {
+      flat = !beyond[k] || std::abs(angle_defect(ring[ray_index[k]].v)) <= kFlatDefect;
+    }
+    if (flat) return true;
     // A line that leaves x's faces crosses faces this unfolding did not see. It is still taken
     // where those faces are one plane (this keeps planar regions exact), and where y, the other
     // end of the edge it enters t0 through, is settled from the same source at the distance this
     // unfolding gives it: then the lines to x and to y bracket the one to c (the fast-marching
     // update of the face x, y, c, with the source's position instead of a triangulation).
     if (enters_xy) {
-      if (fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
       const DRec* ry = dt.find(static_cast<uint32_t>(ring[y_ray].v));
       if (ry && ry->settled && ry->offset == rx.offset && ry->origin == rx.origin) {
         const double dy = rx.offset + std::sqrt((L.s.x - L.y.x) * (L.s.x - L.y.x) + (L.s.y - L.y.y) * (L.s.y - L.y.y));
@@ -469,6 +481,19 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     L.bent = len;
     L.bend_ray = id[1];
     L.bend = pt[1];
+  }
+
+  // 2 pi less the vertex's corner angles (its angle defect); NaN at a border vertex.
+  double angle_defect(int v) const {
+    const Vec3& p = mesh.point(VertexHandle(v));
+    double sum = 0;
+    for (HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
+      if (mesh.is_boundary(h)) return std::numeric_limits<double>::quiet_NaN();
+      const Vec3 a = mesh.point(mesh.to_vertex_handle(h)) - p;
+      const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - p;
+      sum += std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
+    }
+    return kTwoPi - sum;
   }
 
   // Whether the `count` faces around x, starting with the face after ray `first` and going in
