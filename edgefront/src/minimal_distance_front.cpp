@@ -25,7 +25,7 @@ constexpr double kBracketTol = 1e-3;
 // Two virtual sources closer than this (relative to the distance) count as one.
 constexpr double kSameSourceTol = 1e-6;
 constexpr double kTwoPi = 6.283185307179586;
-// A vertex whose corner angles sum to a full turn within this is intrinsically flat.
+// A vertex whose corner angles sum to a full turn within this (radians) is intrinsically flat.
 constexpr double kFlatDefect = 1e-10;
 
 // A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
@@ -360,21 +360,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
     }
     if (!leaves_fan) return true;
-    // Where every ring vertex the line passes beyond is intrinsically flat (corner angles summing
-    // to a full turn: a plane, or a plane folded or rolled without stretching), the faces around it
-    // unfold into the plane of x's without a gap or overlap: the line is as good as one inside them.
-    if (enters_xy && fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
-    bool flat = true;
-    for (int k = 0; k < n_rays && flat; ++k) {
-      flat = !beyond[k] || std::abs(angle_defect(ring[ray_index[k]].v)) <= kFlatDefect;
-    }
-    if (flat) return true;
     // A line that leaves x's faces crosses faces this unfolding did not see. It is still taken
     // where those faces are one plane (this keeps planar regions exact), and where y, the other
     // end of the edge it enters t0 through, is settled from the same source at the distance this
     // unfolding gives it: then the lines to x and to y bracket the one to c (the fast-marching
     // update of the face x, y, c, with the source's position instead of a triangulation).
     if (enters_xy) {
+      if (fan_is_flat(t0_ray, n_rays + 1, dir)) return true;
       const DRec* ry = dt.find(static_cast<uint32_t>(ring[y_ray].v));
       if (ry && ry->settled && ry->offset == rx.offset && ry->origin == rx.origin) {
         const double dy = rx.offset + std::sqrt((L.s.x - L.y.x) * (L.s.x - L.y.x) + (L.s.y - L.y.y) * (L.s.y - L.y.y));
@@ -383,8 +375,17 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     } else if (lit_around_c(rx, c, HalfedgeHandle(ring[ic].he), after, L)) {
       return true;
     }
-    // The string is never shorter than the line: skip it when even the line would not help c.
-    if (rx.offset + std::hypot(L.e - L.s.x, L.s.y) < L.worth) taut_string(L, rays.data(), ray_index.data(), n_rays);
+    // Neither the line nor the string (never shorter) helps c unless the line is below c's distance.
+    if (!(rx.offset + std::hypot(L.e - L.s.x, L.s.y) < L.worth)) return false;
+    // Where every ring vertex the line passes beyond is intrinsically flat (corner angles summing
+    // to a full turn: a plane, or a plane folded or rolled without stretching), the faces around it
+    // unfold into the plane of x's without a gap or overlap: the line is as good as one inside them.
+    bool flat = true;
+    for (int k = 0; k < n_rays && flat; ++k) {
+      flat = !beyond[k] || intrinsically_flat(ring[ray_index[k]].v);
+    }
+    if (flat) return true;
+    taut_string(L, rays.data(), ray_index.data(), n_rays);
     return false;
   }
 
@@ -483,17 +484,34 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     L.bend = pt[1];
   }
 
-  // 2 pi less the vertex's corner angles (its angle defect); NaN at a border vertex.
-  double angle_defect(int v) const {
-    const Vec3& p = mesh.point(VertexHandle(v));
-    double sum = 0;
-    for (HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
-      if (mesh.is_boundary(h)) return std::numeric_limits<double>::quiet_NaN();
+  // Whether v's corner angles sum to a full turn within kFlatDefect (false at a border vertex).
+  // The angles are added as unit complex numbers (no trigonometry); each is below a half turn, so
+  // the full turns passed are counted where the running sum crosses from below to above the axis.
+  bool intrinsically_flat(int v) const {
+    const VertexHandle vh(v);
+    const Vec3& p = mesh.point(vh);
+    const HalfedgeHandle h0 = mesh.halfedge_handle(vh);
+    if (!h0.is_valid() || mesh.is_boundary(h0)) return false;  // OpenMesh keeps a border halfedge here
+    double re = 1, im = 0;
+    int turns = 0;
+    HalfedgeHandle h = h0;
+    int guard = 0;
+    do {
+      const HalfedgeHandle hn = mesh.next_halfedge_handle(h);
       const Vec3 a = mesh.point(mesh.to_vertex_handle(h)) - p;
-      const Vec3 b = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - p;
-      sum += std::atan2(OpenMesh::cross(a, b).norm(), OpenMesh::dot(a, b));
-    }
-    return kTwoPi - sum;
+      const Vec3 b = mesh.point(mesh.to_vertex_handle(hn)) - p;
+      const double cs = OpenMesh::dot(a, b), sn = OpenMesh::cross(a, b).norm();
+      const double l = std::sqrt(cs * cs + sn * sn);
+      if (!(l > 0)) return false;
+      const double r2 = (re * cs - im * sn) / l, i2 = (re * sn + im * cs) / l;
+      turns += im < 0 && i2 >= 0;
+      re = r2;
+      im = i2;
+      h = mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(h));  // the next outgoing halfedge
+      if (mesh.is_boundary(h) || ++guard > (1 << 16)) return false;
+    } while (h != h0);
+    turns += im < 0;
+    return turns == 1 && re > 0 && std::abs(im) <= kFlatDefect;
   }
 
   // Whether the `count` faces around x, starting with the face after ray `first` and going in
