@@ -384,39 +384,63 @@ struct Reconstructor::Impl {
     std::vector<int> vid;
     std::vector<Member> members;
     std::vector<Entry> entries;
-    std::vector<int> slot;               // per mesh vertex: local index when slot_gen matches
-    std::vector<std::uint64_t> slot_gen;
-    std::uint64_t gen = 0;
+    // Mesh vertex id -> local index: a small open-addressing table (power-of-two size, linear
+    // probing, at most half full; 64 slots unless a ring is unusually large), emptied per step.
+    std::vector<int> table_id, table_local;
   } ring;
 
+  static std::uint32_t ring_hash(int id) { return static_cast<std::uint32_t>(id) * 2654435761u; }
+
+  void ring_grow_table(size_t capacity) {
+    ring.table_id.assign(capacity, -1);
+    ring.table_local.assign(capacity, -1);
+    const size_t mask = capacity - 1;
+    for (size_t l = 0; l < ring.vid.size(); ++l) {
+      size_t s = ring_hash(ring.vid[l]) & mask;
+      while (ring.table_id[s] >= 0) s = (s + 1) & mask;
+      ring.table_id[s] = ring.vid[l];
+      ring.table_local[s] = static_cast<int>(l);
+    }
+  }
+
   int ring_local(VertexHandle v) {
-    const size_t i = static_cast<size_t>(v.idx());
-    if (ring.slot.size() <= i) {
-      ring.slot.resize(mesh.n_vertices(), -1);
-      ring.slot_gen.resize(mesh.n_vertices(), 0);
-    }
-    if (ring.slot_gen[i] != ring.gen) {
-      ring.slot_gen[i] = ring.gen;
-      ring.slot[i] = static_cast<int>(ring.pos.size());
-      ring.pos.push_back(mesh.point(v));
-      ring.vid.push_back(v.idx());
-    }
-    return ring.slot[i];
+    const int id = v.idx();
+    const size_t mask = ring.table_id.size() - 1;
+    size_t s = ring_hash(id) & mask;
+    for (; ring.table_id[s] >= 0; s = (s + 1) & mask)
+      if (ring.table_id[s] == id) return ring.table_local[s];
+    const int l = static_cast<int>(ring.pos.size());
+    ring.table_id[s] = id;
+    ring.table_local[s] = l;
+    ring.pos.push_back(mesh.point(v));
+    ring.vid.push_back(id);
+    if (2 * ring.vid.size() > ring.table_id.size()) ring_grow_table(2 * ring.table_id.size());
+    return l;
   }
 
   void gather_ring(VertexHandle w) {
-    ++ring.gen;
+    if (ring.table_id.empty()) ring_grow_table(64);
+    std::fill(ring.table_id.begin(), ring.table_id.end(), -1);
     ring.pos.clear();
     ring.vid.clear();
     ring.members.clear();
     ring.entries.clear();
     ring_local(w);
-    for (auto u : mesh.vv_range(w)) ring.members.push_back({ring_local(u), 0, 0});
+    // Outgoing halfedges in the order of mesh.voh_range (clockwise: next(opposite(h))).
+    const HalfedgeHandle w0 = mesh.halfedge_handle(w);
+    if (!w0.is_valid()) return;
+    HalfedgeHandle h = w0;
+    do {
+      ring.members.push_back({ring_local(mesh.to_vertex_handle(h)), 0, 0});
+      h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
+    } while (h != w0);
     for (auto& m : ring.members) {
       const VertexHandle v(ring.vid[m.local]);
       m.begin = static_cast<int>(ring.entries.size());
       HalfedgeHandle border_out;
-      for (auto h : mesh.voh_range(v)) {
+      const HalfedgeHandle v0 = mesh.halfedge_handle(v);
+      h = v0;
+      do {
         const int a = ring_local(mesh.to_vertex_handle(h));
         int b = -1;
         if (mesh.face_handle(h).is_valid()) {
@@ -425,7 +449,8 @@ struct Reconstructor::Impl {
           border_out = h;
         }
         ring.entries.push_back({a, b});
-      }
+        h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
+      } while (h != v0);
       m.end = static_cast<int>(ring.entries.size());
       if (border_out.is_valid()) {
         m.border_a = ring_local(mesh.to_vertex_handle(border_out));
