@@ -1,7 +1,7 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
 //   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K]
-//             [--seeds N]
+//             [--seeds N] [--step-factor F]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
 //    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
@@ -11,7 +11,8 @@
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape.
 // 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
-//    grows to N, then times 100 * N further basic steps at that size (no splits, no collapses).
+//    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
+//    F = --step-factor, default 100).
 // --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case. Single thread.
 
 #include <algorithm>
@@ -118,6 +119,7 @@ int main(int argc, char** argv) {
   std::string only;
   size_t vertices = 0;
   size_t seeds = 0;
+  size_t step_factor = 100;
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
@@ -126,8 +128,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--vertices") && i + 1 < argc) vertices = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--smoothing") && i + 1 < argc) g_smoothing = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::stoul(argv[++i]);
+    else if (!std::strcmp(argv[i], "--step-factor") && i + 1 < argc) step_factor = std::stoul(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F]\n");
       return 2;
     }
   }
@@ -194,7 +197,7 @@ int main(int argc, char** argv) {
       if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
       gcs::Reconstructor rec(big, o);
       rec.run();
-      const std::uint64_t steps = 100 * static_cast<std::uint64_t>(n);
+      const std::uint64_t steps = std::max<std::uint64_t>(1, step_factor) * static_cast<std::uint64_t>(n);
       const auto t0 = std::chrono::steady_clock::now();
       const double c0 = cpu_seconds();
       rec.run_basic_steps(steps);

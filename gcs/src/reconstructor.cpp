@@ -13,6 +13,7 @@
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
 #include "detail/double_layer.h"
+#include "detail/spatial_order.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
@@ -99,6 +100,9 @@ struct Reconstructor::Impl {
   std::vector<std::uint64_t> vstamp, fstamp;
   std::uint64_t clock = 1;
   size_t live = 0;
+  // The mesh is renumbered in spatial order (memory locality of the basic step) when the live
+  // vertex count reaches this; then at 1.5 times that count, and so on (reorder_if_due).
+  size_t next_reorder_live = 256;
 
   std::mt19937_64 rng;
   std::uint64_t steps = 0;
@@ -602,6 +606,48 @@ struct Reconstructor::Impl {
     ++live;
     ++splits;
     update_decay();
+    reorder_if_due();
+  }
+
+  // Splits append vertices, edges and faces at the ends of the mesh's arrays, so a vertex's ring
+  // spreads over memory as the mesh grows; renumbering the mesh in spatial order (Morton) brings
+  // it back together (fewer cache misses per basic step on large meshes). Only without registered
+  // operations: they may keep handles between their calls. Also drops the deleted elements.
+  void reorder_if_due() {
+    if (!ops.empty() || live < next_reorder_live) return;
+    next_reorder_live = live + live / 2;
+    const detail::Renumbering map = detail::renumber_spatially(mesh);
+    const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
+    std::vector<double> new_tau(nv, -1.0);
+    std::vector<std::uint64_t> new_last_win(nv, steps), new_vstamp(nv, clock), new_fstamp(nf, clock);
+    for (size_t i = 0; i < map.vertex.size(); ++i) {
+      const int n = map.vertex[i];
+      if (n < 0) continue;
+      new_tau[n] = tau[i];
+      new_last_win[n] = last_win[i];
+      new_vstamp[n] = vstamp[i];
+    }
+    std::vector<std::array<int, 3>> new_snapshot(nf, {-1, -1, -1});
+    for (size_t i = 0; i < map.face.size(); ++i) {
+      const int n = map.face[i];
+      if (n < 0) continue;
+      new_fstamp[n] = fstamp[i];
+      if (i < face_snapshot.size() && face_snapshot[i][0] >= 0)
+        for (int k = 0; k < 3; ++k) new_snapshot[n][k] = map.vertex[face_snapshot[i][k]];
+    }
+    tau = std::move(new_tau);
+    last_win = std::move(new_last_win);
+    vstamp = std::move(new_vstamp);
+    fstamp = std::move(new_fstamp);
+    face_snapshot = std::move(new_snapshot);
+    order.clear();
+    grid.reset(grid.cell_size());
+    grid.resize(nv);
+    for (size_t i = 0; i < nv; ++i) {
+      EF_CHECK(tau[i] >= 0, "reorder: a live vertex had no counter");
+      order.set(static_cast<int>(i), tau[i]);
+      grid.insert(static_cast<int>(i), mesh.point(VertexHandle(static_cast<int>(i))));
+    }
   }
 
   // ---------------------------------------------------------------- collapses

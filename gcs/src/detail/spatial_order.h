@@ -1,0 +1,36 @@
+#pragma once
+// Spatial (Morton, Z-order) ordering of points and of a mesh's elements, for memory locality:
+// elements that are close in space get close indices, so a walk over a vertex's 2-ring or a
+// nearest-point query touches a few cache lines instead of one per element. The GCS loop
+// renumbers its mesh this way now and then (new vertices are appended at the end by splits, so
+// the order decays as the mesh grows) and sorts the input cloud once.
+//
+// Deterministic: ties (equal codes) are broken by the old index.
+
+#include <cstdint>
+#include <vector>
+
+#include "edgefront/mesh.h"
+
+namespace gcs::detail {
+
+/// The permutation that sorts `points` by their Morton code over the points' bounding box (21
+/// bits per axis), ties by index: result[k] is the index of the k-th point in Morton order.
+std::vector<std::size_t> morton_order(const std::vector<edgefront::Vec3>& points);
+
+/// Old index -> new index of the live elements after renumber_spatially (-1: the element was
+/// deleted and is gone).
+struct Renumbering {
+  std::vector<int> vertex;
+  std::vector<int> face;
+};
+
+/// Rebuilds `mesh` with the same connectivity, positions, face normals and circulation starts
+/// (each vertex keeps its outgoing halfedge, each face its halfedge, so circulators visit the same
+/// elements in the same order), without the deleted elements, numbered in spatial order:
+/// vertices by the Morton code of their position, edges by their two new vertex indices, faces by
+/// their three. Other properties and status flags are not carried over (the caller must not have
+/// any that matter). Returns the maps from old to new indices.
+Renumbering renumber_spatially(edgefront::Mesh& mesh);
+
+}  // namespace gcs::detail
