@@ -161,6 +161,7 @@ struct Reconstructor::Impl {
     if (!(ev[1] > 1e-14 * ev[2]))
       throw InvalidInput("gcs: all points lie on one line: there is no surface to reconstruct");
 
+    if (cloud.size() >= kSpatialSortMinPoints) sort_cloud_spatially();
     tree = std::make_unique<PointIndex>(cloud.points);
     // Sample spacing: mean distance to the nearest other (distinct) point over up to 1000 points.
     {
@@ -201,6 +202,22 @@ struct Reconstructor::Impl {
     update_decay();
     next_collapse_scan = collapse_window();
     opt.topology_min_vertices = std::min(opt.topology_min_vertices, opt.target_vertices / 2);
+  }
+
+  // A large cloud is put in spatial (Morton) order once: the kd-tree's leaves and the nearest-
+  // sample queries of the topology passes (over faces that are in spatial order too, see
+  // reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
+  // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
+  static constexpr size_t kSpatialSortMinPoints = 65536;
+  void sort_cloud_spatially() {
+    const std::vector<size_t> perm = detail::morton_order(cloud.points);
+    std::vector<Vec3> sorted(cloud.size());
+    for (size_t k = 0; k < perm.size(); ++k) sorted[k] = cloud.points[perm[k]];
+    cloud.points.swap(sorted);
+    if (cloud.has_normals()) {
+      for (size_t k = 0; k < perm.size(); ++k) sorted[k] = cloud.normals[perm[k]];
+      cloud.normals.swap(sorted);
+    }
   }
 
   void build_start_mesh(Vec3 lo, Vec3 hi) {
@@ -438,57 +455,84 @@ struct Reconstructor::Impl {
       ring.members.push_back({ring_local(mesh.to_vertex_handle(h)), 0, 0});
       h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
     } while (h != w0);
+    // Around a member v, the face of outgoing halfedge e (v, a_e, b_e) is the face on the far side
+    // of halfedge e - 1 in this clockwise order, so b_e = a_(e-1) (cyclically): one lookup per
+    // halfedge. At a border halfedge (no face) b_e = -1, and the border neighbours are a_e and
+    // a_(e-1) (the end of the incoming border halfedge).
     for (auto& m : ring.members) {
       const VertexHandle v(ring.vid[m.local]);
       m.begin = static_cast<int>(ring.entries.size());
-      HalfedgeHandle border_out;
+      int border_e = -1;
       const HalfedgeHandle v0 = mesh.halfedge_handle(v);
       h = v0;
       do {
-        const int a = ring_local(mesh.to_vertex_handle(h));
-        int b = -1;
-        if (mesh.face_handle(h).is_valid()) {
-          b = ring_local(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
-        } else {
-          border_out = h;
-        }
-        ring.entries.push_back({a, b});
+        const bool has_face = mesh.face_handle(h).is_valid();
+        if (!has_face) border_e = static_cast<int>(ring.entries.size());
+        ring.entries.push_back({ring_local(mesh.to_vertex_handle(h)), has_face ? 0 : -1});
         h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
       } while (h != v0);
       m.end = static_cast<int>(ring.entries.size());
-      if (border_out.is_valid()) {
-        m.border_a = ring_local(mesh.to_vertex_handle(border_out));
-        m.border_b = ring_local(mesh.from_vertex_handle(mesh.prev_halfedge_handle(border_out)));
+      const auto before = [&m](int e) { return e == m.begin ? m.end - 1 : e - 1; };
+      for (int e = m.begin; e < m.end; ++e)
+        if (ring.entries[e].b == 0) ring.entries[e].b = ring.entries[before(e)].a;
+      if (border_e >= 0) {
+        m.border_a = ring.entries[border_e].a;
+        m.border_b = ring.entries[before(border_e)].a;
       }
     }
   }
 
   // One tangential Laplacian update of ring member i (border vertices: along the border only):
   // the ring mean minus the vertex, without its component along the area-weighted normal.
+  // Written on scalars (the same operations in the same order as the OpenMesh vector operators:
+  // identical results) so that the compiler keeps the values in registers.
   void smooth_local(size_t i) {
     const RingCache::Member& m = ring.members[i];
-    const Vec3 x = ring.pos[m.local];
-    Vec3 sum(0, 0, 0), n(0, 0, 0);
-    int k = 0;
+    if (m.end <= m.begin) return;
+    const Vec3* const pos = ring.pos.data();
+    const double x0 = pos[m.local][0], x1 = pos[m.local][1], x2 = pos[m.local][2];
+    double s0 = 0, s1 = 0, s2 = 0, n0 = 0, n1 = 0, n2 = 0;
     for (int e = m.begin; e < m.end; ++e) {
-      const Vec3& a = ring.pos[ring.entries[e].a];
-      sum += a;
-      ++k;
-      if (ring.entries[e].b >= 0) {
-        const Vec3& b = ring.pos[ring.entries[e].b];
-        n += (a - x) % (b - x);
+      const RingCache::Entry en = ring.entries[e];
+      const double a0 = pos[en.a][0], a1 = pos[en.a][1], a2 = pos[en.a][2];
+      s0 += a0;
+      s1 += a1;
+      s2 += a2;
+      if (en.b >= 0) {
+        const double u0 = a0 - x0, u1 = a1 - x1, u2 = a2 - x2;
+        const double v0 = pos[en.b][0] - x0, v1 = pos[en.b][1] - x1, v2 = pos[en.b][2] - x2;
+        n0 += u1 * v2 - u2 * v1;
+        n1 += u2 * v0 - u0 * v2;
+        n2 += u0 * v1 - u1 * v0;
       }
     }
-    if (k == 0) return;
-    Vec3 mean = sum / k;
-    if (m.border_a >= 0) mean = (ring.pos[m.border_a] + ring.pos[m.border_b]) * 0.5;
-    Vec3 L = mean - x;
-    const double ln = n.norm();
-    if (ln > 0) {
-      n /= ln;
-      L -= (L | n) * n;
+    double l0, l1, l2;
+    if (m.border_a >= 0) {
+      const Vec3& a = pos[m.border_a];
+      const Vec3& b = pos[m.border_b];
+      l0 = (a[0] + b[0]) * 0.5 - x0;
+      l1 = (a[1] + b[1]) * 0.5 - x1;
+      l2 = (a[2] + b[2]) * 0.5 - x2;
+    } else {
+      const double k = static_cast<double>(m.end - m.begin);
+      l0 = s0 / k - x0;
+      l1 = s1 / k - x1;
+      l2 = s2 / k - x2;
     }
-    ring.pos[m.local] += opt.neighbor_rate * L;
+    const double ln = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+    if (ln > 0) {
+      n0 /= ln;
+      n1 /= ln;
+      n2 /= ln;
+      const double d = l0 * n0 + l1 * n1 + l2 * n2;
+      l0 -= d * n0;
+      l1 -= d * n1;
+      l2 -= d * n2;
+    }
+    Vec3& x = ring.pos[m.local];
+    x[0] += opt.neighbor_rate * l0;
+    x[1] += opt.neighbor_rate * l1;
+    x[2] += opt.neighbor_rate * l2;
   }
 
   // ---------------------------------------------------------------- vertex split
