@@ -7,15 +7,6 @@
 
 namespace gcs::detail {
 
-namespace {
-constexpr std::int64_t kBias = std::int64_t(1) << 20;  // cell coordinates in [-2^20, 2^20)
-
-std::int64_t cell_coord(double x, double inv_h) {
-  const double c = std::floor(x * inv_h);
-  return static_cast<std::int64_t>(std::clamp(c, -double(kBias), double(kBias - 1)));
-}
-}  // namespace
-
 void VertexGrid::reset(double cell_size) {
   EF_CHECK(std::isfinite(cell_size) && cell_size > 0, "grid cell size must be positive");
   h_ = cell_size;
@@ -33,15 +24,6 @@ void VertexGrid::resize(std::size_t n) {
   pos_.resize(n, edgefront::Vec3(0, 0, 0));
   next_.resize(n, -1);
   prev_.resize(n, -1);
-}
-
-std::uint64_t VertexGrid::pack(std::int64_t i, std::int64_t j, std::int64_t k) {
-  return (static_cast<std::uint64_t>(i + kBias) << 42) | (static_cast<std::uint64_t>(j + kBias) << 21) |
-         static_cast<std::uint64_t>(k + kBias);
-}
-
-std::uint64_t VertexGrid::key_of(const edgefront::Vec3& p) const {
-  return pack(cell_coord(p[0], inv_h_), cell_coord(p[1], inv_h_), cell_coord(p[2], inv_h_));
 }
 
 namespace {
@@ -131,16 +113,6 @@ void VertexGrid::remove(int id) {
   }
   key_[id] = kAbsent;
   --count_;
-}
-
-void VertexGrid::move(int id, const edgefront::Vec3& p) {
-  const std::uint64_t key = key_of(p);
-  if (key == key_[id]) {
-    pos_[id] = p;
-    return;
-  }
-  remove(id);
-  insert(id, p);
 }
 
 int VertexGrid::linear_nearest(const edgefront::Vec3& p) const {

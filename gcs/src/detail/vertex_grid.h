@@ -18,6 +18,8 @@
 // two capacity) from cell keys to the head of an intrusive doubly linked list of the ids in the
 // cell. Emptied cells keep their table entry until the table is compacted (when it fills up).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -45,7 +47,15 @@ class VertexGrid {
   void insert(int id, const edgefront::Vec3& p);
   void remove(int id);
   /// Updates the stored position; moves the id to another cell only when its cell changed.
-  void move(int id, const edgefront::Vec3& p);
+  void move(int id, const edgefront::Vec3& p) {
+    const std::uint64_t key = key_of(p);
+    if (key == key_[id]) {
+      pos_[id] = p;
+      return;
+    }
+    remove(id);
+    insert(id, p);
+  }
 
   /// The id nearest to p (ties: smaller id), -1 when the grid is empty.
   int nearest(const edgefront::Vec3& p) const;
@@ -54,8 +64,18 @@ class VertexGrid {
   void check(int id, const edgefront::Vec3& p) const;
 
  private:
-  std::uint64_t key_of(const edgefront::Vec3& p) const;
-  static std::uint64_t pack(std::int64_t i, std::int64_t j, std::int64_t k);
+  static constexpr std::int64_t kBias = std::int64_t(1) << 20;  // cell coordinates in [-2^20, 2^20)
+  static std::int64_t cell_coord(double x, double inv_h) {
+    const double c = std::floor(x * inv_h);
+    return static_cast<std::int64_t>(std::clamp(c, -double(kBias), double(kBias - 1)));
+  }
+  static std::uint64_t pack(std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (static_cast<std::uint64_t>(i + kBias) << 42) | (static_cast<std::uint64_t>(j + kBias) << 21) |
+           static_cast<std::uint64_t>(k + kBias);
+  }
+  std::uint64_t key_of(const edgefront::Vec3& p) const {
+    return pack(cell_coord(p[0], inv_h_), cell_coord(p[1], inv_h_), cell_coord(p[2], inv_h_));
+  }
   int linear_nearest(const edgefront::Vec3& p) const;
   /// Table slot of `key`, or -1 when the key has no entry.
   std::int64_t find_slot(std::uint64_t key) const;
