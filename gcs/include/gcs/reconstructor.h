@@ -56,9 +56,8 @@ struct ReconstructOptions {
   double winner_rate = 0.06;
   /// Neighbour smoothing rate alpha_n of the tangential Laplacian. In [0, 1].
   double neighbor_rate = 0.05;
-  /// Smoothing passes over the winner's 1-ring per basic step (the paper: 5; 3 keeps the mesh
-  /// quality on sphere_20k and kitten.xyz at 40% less smoothing work, bench/results/gcs.md). In [0, 100].
-  int smoothing_iterations = 3;
+  /// Smoothing passes over the winner's 1-ring per basic step (the paper: 5). In [0, 100].
+  int smoothing_iterations = 5;
   /// Signal counter half-life in units of |V| basic steps: every basic step multiplies all
   /// counters by 0.5^(1 / (half_life * |V|)) (O(1) through a global scale). > 0.
   double decay_half_life = 6.0;
