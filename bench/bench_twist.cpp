@@ -43,8 +43,10 @@
 #include <string>
 #include <vector>
 
+#include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
+#include "edgefront/point_index.h"
 #include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
@@ -97,6 +99,28 @@ Consistency consistency(const Mesh& mesh, const twist::ReferenceNormals& ref) {
     T += total[c];
   }
   return {T > 0 ? A / T : 0, T > 0 ? B / T : 0, JT > 0 ? JA / JT : 0, T > 0 ? undecided / T : 0};
+}
+
+/// Share of the truth samples (every 10th of the dense cloud) that have a vertex, edge midpoint or
+/// face centroid of the mesh within 2% of the samples' bounding-box diagonal: how much of the shape the result
+/// still covers (a repair that shreds the surface and lets the loop delete the pieces scores
+/// high consistency on what is left, but low coverage).
+double coverage(const Mesh& mesh, const edgefront::PointCloud& truth) {
+  std::vector<edgefront::Vec3> pts;
+  for (auto v : mesh.vertices()) pts.push_back(mesh.point(v));
+  for (auto f : mesh.faces()) pts.push_back(mesh.calc_face_centroid(f));
+  for (auto e : mesh.edges()) pts.push_back(mesh.calc_edge_midpoint(e));
+  if (pts.empty() || truth.size() == 0) return 0;
+  edgefront::Vec3 lo = truth.points[0], hi = truth.points[0];
+  for (const auto& p : truth.points) {
+    lo.minimize(p);
+    hi.maximize(p);
+  }
+  const double tol2 = std::pow(0.02 * (hi - lo).norm(), 2);
+  const edgefront::PointIndex index(std::move(pts));
+  size_t covered = 0, total = 0;
+  for (size_t i = 0; i < truth.size(); i += 10, ++total) covered += index.nearest(truth.points[i]).distance2 <= tol2;
+  return static_cast<double>(covered) / static_cast<double>(total);
 }
 
 /// Time per incremental detection call vs mesh size (issue 7, Speed): a correct vault shell
@@ -153,6 +177,87 @@ void detect_scaling() {
     std::fflush(stdout);
   }
 }
+
+/// `--explain`: where the same-orientation face pairs of a result lie (one line per run on
+/// stderr, then one per pair with --explain 2): same component or not, the sizes of the
+/// components, the exact normals' verdict on both faces (+1 agrees, -1 disagrees, 0 undecided),
+/// whether either face touches a border, and whether the geometric detector (no reference) puts
+/// either face in a twisted region.
+void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const std::string& label, size_t seed, int level) {
+  const auto pairs = twist::same_orientation_pairs(mesh);
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  std::vector<size_t> comp_faces(labels.count, 0);
+  auto comp = [&](edgefront::FaceHandle f) { return labels.vertex_component[static_cast<size_t>((*mesh.cfv_begin(f)).idx())]; };
+  for (auto f : mesh.faces()) ++comp_faces[static_cast<size_t>(comp(f))];
+  std::map<int, char> in_region;
+  for (const auto& r : twist::detect(mesh)) {
+    for (auto f : r.faces) in_region[f.idx()] = 1;
+  }
+  auto on_border = [&](edgefront::FaceHandle f) {
+    for (auto v : mesh.fv_range(f)) {
+      if (mesh.is_boundary(v)) return true;
+    }
+    return false;
+  };
+  auto vote = [&](edgefront::FaceHandle f) { return truth.judge(mesh.calc_face_centroid(f), mesh.calc_face_normal(f).normalized()); };
+  size_t same = 0, both_right = 0, one_wrong = 0, undecided = 0, border = 0, detected = 0;
+  std::map<size_t, size_t> small_comp;  // component faces -> pairs with a face in it (components below 100 faces)
+  for (const auto& [f, g] : pairs) {
+    const int cf = comp(f), cg = comp(g);
+    same += cf == cg;
+    const int vf = vote(f), vg = vote(g);
+    if (vf > 0 && vg > 0) ++both_right;
+    else if (vf < 0 || vg < 0) ++one_wrong;
+    else ++undecided;
+    border += on_border(f) || on_border(g);
+    detected += in_region.count(f.idx()) || in_region.count(g.idx());
+    const size_t smaller = std::min(comp_faces[static_cast<size_t>(cf)], comp_faces[static_cast<size_t>(cg)]);
+    if (smaller < 100) ++small_comp[smaller];
+    if (level >= 2) {
+      const double d = (mesh.calc_face_centroid(f) - mesh.calc_face_centroid(g)).norm();
+      std::fprintf(stderr, "  pair f%d g%d comp %d(%zu) %d(%zu) votes %+d %+d border %d%d dist %.4f dot %.3f centre (%.3f %.3f %.3f)\n",
+                   f.idx(), g.idx(), cf, comp_faces[static_cast<size_t>(cf)], cg, comp_faces[static_cast<size_t>(cg)], vf, vg,
+                   on_border(f), on_border(g), d, OpenMesh::dot(mesh.calc_face_normal(f), mesh.calc_face_normal(g)),
+                   mesh.calc_face_centroid(f)[0], mesh.calc_face_centroid(f)[1], mesh.calc_face_centroid(f)[2]);
+    }
+  }
+  std::fprintf(stderr, "%s seed %zu: %zu pairs; same component %zu; both right %zu, one wrong %zu, undecided %zu; touching a border %zu; in a detected region %zu; components %zu",
+               label.c_str(), seed, pairs.size(), same, both_right, one_wrong, undecided, border, detected, labels.count);
+  std::fprintf(stderr, "; face counts of components:");
+  std::vector<size_t> sizes = comp_faces;
+  std::sort(sizes.rbegin(), sizes.rend());
+  for (size_t k : sizes) std::fprintf(stderr, " %zu", k);
+  std::fprintf(stderr, "\n");
+}
+
+/// `--trace`: an operation that logs the mesh (live faces, area, components) to stderr each time
+/// the loop calls it; registered before and after the twist operation, it shows what the loop's
+/// own topology pass and what the twist repair did to the mesh in each batch.
+class TraceOperation : public gcs::Operation {
+ public:
+  explicit TraceOperation(std::string tag) : tag_(std::move(tag)) {}
+  std::string name() const override { return "trace-" + tag_; }
+  gcs::OperationResult apply(Mesh& mesh, const gcs::ChangeSet&, const gcs::OperationContext& context) override {
+    size_t faces = 0;
+    double area = 0;
+    for (auto f : mesh.faces()) {
+      ++faces;
+      area += mesh.calc_face_area(f);
+    }
+    std::fprintf(stderr, "  batch %zu%s %s: %zu live vertices, %zu faces, area %.3f, %zu components\n", context.batch,
+                 context.final_call ? " (final)" : "", tag_.c_str(), context.live_vertices, faces, area,
+                 edgefront::connected_components(mesh).count - isolated(mesh));
+    return {};
+  }
+
+ private:
+  static size_t isolated(const Mesh& mesh) {
+    size_t n = 0;
+    for (auto v : mesh.vertices()) n += mesh.is_isolated(v);
+    return n;
+  }
+  std::string tag_;
+};
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
@@ -226,6 +331,9 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
+  int explain = 0;
+  bool only_repair = false, trace = false, rejoin = true;
+  std::string dump;
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
   std::string only, cloud_path;
@@ -253,6 +361,11 @@ int main(int argc, char** argv) {
     else if (a == "--retest-all") retest_all = true;
     else if (a == "--no-orient-winners") orient_winners = false;
     else if (a == "--cloud") cloud_path = next();
+    else if (a == "--explain") explain = std::stoi(next());
+    else if (a == "--only-repair") only_repair = true;
+    else if (a == "--trace") trace = true;
+    else if (a == "--no-rejoin") rejoin = false;
+    else if (a == "--dump") dump = next();
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
@@ -260,7 +373,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--no-rejoin] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
       return 2;
     }
   }
@@ -292,8 +405,8 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | twist time share | twist CPU share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | re-joined | twist time share | twist CPU share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
     std::string label = c.label;
@@ -320,11 +433,12 @@ int main(int argc, char** argv) {
       ro.seed = seed;
       ro.orient_winners = orient_winners;
       Consistency cons[2];
+      double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
       size_t left[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0, cpu_share = 0;
-      for (int with = 0; with < 2; ++with) {
+      for (int with = only_repair ? 1 : 0; with < 2; ++with) {
         gcs::Reconstructor rec(cloud, ro);
         std::shared_ptr<gcs::TwistOperation> op;
         if (with) {
@@ -336,16 +450,25 @@ int main(int argc, char** argv) {
           to.repair.max_border_ratio = border_ratio;
           to.max_retwists = max_retwists;
           to.repair.regrow_cut_outs = regrow;
+          to.rejoin_borders = rejoin;
           if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
           op = std::make_shared<gcs::TwistOperation>(to);
+          if (trace) rec.add_operation(std::make_shared<TraceOperation>("before twist"));
           rec.add_operation(op);
+          if (trace) rec.add_operation(std::make_shared<TraceOperation>("after twist"));
         }
         const double c0 = cpu_seconds();
         const gcs::ReconstructResult r = rec.run();
         const double run_cpu = cpu_seconds() - c0;
         cons[with] = consistency(r.mesh, truth);
+        cover[with] = coverage(r.mesh, dense_cloud);
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
         left[with] = twist::count_same_orientation_layers(r.mesh);
+        if (explain > 0) explain_pairs(r.mesh, truth, c.label + (with ? " repair" : " plain"), seed, explain);
+        if (!dump.empty()) {
+          edgefront::write_mesh(r.mesh, dump + "-" + c.shape + "-" + std::to_string(c.thickness).substr(0, 4) + "-s" +
+                                            std::to_string(seed) + (with ? "-repair" : "-plain") + ".off");
+        }
         const edgefront::MeshStats ms = edgefront::compute_stats(r.mesh);
         borders[with] = ms.border_loops;
         components[with] = ms.components;
@@ -355,11 +478,11 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
-                  label.c_str(), seed, cons[0].absolute, cons[0].per_component, eval[0].per_component, cons[0].judged,
-                  cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, eval[1].per_component,
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
+                  label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
+                  cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
                   cons[1].judged, cons[1].undecided, left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, 100 * share, 100 * cpu_share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

@@ -1,6 +1,11 @@
 #include "gcs/twist_operation.h"
 
+#include "detail/border_rejoin.h"
+
+#include <cmath>
+#include <cstdlib>
 #include <ctime>
+#include <limits>
 #include <string>
 
 namespace gcs {
@@ -50,6 +55,21 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.regions_scattered += r.regions_scattered;
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
+  if (options_.rejoin_borders && (r.repairs > 0 || r.faces_removed > 0) && context.points.size() > 0) {
+    if (!cloud_index_) cloud_index_ = std::make_unique<edgefront::PointIndex>(context.points.points);
+    const detail::CloudQuery cloud = [&](const edgefront::Vec3& p) -> detail::CloudHit {
+      const edgefront::PointIndex::Neighbor nb = cloud_index_->nearest(p);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      return {std::sqrt(nb.distance2), context.points.has_normals() ? context.points.normals[nb.index] : edgefront::Vec3(nan, nan, nan)};
+    };
+    // Stricter than the loop's own merging (chains within 2 mean edges, strips within 2.25 mean
+    // edges of the points): on a thin shell a looser join bridges the two walls and re-twists
+    // (bench/results/twist-vaults.md).
+    const double gapx = std::getenv("RJ_GAP") ? std::atof(std::getenv("RJ_GAP")) : 1.0;
+    const double supx = std::getenv("RJ_SUP") ? std::atof(std::getenv("RJ_SUP")) : 0.5;
+    const detail::RejoinResult j = detail::rejoin_borders(mesh, cloud, {context.mean_edge_length, supx * context.mean_edge_length, gapx});
+    stats_.borders_rejoined += j.strips + j.loops_merged;
+  }
   result.mesh_changed = r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;
   if (result.mesh_changed) {
     result.summary = std::to_string(r.repairs) + " twist(s) repaired (" + std::to_string(r.faces_flipped) + " faces flipped, " +

@@ -782,16 +782,22 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   return result;
 }
 
-size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options) {
-  detail::check_mesh(mesh, "twist::count_same_orientation_layers");
+std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh& mesh, const DetectOptions& options) {
+  detail::check_mesh(mesh, "twist::same_orientation_pairs");
   validate_options(mesh, options);
   Detector det(mesh, options);
-  size_t count = 0;
+  std::vector<std::pair<FaceHandle, FaceHandle>> out;
   for (FaceHandle f : mesh.faces()) {
     if (det.normal(f).sqrnorm() == 0) continue;
-    if (det.far_layer(f, 1.0, true).is_valid() || det.far_layer(f, -1.0, true).is_valid()) ++count;
+    FaceHandle g = det.far_layer(f, 1.0, true);
+    if (!g.is_valid()) g = det.far_layer(f, -1.0, true);
+    if (g.is_valid()) out.emplace_back(f, g);
   }
-  return count;
+  return out;
+}
+
+size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options) {
+  return same_orientation_pairs(mesh, options).size();
 }
 
 std::vector<TwistRegion> detect(const Mesh& mesh, const DetectOptions& options) {

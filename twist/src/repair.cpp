@@ -303,7 +303,85 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
   detail::cut_and_reverse(mesh, exhausted->order, true, &dups);
   rec.vertices_duplicated = dups.size() - before;
   rec.flipped_faces = exhausted->order.size();
+  // The cut may also split the other side: pieces of it that hung on the region only by a few
+  // edges are now on their own. Tiny ones go (never leave a tiny component); local: each piece
+  // at the cut is explored with a budget of min_component_faces.
+  std::vector<VertexHandle> at_cut;
+  for (size_t i = before; i < dups.size(); ++i) {
+    at_cut.push_back(dups[i].first);
+    at_cut.push_back(dups[i].second);
+  }
+  rec.tiny_faces_removed = remove_tiny_pieces(mesh, at_cut, o.min_component_faces);
   return rec;
+}
+
+/// Components that contain a vertex of a cut (a copy or its original) and have fewer than
+/// max(min_component_faces, min_cut_piece_share x the largest component's faces) faces are
+/// removed: pieces the cuts separated that are too small to stand as a part of the surface (a
+/// sliver of one wall, a fragment lying over another piece). Components without a cut vertex are
+/// the input's and stay. Returns the number of faces removed. O(F).
+size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
+  if (dups.empty()) return 0;
+  UnionFind comp(mesh.n_vertices());
+  for (FaceHandle f : mesh.faces()) {
+    auto it = mesh.fv_begin(f);
+    const size_t v0 = static_cast<size_t>((*it).idx());
+    for (++it; it.is_valid(); ++it) comp.unite(v0, static_cast<size_t>((*it).idx()));
+  }
+  std::unordered_map<size_t, std::vector<FaceHandle>> faces_of;
+  size_t largest = 0;
+  for (FaceHandle f : mesh.faces()) {
+    auto& fs = faces_of[comp.find(static_cast<size_t>((*mesh.fv_begin(f)).idx()))];
+    fs.push_back(f);
+    largest = std::max(largest, fs.size());
+  }
+  const double limit = std::max(static_cast<double>(o.min_component_faces), o.min_cut_piece_share * static_cast<double>(largest));
+  std::unordered_set<size_t> cut_roots;
+  for (const auto& [copy, original] : dups) {
+    for (VertexHandle v : {copy, original}) {
+      if (edgefront::is_live(mesh, v) && !mesh.is_isolated(v)) cut_roots.insert(comp.find(static_cast<size_t>(v.idx())));
+    }
+  }
+  std::vector<size_t> roots(cut_roots.begin(), cut_roots.end());
+  std::sort(roots.begin(), roots.end());
+  size_t removed = 0;
+  for (size_t root : roots) {
+    const auto& fs = faces_of[root];
+    if (static_cast<double>(fs.size()) >= limit || fs.size() == largest) continue;
+    for (FaceHandle f : fs) mesh.delete_face(f, true);
+    removed += fs.size();
+  }
+  return removed;
+}
+
+/// Removes border flaps (see `RepairOptions::peel_flaps`): faces with a vertex on the border
+/// that have a same-orientation partner (`same_orientation_pairs`), in up to `peel_flaps`
+/// rounds, and the tiny pieces that leaves. Returns the number of faces removed.
+size_t peel_flaps(Mesh& mesh, const RepairOptions& o) {
+  size_t removed = 0;
+  DetectOptions d = o.detect;
+  d.restrict_to.reset();
+  d.face_grid = nullptr;
+  d.mean_edge_length = 0;
+  for (int round = 0; round < o.peel_flaps; ++round) {
+    if (mesh.faces().begin() == mesh.faces().end()) break;  // nothing left to judge
+    std::vector<FaceHandle> flaps;
+    auto on_border = [&](FaceHandle f) {
+      for (VertexHandle v : mesh.fv_range(f)) {
+        if (mesh.is_boundary(v)) return true;
+      }
+      return false;
+    };
+    for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
+      if (on_border(f)) flaps.push_back(f);
+      if (on_border(g)) flaps.push_back(g);
+    }
+    std::sort(flaps.begin(), flaps.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+    flaps.erase(std::unique(flaps.begin(), flaps.end()), flaps.end());
+    if (flaps.empty()) break;
+    removed += remove_faces(mesh, flaps, o.min_component_faces);
+  }
+  return removed;
 }
 
 /// The global orientation convention (see repair.h).
@@ -386,6 +464,10 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (!(o.retest_turn_degrees >= 0 && o.retest_turn_degrees <= 180)) {
     throw InvalidInput("twist::repair: option retest_turn_degrees must lie in [0, 180]");
   }
+  if (!(o.min_cut_piece_share >= 0 && o.min_cut_piece_share <= 1)) {
+    throw InvalidInput("twist::repair: option min_cut_piece_share must lie in [0, 1]");
+  }
+  if (o.peel_flaps < 0 || o.peel_flaps > 16) throw InvalidInput("twist::repair: option peel_flaps must lie in [0, 16]");
   if (!(o.retest_move >= 0) || !std::isfinite(o.retest_move)) {
     throw InvalidInput("twist::repair: option retest_move must be finite and >= 0");
   }
@@ -462,6 +544,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       report.vertices_duplicated += rec.vertices_duplicated;
       report.cut_edges += rec.cut_edges;
       if (rec.removed) report.faces_removed += rec.faces_visited - rec.other_side_faces;
+      report.faces_removed += rec.tiny_faces_removed;
       did_something = true;
     }
     if (!stale || !did_something) break;
@@ -482,6 +565,12 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     }
   }
   if (grid) grid->update_new(mesh);
+  if (!incremental && o.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
+  if (!incremental && o.peel_flaps > 0) {
+    const size_t peeled = peel_flaps(mesh, o);
+    report.flap_faces_removed += peeled;
+    report.faces_removed += peeled;
+  }
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
   if (o.garbage_collect) {
     const size_t before = mesh.n_vertices();

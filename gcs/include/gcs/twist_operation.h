@@ -14,20 +14,23 @@
 #include <utility>
 #include <vector>
 
+#include "edgefront/point_index.h"
 #include "gcs/operation.h"
 #include "twist/repair.h"
 
 namespace gcs {
 
 struct TwistOperationOptions {
-  /// Detection and repair settings (garbage collection is forced off). Default here: no limit
+  /// Detection and repair settings (garbage collection is forced off). Defaults here: no limit
   /// on the border of a region (`max_border_ratio` = 0): in the loop, cutting scattered regions
-  /// too gives higher orientation consistency on the vault shells, at the price of many more
-  /// components (bench/results/twist-vaults.md has both).
+  /// too gives higher orientation consistency on the vault shells, at the price of more
+  /// components (bench/results/twist-vaults.md has both); and the final call peels border flaps
+  /// (`peel_flaps` = 3: faces at a border lying over another layer with the same orientation).
   twist::RepairOptions repair = default_repair();
   static twist::RepairOptions default_repair() {
     twist::RepairOptions o;
     o.max_border_ratio = 0;
+    o.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
     return o;
   }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
@@ -36,6 +39,11 @@ struct TwistOperationOptions {
   /// Local detection after a batch: a face grid kept up to date across calls instead of a k-d
   /// tree over all face centroids per call (see `twist::TwistRepairer::repair_changed`).
   bool local = true;
+  /// After a call that cut or removed something, re-join border chains of different loops that
+  /// run close and opposite (orientation-compatible) and whole loop pairs, with the loop's border
+  /// operations (strips must lie on the input points and agree with the faces on both sides):
+  /// pieces a repair separated grow back together where their orientations now agree.
+  bool rejoin_borders = true;
 };
 
 /// Totals over all calls.
@@ -51,6 +59,7 @@ struct TwistOperationStats {
   bool non_orientable = false;
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
   std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
+  std::size_t borders_rejoined = 0;    ///< border strips and loop merges added after repairs
 };
 
 class TwistOperation : public Operation {
@@ -70,6 +79,7 @@ class TwistOperation : public Operation {
   std::unique_ptr<twist::ReferenceNormals> reference_;
   bool reference_checked_ = false;
   std::unique_ptr<twist::TwistRepairer> repairer_;
+  std::unique_ptr<edgefront::PointIndex> cloud_index_;  ///< over the input points, for the border re-join
   TwistOperationStats stats_;
 };
 

@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <unordered_map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "edgefront/mesh.h"
@@ -217,6 +218,11 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
 /// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
 /// Uses the geometry only (`reference`, `restrict_to` are ignored). Throws as `detect`.
 size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {});
+
+/// The faces `count_same_orientation_layers` counts, each with its nearest such partner (the one
+/// in front when there is one, else behind), in increasing face index order.
+std::vector<std::pair<edgefront::FaceHandle, edgefront::FaceHandle>> same_orientation_pairs(
+    const edgefront::Mesh& mesh, const DetectOptions& options = {});
 
 /// `detect_regions(mesh, options).regions`.
 std::vector<TwistRegion> detect(const edgefront::Mesh& mesh, const DetectOptions& options = {});

@@ -32,6 +32,23 @@ struct RepairOptions {
   /// A side smaller than this (in faces) is never left as its own component: it is removed
   /// instead of flipped. >= 1.
   size_t min_component_faces = 8;
+  /// At the end of a full repair (`repair`, `TwistRepairer::finish`; not the incremental calls,
+  /// which stay local), a component that the cuts separated (it holds a vertex of a cut) and that
+  /// has fewer than max(min_component_faces, this share x the largest component's faces) faces is
+  /// removed: a sliver or fragment too small to stand as a part of the surface, often lying over
+  /// another piece with the same orientation. Components the input had stay. In [0, 1]; 0 = only
+  /// `min_component_faces` at each cut.
+  double min_cut_piece_share = 0.02;
+  /// At the end of a full repair: rounds of removing border flaps, faces with a vertex on the
+  /// mesh border that have a partner close in space, far along the surface and with the same
+  /// orientation (`same_orientation_pairs`). Such a face is not a twist (the orientation of both
+  /// may be right) but a double layer: a flap of one piece lying over another piece or over the
+  /// same piece further along (left by a cut, a re-join or the loop's border operations). Each
+  /// round peels one ring; the tiny pieces it leaves go too. Faces away from a border are left to
+  /// the detector. In [0, 16]; 0 = off (the default: on a mesh that no refinement loop will fit
+  /// again, the faces of a twist line cut through but not moved count as flaps; the GCS hook
+  /// turns it on, see `gcs::TwistOperationOptions`).
+  int peel_flaps = 0;
   /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
   /// hole; falls back to a hole when a loop is not simple.
@@ -69,6 +86,7 @@ struct RepairRecord {
   size_t faces_visited = 0;
   bool flipped_region = false;   ///< the region side was the one flipped (else the other side)
   bool removed = false;          ///< the exhausted side was smaller than min_component_faces, or cut out
+  size_t tiny_faces_removed = 0; ///< faces of pieces under min_component_faces that the cut split off the other side
 };
 
 struct RepairReport {
@@ -77,7 +95,8 @@ struct RepairReport {
   bool capped = false;                 ///< more regions than max_repairs were found
   size_t faces_flipped = 0;            ///< by the repairs (not counting the global orientation)
   size_t faces_visited = 0;            ///< by the alternating fronts, all repairs together
-  size_t faces_removed = 0;
+  size_t faces_removed = 0;             ///< all removals (tiny pieces, cut-outs, flaps)
+  size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairOptions::peel_flaps`)
   size_t vertices_duplicated = 0;
   size_t cut_edges = 0;
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
