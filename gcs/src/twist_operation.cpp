@@ -3,7 +3,6 @@
 #include "detail/border_rejoin.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <ctime>
 #include <limits>
 #include <string>
@@ -65,9 +64,7 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
     // Stricter than the loop's own merging (chains within 2 mean edges, strips within 2.25 mean
     // edges of the points): on a thin shell a looser join bridges the two walls and re-twists
     // (bench/results/twist-vaults.md).
-    const double gapx = std::getenv("RJ_GAP") ? std::atof(std::getenv("RJ_GAP")) : 1.0;
-    const double supx = std::getenv("RJ_SUP") ? std::atof(std::getenv("RJ_SUP")) : 0.5;
-    const detail::RejoinResult j = detail::rejoin_borders(mesh, cloud, {context.mean_edge_length, supx * context.mean_edge_length, gapx});
+    const detail::RejoinResult j = detail::rejoin_borders(mesh, cloud, {context.mean_edge_length, 0.5 * context.mean_edge_length, 1.0});
     stats_.borders_rejoined += j.strips + j.loops_merged;
   }
   result.mesh_changed = r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;
