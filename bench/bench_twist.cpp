@@ -4,7 +4,8 @@
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
-///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners]
+///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--no-rejoin]
+///               [--peel N] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
 ///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all]
 ///                                     GCS on a point file with and without the twist operation:
@@ -29,6 +30,15 @@
 /// `--no-orient-winners` runs GCS with `ReconstructOptions::orient_winners` off (plain winners, as
 /// in the published loop): with oriented samples the oriented winner search keeps most runs from
 /// twisting at all, so this is the setting that shows what the repair does on a twisted GCS.
+/// "coverage" is the share of the exact samples with a vertex, edge midpoint or face centroid of
+/// the result within 2% of the bounding-box diagonal: consistency alone does not show a result
+/// that lost most of its surface (a repair that shreds the shell lets the loop delete the pieces).
+/// `--no-rejoin` turns the border re-join after repairs off (`TwistOperationOptions::rejoin_borders`),
+/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`).
+/// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
+/// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
+/// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
+/// `--only-repair` skips the runs without the operation (their columns are then zero).
 /// Prints a markdown table.
 
 #include <algorithm>
@@ -333,6 +343,7 @@ int main(int argc, char** argv) {
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
   int explain = 0;
   bool only_repair = false, trace = false, rejoin = true;
+  int peel = -1;
   std::string dump;
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
@@ -365,6 +376,7 @@ int main(int argc, char** argv) {
     else if (a == "--only-repair") only_repair = true;
     else if (a == "--trace") trace = true;
     else if (a == "--no-rejoin") rejoin = false;
+    else if (a == "--peel") peel = std::stoi(next());
     else if (a == "--dump") dump = next();
     else if (a == "--detect-scaling") {
       detect_scaling();
@@ -373,7 +385,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--no-rejoin] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--no-rejoin] [--peel N] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
       return 2;
     }
   }
@@ -451,6 +463,7 @@ int main(int argc, char** argv) {
           to.max_retwists = max_retwists;
           to.repair.regrow_cut_outs = regrow;
           to.rejoin_borders = rejoin;
+          if (peel >= 0) to.repair.peel_flaps = peel;
           if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
           op = std::make_shared<gcs::TwistOperation>(to);
           if (trace) rec.add_operation(std::make_shared<TraceOperation>("before twist"));

@@ -13,8 +13,10 @@
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/point_cloud.h"
 #include "edgefront/shapes.h"
 #include "twist/orient_soup.h"
+#include "twist/reference_normals.h"
 #include "twist/repair.h"
 #include "twist/twisted_shapes.h"
 
@@ -97,6 +99,54 @@ TEST(TwistRepair, ReferenceNormalsGiveTheSameResult) {
   const auto r = twist::repair(s.mesh, o);
   EXPECT_EQ(r.repairs, 1u);
   EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
+}
+
+/// Adds an n x n grid of unit cells at height z with offset (x0, y0), normals +z.
+void add_grid(Mesh& m, int n, double x0, double y0, double z) {
+  std::vector<Mesh::VertexHandle> v;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) v.push_back(m.add_vertex(Vec3(x0 + i, y0 + j, z)));
+  }
+  const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * (n + 1) + i)]; };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+}
+
+TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
+  // A 10 x 10 plate and a 2 x 2 flap lying 0.5 above its middle, both facing +z: a double layer
+  // (same orientation, close in space, far along the surface), not a twist; the reference (+z)
+  // confirms both, so nothing is cut. Peeling removes the flap (every face of it touches its
+  // border) and leaves the plate (its faces under the flap are interior).
+  Mesh m;
+  add_grid(m, 10, 0, 0, 0);
+  add_grid(m, 2, 4, 4, 0.5);
+  edgefront::PointCloud cloud;
+  for (double x = 0; x <= 10; x += 0.25) {
+    for (double y = 0; y <= 10; y += 0.25) {
+      cloud.points.emplace_back(x, y, 0);
+      cloud.normals.emplace_back(0, 0, 1);
+    }
+  }
+  const twist::ReferenceNormals ref(cloud);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  ASSERT_GE(twist::same_orientation_pairs(m).size(), 8u + 8u) << "the flap's 8 faces and the plate faces under it";
+  Mesh kept = m;
+  EXPECT_EQ(twist::repair(kept, o).flap_faces_removed, 0u) << "off by default";
+  EXPECT_EQ(kept.n_faces(), 208u);
+  o.peel_flaps = 1;
+  const twist::RepairReport r = twist::repair(m, o);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.flap_faces_removed, 8u);
+  EXPECT_EQ(m.n_faces(), 200u);
+  EXPECT_EQ(edgefront::compute_stats(m).components, 1u);
+  EXPECT_EQ(twist::same_orientation_pairs(m).size(), 0u);
+  o.peel_flaps = 17;
+  EXPECT_THROW(twist::repair(m, o), InvalidInput);
 }
 
 TEST(TwistRepair, CorrectMeshIsLeftAlone) {

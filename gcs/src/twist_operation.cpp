@@ -42,6 +42,24 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   }
   if (context.live_vertices < options_.min_vertices && !context.final_call) return result;
   if (changed.faces.empty() && !context.final_call) return result;
+  // Re-joins orientation-compatible borders (see TwistOperationOptions::rejoin_borders).
+  auto rejoin = [&]() -> size_t {
+    if (!options_.rejoin_borders || context.points.size() == 0) return 0;
+    if (!cloud_index_) cloud_index_ = std::make_unique<edgefront::PointIndex>(context.points.points);
+    const detail::CloudQuery cloud = [&](const edgefront::Vec3& p) -> detail::CloudHit {
+      const edgefront::PointIndex::Neighbor nb = cloud_index_->nearest(p);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      return {std::sqrt(nb.distance2), context.points.has_normals() ? context.points.normals[nb.index] : edgefront::Vec3(nan, nan, nan)};
+    };
+    // Stricter than the loop's own merging (chains within 2 mean edges, strips within 2.25 mean
+    // edges of the points): on a thin shell a looser join bridges the two walls and re-twists
+    // (bench/results/twist-vaults.md).
+    const detail::RejoinResult j = detail::rejoin_borders(mesh, cloud, {context.mean_edge_length, 0.5 * context.mean_edge_length, 1.0});
+    stats_.borders_rejoined += j.strips + j.loops_merged;
+    return j.strips + j.loops_merged;
+  };
+  // The final call re-joins first, so that its full repair (and its flap peeling) sees the joins.
+  const size_t joined_first = context.final_call && !repairer_->cuts().empty() ? rejoin() : 0;
   const twist::RepairReport r =
       context.final_call ? repairer_->finish(mesh)
                          : repairer_->repair_changed(mesh, changed.faces, options_.local ? context.mean_edge_length : 0.0);
@@ -54,20 +72,8 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.regions_scattered += r.regions_scattered;
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
-  if (options_.rejoin_borders && (r.repairs > 0 || r.faces_removed > 0) && context.points.size() > 0) {
-    if (!cloud_index_) cloud_index_ = std::make_unique<edgefront::PointIndex>(context.points.points);
-    const detail::CloudQuery cloud = [&](const edgefront::Vec3& p) -> detail::CloudHit {
-      const edgefront::PointIndex::Neighbor nb = cloud_index_->nearest(p);
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      return {std::sqrt(nb.distance2), context.points.has_normals() ? context.points.normals[nb.index] : edgefront::Vec3(nan, nan, nan)};
-    };
-    // Stricter than the loop's own merging (chains within 2 mean edges, strips within 2.25 mean
-    // edges of the points): on a thin shell a looser join bridges the two walls and re-twists
-    // (bench/results/twist-vaults.md).
-    const detail::RejoinResult j = detail::rejoin_borders(mesh, cloud, {context.mean_edge_length, 0.5 * context.mean_edge_length, 1.0});
-    stats_.borders_rejoined += j.strips + j.loops_merged;
-  }
-  result.mesh_changed = r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;
+  if (!context.final_call && (r.repairs > 0 || r.faces_removed > 0)) rejoin();
+  result.mesh_changed = joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0;
   if (result.mesh_changed) {
     result.summary = std::to_string(r.repairs) + " twist(s) repaired (" + std::to_string(r.faces_flipped) + " faces flipped, " +
                      std::to_string(r.regions_cut_out) + " cut out), " + std::to_string(r.components_flipped) +
