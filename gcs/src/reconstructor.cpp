@@ -13,6 +13,7 @@
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
 #include "detail/double_layer.h"
+#include "detail/sample_projection.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
@@ -70,6 +71,7 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (!(o.unsupported_distance > 0) || !std::isfinite(o.unsupported_distance)) fail("unsupported_distance must be positive");
   if (!(o.long_edge_factor > 1) || !std::isfinite(o.long_edge_factor)) fail("long_edge_factor must be > 1");
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
+  if (o.film_samples > 64) fail("film_samples must be at most 64");
 }
 
 }  // namespace
@@ -318,7 +320,16 @@ struct Reconstructor::Impl {
 
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
-    return {std::sqrt(nb.distance2), point_normal(nb.index)};
+    return {std::sqrt(nb.distance2), point_normal(nb.index), cloud.points[nb.index]};
+  }
+
+  // The k samples nearest to p with their oriented normals (the film test of the border creation).
+  std::vector<PointIndex::Neighbor> knn_oriented;  // its scratch (point_normal uses knn)
+  void oriented_neighbors(const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
+    tree->k_nearest(p, k, knn_oriented);
+    out.clear();
+    for (const PointIndex::Neighbor& nb : knn_oriented)
+      out.push_back({std::sqrt(nb.distance2), oriented_normal(nb.index), cloud.points[nb.index]});
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -783,7 +794,11 @@ struct Reconstructor::Impl {
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
-      tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
+      bp.film_samples = oriented ? opt.film_samples : 0;
+      tally(faces_removed, detail::remove_unsupported_faces(
+                               mesh, dist, bp, [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
+                                 oriented_neighbors(p, k, out);
+                               }));
     }
     if (opt.create_borders && oriented)
       tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
@@ -847,11 +862,15 @@ struct Reconstructor::Impl {
     rebuild_grid_if_needed();
   }
 
-  ReconstructResult make_result(double seconds) const {
+  ReconstructResult make_result(double seconds) {
     ReconstructResult r;
     r.mesh = mesh;
-    for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.garbage_collection();
+    // Post-processing of the copy only (the loop's own mesh stays as it is).
+    if (opt.project_to_samples) {
+      detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * mean_edge_length());
+    }
+    for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();
     r.stop_reason = finished_reason;
     r.basic_steps = steps;
