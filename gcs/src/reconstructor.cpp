@@ -76,6 +76,11 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
 
 }  // namespace
 
+// The film test of the border creation runs only for clouds whose oriented normals point away
+// from their centroid at least this much (detail::normal_flux: a sphere 1, a flat sheet 0): a film
+// across a tunnel needs a surface around a volume; on flat sheets it curled the borders.
+constexpr double kEnclosingFlux = 0.2;
+
 struct Reconstructor::Impl {
   ReconstructOptions opt;
   edgefront::PointCloud cloud;  // centred
@@ -89,6 +94,7 @@ struct Reconstructor::Impl {
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
+  bool encloses = false;  // oriented, and the oriented normals point outward as around a volume
   std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
 
   Mesh mesh;
@@ -184,6 +190,9 @@ struct Reconstructor::Impl {
       for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
       oriented_fitted = fitted_normal;
       oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted);
+    }
+    if (oriented) {
+      encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
     }
     rng.seed(opt.seed);
     build_start_mesh(lo - offset, hi - offset);
@@ -794,7 +803,7 @@ struct Reconstructor::Impl {
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
-      bp.film_samples = oriented ? opt.film_samples : 0;
+      bp.film_samples = encloses ? opt.film_samples : 0;
       tally(faces_removed, detail::remove_unsupported_faces(
                                mesh, dist, bp, [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
                                  oriented_neighbors(p, k, out);

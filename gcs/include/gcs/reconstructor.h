@@ -95,13 +95,12 @@ struct ReconstructOptions {
   /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
   /// graph is not connected.
   bool orient_winners = true;
-  /// With oriented samples (see orient_winners), the border creation also removes films: faces
-  /// all of whose this many nearest samples (within the support distance) face sideways to them
-  /// and have them in front, i.e. a film spanning a tunnel or gap outside the object (kitten.xyz's
-  /// tail tunnel). 0 disables (default); at most 64. Experimental: with 8, kitten.xyz at 5K ends
-  /// closed genus 1 on 8 of 16 seeds instead of 6, but small open sheets (2000 points, 300
-  /// vertices) get small folds (self-intersecting pairs) where the border curls (bench/results/gcs.md).
-  std::size_t film_samples = 0;
+  /// With oriented samples (see orient_winners) that surround a volume (their normals point away
+  /// from the centroid: not an open flat sheet), the border creation also removes films: faces all
+  /// of whose this many nearest samples (within the support distance) face sideways to them and
+  /// have them in front, i.e. a film spanning a tunnel or gap outside the object (kitten.xyz's
+  /// tail tunnel). 0 disables; at most 64.
+  std::size_t film_samples = 8;
   /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
   /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
   /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
