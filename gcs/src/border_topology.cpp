@@ -229,8 +229,11 @@ size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
   return removed;
 }
 
-size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const BorderParams& params) {
+size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const BorderParams& params,
+                                const CloudNeighbors& neighbors) {
   std::vector<FaceHandle> doomed;
+  std::vector<CloudHit> near;
+  const bool film_test = params.film_samples > 0 && neighbors;
   size_t live_faces = 0;
   const double max_edge2 = params.max_edge_length * params.max_edge_length;
   for (auto f : mesh.faces()) {
@@ -244,6 +247,19 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
     }
     if (!remove) {
       for (auto h : mesh.fh_range(f)) remove = remove || mesh.calc_edge_sqr_length(h) > max_edge2;
+    }
+    if (!remove && film_test) {
+      const Vec3 n = face_normal(mesh, f);
+      const Vec3 c = centroid(mesh, f);
+      neighbors(c, params.film_samples, near);
+      bool supported = !(n.norm() > 0);
+      for (const CloudHit& s : near) {
+        if (supported || s.distance > params.max_support_distance) break;
+        supported = !std::isfinite(s.normal[0]) ||
+                    std::abs(n | s.normal) >= params.film_min_cos * n.norm() * s.normal.norm() ||
+                    ((c - s.point) | s.normal) <= 0;
+      }
+      remove = !supported;
     }
     if (remove) doomed.push_back(f);
   }

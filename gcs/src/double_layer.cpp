@@ -103,6 +103,25 @@ std::size_t remove_opposed_faces(Mesh& mesh, const CloudQuery& cloud, const Oppo
   return removed;
 }
 
+double normal_flux(const std::vector<Vec3>& points, const std::vector<Vec3>& normals) {
+  EF_CHECK(normals.size() == points.size(), "normal_flux: sizes differ");
+  if (points.empty()) return 0;
+  Vec3 c(0, 0, 0);
+  for (const Vec3& p : points) c += p;
+  c /= static_cast<double>(points.size());
+  double flux = 0, extent = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3 d = points[i] - c;
+    extent = std::max(extent, d.norm());
+    const double ln = normals[i].norm();
+    if (!std::isfinite(ln) || !(ln > 0)) continue;
+    flux += (normals[i] | d) / ln;
+    ++count;
+  }
+  return count && extent > 0 ? flux / (extent * static_cast<double>(count)) : 0.0;
+}
+
 bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
                     std::size_t k) {
   const std::size_t n = points.size();
@@ -150,17 +169,15 @@ bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex
   Vec3 c(0, 0, 0);
   for (const Vec3& p : points) c += p;
   c /= static_cast<double>(n);
-  double flux = 0, extent = 0;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 d = points[i] - c;
-    extent = std::max(extent, d.norm());
-    const Eigen::Vector3d q(d[0], d[1], d[2]);
-    cov += q * q.transpose();
-    if (usable(i)) flux += normals[i] | d;
-  }
+  const double flux = normal_flux(points, normals);
   double sign = flux;
-  if (!(std::abs(flux) > 0.05 * extent * static_cast<double>(total))) {
+  if (!(std::abs(flux) > 0.05)) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 d = points[i] - c;
+      const Eigen::Vector3d q(d[0], d[1], d[2]);
+      cov += q * q.transpose();
+    }
     const Eigen::Vector3d e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
     int big = 0;
     for (int a = 1; a < 3; ++a)

@@ -13,6 +13,7 @@
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
 #include "detail/double_layer.h"
+#include "detail/sample_projection.h"
 #include "detail/spatial_order.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
@@ -71,9 +72,15 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (!(o.unsupported_distance > 0) || !std::isfinite(o.unsupported_distance)) fail("unsupported_distance must be positive");
   if (!(o.long_edge_factor > 1) || !std::isfinite(o.long_edge_factor)) fail("long_edge_factor must be > 1");
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
+  if (o.film_samples > 64) fail("film_samples must be at most 64");
 }
 
 }  // namespace
+
+// The film test of the border creation runs only for clouds whose oriented normals point away
+// from their centroid at least this much (detail::normal_flux: a sphere 1, a flat sheet 0): a film
+// across a tunnel needs a surface around a volume; on flat sheets it curled the borders.
+constexpr double kEnclosingFlux = 0.2;
 
 struct Reconstructor::Impl {
   ReconstructOptions opt;
@@ -88,6 +95,7 @@ struct Reconstructor::Impl {
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
+  bool encloses = false;  // oriented, and the oriented normals point outward as around a volume
   std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
 
   Mesh mesh;
@@ -187,6 +195,9 @@ struct Reconstructor::Impl {
       for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
       oriented_fitted = fitted_normal;
       oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted);
+    }
+    if (oriented) {
+      encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
     }
     rng.seed(opt.seed);
     build_start_mesh(lo - offset, hi - offset);
@@ -339,7 +350,16 @@ struct Reconstructor::Impl {
 
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
-    return {std::sqrt(nb.distance2), point_normal(nb.index)};
+    return {std::sqrt(nb.distance2), point_normal(nb.index), cloud.points[nb.index]};
+  }
+
+  // The k samples nearest to p with their oriented normals (the film test of the border creation).
+  std::vector<PointIndex::Neighbor> knn_oriented;  // its scratch (point_normal uses knn)
+  void oriented_neighbors(const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
+    tree->k_nearest(p, k, knn_oriented);
+    out.clear();
+    for (const PointIndex::Neighbor& nb : knn_oriented)
+      out.push_back({std::sqrt(nb.distance2), oriented_normal(nb.index), cloud.points[nb.index]});
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -898,7 +918,11 @@ struct Reconstructor::Impl {
       bp.max_edge_length = opt.long_edge_factor * ell;
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
-      tally(faces_removed, detail::remove_unsupported_faces(mesh, dist, bp));
+      bp.film_samples = encloses ? opt.film_samples : 0;
+      tally(faces_removed, detail::remove_unsupported_faces(
+                               mesh, dist, bp, [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
+                                 oriented_neighbors(p, k, out);
+                               }));
     }
     if (opt.create_borders && oriented)
       tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
@@ -962,11 +986,15 @@ struct Reconstructor::Impl {
     rebuild_grid_if_needed();
   }
 
-  ReconstructResult make_result(double seconds) const {
+  ReconstructResult make_result(double seconds) {
     ReconstructResult r;
     r.mesh = mesh;
-    for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.garbage_collection();
+    // Post-processing of the copy only (the loop's own mesh stays as it is).
+    if (opt.project_to_samples) {
+      detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * mean_edge_length());
+    }
+    for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();
     r.stop_reason = finished_reason;
     r.basic_steps = steps;

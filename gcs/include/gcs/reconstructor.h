@@ -95,6 +95,17 @@ struct ReconstructOptions {
   /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
   /// graph is not connected.
   bool orient_winners = true;
+  /// With oriented samples (see orient_winners) that surround a volume (their normals point away
+  /// from the centroid: not an open flat sheet), the border creation also removes films: faces all
+  /// of whose this many nearest samples (within the support distance) face sideways to them and
+  /// have them in front, i.e. a film spanning a tunnel or gap outside the object (kitten.xyz's
+  /// tail tunnel). 0 disables; at most 64.
+  std::size_t film_samples = 8;
+  /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
+  /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
+  /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
+  /// The loop's own mesh (Reconstructor::mesh()) is not moved.
+  bool project_to_samples = true;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;

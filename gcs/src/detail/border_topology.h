@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "edgefront/mesh.h"
 
@@ -16,8 +17,11 @@ namespace gcs::detail {
 struct CloudHit {
   double distance = 0;
   edgefront::Vec3 normal{0, 0, 0};
+  edgefront::Vec3 point{0, 0, 0};  ///< the sample (filled by CloudNeighbors; CloudQuery may leave it)
 };
 using CloudQuery = std::function<CloudHit(const edgefront::Vec3&)>;
+/// The (up to) k input samples nearest to a point, nearest first, written into `out`.
+using CloudNeighbors = std::function<void(const edgefront::Vec3&, std::size_t k, std::vector<CloudHit>& out)>;
 
 struct BorderParams {
   double max_support_distance = 0;  ///< faces whose centroid is farther from the cloud are removed
@@ -26,6 +30,14 @@ struct BorderParams {
   double min_normal_cos = 0.35;
   /// ... when the centroid is at least this far from the nearest sample
   double normal_check_distance = 0;
+  /// Film test (needs a CloudNeighbors with oriented normals): a face is removed when every one of
+  /// the `film_samples` samples nearest to its centroid that lie within max_support_distance faces
+  /// sideways to it (|cos| of the normals below film_min_cos) and has the centroid in front of it
+  /// (on its normal's side): a film spanning a tunnel or gap outside the object (e.g. the one
+  /// across kitten.xyz's tail tunnel), which no sample facing like it supports. A sample without a
+  /// normal (NaN) keeps the face. 0 = off.
+  std::size_t film_samples = 0;
+  double film_min_cos = 0.5;
 
   std::size_t min_component_faces = 8;  ///< components with fewer faces are removed
   double min_component_fraction = 0.05;  ///< ... or with fewer than this share of the largest's faces
@@ -34,8 +46,9 @@ struct BorderParams {
 /// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
 /// components. Returns the number of faces removed. Never empties the mesh: when every face
 /// would go, nothing is removed.
+/// `neighbors` (may be empty: no film test) serves BorderParams::film_samples.
 std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cloud,
-                                     const BorderParams& params);
+                                     const BorderParams& params, const CloudNeighbors& neighbors = {});
 
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
 /// removes components other than the largest with fewer than max(min_faces, min_fraction x the

@@ -52,6 +52,12 @@ struct OpposedParams {
 /// or more of the faces. Returns the number of faces removed.
 std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params);
 
+/// How much the normals point away from the points' centroid c: the sum of n.(p - c) / |n| over
+/// the points with a usable normal, divided by their count times the largest |p - c|. About 0.5-1
+/// for a closed surface with outward normals (1 for a sphere), 0 for an open flat sheet, negative
+/// for inward normals; 0 without usable normals.
+double normal_flux(const std::vector<edgefront::Vec3>& points, const std::vector<edgefront::Vec3>& normals);
+
 /// Orients unsigned normals (e.g. fitted to each point's neighbours) consistently, for clouds
 /// without normals: a spanning tree of the k-nearest-neighbour graph that prefers parallel
 /// normals (Hoppe et al. 1992) carries one point's sign to all; then the global sign is outward

@@ -1,0 +1,25 @@
+#pragma once
+// Post-processing of the GCS result: moving the vertices onto the sampled surface.
+//
+// The loop leaves each vertex where the winner moves and the tangential smoothing put it: near the
+// samples on average, but off the surface by the jitter of the last moves (a vertex is a running
+// average of the samples it won, which lie on a curved surface). Moving it onto the tangent plane
+// of its nearest sample puts it on the surface up to that plane's curvature error.
+
+#include <cstddef>
+
+#include "border_topology.h"
+#include "edgefront/mesh.h"
+
+namespace gcs::detail {
+
+/// Moves every vertex x of `mesh` onto the tangent plane of its nearest sample p (normal n, taken
+/// from `nearest`; its sign does not matter): x - ((x - p).n) n / |n|^2. Positions are computed
+/// from the unmoved mesh, then applied vertex by vertex in index order. A vertex stays where it is
+/// when its sample has no usable normal (NaN or zero), when the move is longer than `max_move`,
+/// or when one of its faces would turn by more than acos(min_face_cos). `nearest` must fill
+/// CloudHit::point. Returns the number of vertices moved.
+std::size_t project_to_samples(edgefront::Mesh& mesh, const CloudQuery& nearest, double max_move,
+                               double min_face_cos = 0.5);
+
+}  // namespace gcs::detail
