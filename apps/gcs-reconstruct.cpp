@@ -1,6 +1,7 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
+///                   [--rejoin-borders]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
@@ -51,6 +52,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
                "shells such as the bundled vault are torn apart by the border creation otherwise)");
+  bool rejoin = false;
+  app.add_flag("--rejoin-borders", rejoin,
+               "after a twist repair, zip border chains that run close and orientation-compatible back together "
+               "(fewer pieces on thin shells; off by default: it can cost a closed scan its genus)");
   bool no_orient = false;
   app.add_flag("--no-orient-winners", no_orient,
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
@@ -109,7 +114,9 @@ int main(int argc, char** argv) {
     // The repair cuts twisted regions off and relies on the loop's border merging to heal the
     // cuts: without borders (--no-borders) the cuts would stay open, so it is off then too.
     if (!no_twist && !no_borders) {
-      twist_op = std::make_shared<gcs::TwistOperation>();
+      gcs::TwistOperationOptions twist_options;
+      twist_options.rejoin_borders = rejoin;
+      twist_op = std::make_shared<gcs::TwistOperation>(twist_options);
       reconstructor.add_operation(twist_op);
     }
     const gcs::ReconstructResult r = reconstructor.run(progress);

@@ -4,10 +4,10 @@
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
-///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--no-rejoin]
-///               [--peel N] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
+///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
+///               [--no-rejoin] [--peel N] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
-///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all]
+///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]
 ///                                     GCS on a point file with and without the twist operation:
 ///                                     wall and CPU time, the twist operation's share, faces tested
 ///
@@ -33,7 +33,8 @@
 /// "coverage" is the share of the exact samples with a vertex, edge midpoint or face centroid of
 /// the result within 2% of the bounding-box diagonal: consistency alone does not show a result
 /// that lost most of its surface (a repair that shreds the shell lets the loop delete the pieces).
-/// `--no-rejoin` turns the border re-join after repairs off (`TwistOperationOptions::rejoin_borders`),
+/// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
+/// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
 /// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
@@ -289,14 +290,15 @@ size_t vertices_for_edge(double area, double edge) {
 
 /// GCS on a point file with and without the twist operation (the cost of twist handling on a
 /// closed scan, issue 7's Speed).
-void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool retest_all) {
+void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool retest_all, bool rejoin, int peel) {
   const edgefront::PointCloud cloud = edgefront::read_points(path);
   std::printf("%s: %zu points%s, %zu vertices%s\n\n", path.c_str(), cloud.size(), cloud.has_normals() ? " with normals" : "",
               vertices, retest_all ? ", every changed face retested" : "");
-  std::printf("| seed | no twist: wall s | CPU s | consistency | with twist: wall s | CPU s | twist wall s | twist CPU s | twist share wall | twist share CPU | calls | faces tested | found | repaired | cut out | consistency |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| seed | no twist: wall s | CPU s | consistency | components / loops / genus | with twist: wall s | CPU s | twist wall s | twist CPU s | twist share wall | twist share CPU | calls | faces tested | found | repaired | cut out | consistency | components / loops / genus |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (size_t seed = 1; seed <= seeds; ++seed) {
     double wall[2] = {0, 0}, cpu[2] = {0, 0}, cons[2] = {0, 0};
+    std::string topology[2];
     gcs::TwistOperationStats stats;
     double op_wall = 0;
     for (int with = 0; with < 2; ++with) {
@@ -308,6 +310,8 @@ void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool rete
       if (with) {
         gcs::TwistOperationOptions to;
         if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
+        to.rejoin_borders = rejoin;
+        if (peel >= 0) to.repair.peel_flaps = peel;
         op = std::make_shared<gcs::TwistOperation>(to);
         rec.add_operation(op);
       }
@@ -320,11 +324,15 @@ void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool rete
         op_wall = r.seconds_operations;
       }
       if (cloud.has_normals()) cons[with] = gcs::orientation_consistency(r.mesh, cloud).per_component;
+      const edgefront::MeshStats ms = edgefront::compute_stats(r.mesh);
+      topology[with] = std::to_string(ms.components) + " / " + std::to_string(ms.border_loops) + " / " +
+                       std::to_string((2 * static_cast<long>(ms.components) - ms.euler_characteristic -
+                                       static_cast<long>(ms.border_loops)) / 2);
     }
-    std::printf("| %zu | %.2f | %.2f | %.4f | %.2f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% | %zu | %zu | %zu | %zu | %zu | %.4f |\n", seed,
-                wall[0], cpu[0], cons[0], wall[1], cpu[1], op_wall, stats.cpu_seconds, 100 * op_wall / wall[1],
-                100 * stats.cpu_seconds / cpu[1], stats.calls, stats.faces_tested, stats.regions_found, stats.repairs,
-                stats.regions_cut_out, cons[1]);
+    std::printf("| %zu | %.2f | %.2f | %.4f | %s | %.2f | %.2f | %.2f | %.2f | %.1f%% | %.1f%% | %zu | %zu | %zu | %zu | %zu | %.4f | %s |\n", seed,
+                wall[0], cpu[0], cons[0], topology[0].c_str(), wall[1], cpu[1], op_wall, stats.cpu_seconds,
+                100 * op_wall / wall[1], 100 * stats.cpu_seconds / cpu[1], stats.calls, stats.faces_tested,
+                stats.regions_found, stats.repairs, stats.regions_cut_out, cons[1], topology[1].c_str());
     std::fflush(stdout);
   }
 }
@@ -342,7 +350,7 @@ int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
   int explain = 0;
-  bool only_repair = false, trace = false, rejoin = true;
+  bool only_repair = false, trace = false, rejoin = gcs::TwistOperationOptions{}.rejoin_borders;
   int peel = -1;
   std::string dump;
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
@@ -376,6 +384,7 @@ int main(int argc, char** argv) {
     else if (a == "--only-repair") only_repair = true;
     else if (a == "--trace") trace = true;
     else if (a == "--no-rejoin") rejoin = false;
+    else if (a == "--rejoin") rejoin = true;
     else if (a == "--peel") peel = std::stoi(next());
     else if (a == "--dump") dump = next();
     else if (a == "--detect-scaling") {
@@ -385,7 +394,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--no-rejoin] [--peel N] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
       return 2;
     }
   }
@@ -394,7 +403,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!cloud_path.empty()) {
-    cloud_run(cloud_path, vertices, seeds, retest_all);
+    cloud_run(cloud_path, vertices, seeds, retest_all, rejoin, peel);
     return 0;
   }
   std::vector<Case> cases = {{"vault-shell t/R=0.2", "vault-shell", 0.2},   {"vault-shell t/R=0.1", "vault-shell", 0.1},

@@ -43,7 +43,12 @@ struct TwistOperationOptions {
   /// run close and opposite (orientation-compatible) and whole loop pairs, with the loop's border
   /// operations (strips must lie on the input points and agree with the faces on both sides):
   /// pieces a repair separated grow back together where their orientations now agree.
-  bool rejoin_borders = true;
+  /// Off by default: on the vault shells it leaves fewer pieces (t/R 0.1 seeds 1-2: 3 and 6
+  /// components instead of 4 and 9), but on CGAL's kitten scan, where the detector flags dozens
+  /// of small regions although nothing is twisted, the joins it adds are flagged and cut again and
+  /// the closed genus 1 result is lost (5K vertices, seeds 1-4: closed genus 1 in 1 run with it,
+  /// 2 without; bench/results/twist-vaults.md). `gcs-reconstruct --rejoin-borders` turns it on.
+  bool rejoin_borders = false;
 };
 
 /// Totals over all calls.
