@@ -14,6 +14,7 @@
 
 #include "detail/geometry.h"
 #include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
 
 namespace twist {
 
@@ -322,34 +323,25 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
 /// the input's and stay. Returns the number of faces removed. O(F).
 size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   if (dups.empty()) return 0;
-  UnionFind comp(mesh.n_vertices());
-  for (FaceHandle f : mesh.faces()) {
-    auto it = mesh.fv_begin(f);
-    const size_t v0 = static_cast<size_t>((*it).idx());
-    for (++it; it.is_valid(); ++it) comp.unite(v0, static_cast<size_t>((*it).idx()));
-  }
-  std::unordered_map<size_t, std::vector<FaceHandle>> faces_of;
-  size_t largest = 0;
-  for (FaceHandle f : mesh.faces()) {
-    auto& fs = faces_of[comp.find(static_cast<size_t>((*mesh.fv_begin(f)).idx()))];
-    fs.push_back(f);
-    largest = std::max(largest, fs.size());
-  }
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  auto label_of = [&](FaceHandle f) { return static_cast<size_t>(labels.vertex_component[(*mesh.fv_begin(f)).idx()]); };
+  std::vector<size_t> face_count(labels.count, 0);
+  for (FaceHandle f : mesh.faces()) ++face_count[label_of(f)];
+  const size_t largest = face_count.empty() ? 0 : *std::max_element(face_count.begin(), face_count.end());
   const double limit = std::max(static_cast<double>(o.min_component_faces), o.min_cut_piece_share * static_cast<double>(largest));
-  std::unordered_set<size_t> cut_roots;
+  std::vector<char> doomed(labels.count, 0);
   for (const auto& [copy, original] : dups) {
     for (VertexHandle v : {copy, original}) {
-      if (edgefront::is_live(mesh, v) && !mesh.is_isolated(v)) cut_roots.insert(comp.find(static_cast<size_t>(v.idx())));
+      if (!edgefront::is_live(mesh, v) || mesh.is_isolated(v)) continue;
+      const size_t c = static_cast<size_t>(labels.vertex_component[v.idx()]);
+      doomed[c] = static_cast<double>(face_count[c]) < limit && face_count[c] != largest;
     }
   }
-  std::vector<size_t> roots(cut_roots.begin(), cut_roots.end());
-  std::sort(roots.begin(), roots.end());
   size_t removed = 0;
-  for (size_t root : roots) {
-    const auto& fs = faces_of[root];
-    if (static_cast<double>(fs.size()) >= limit || fs.size() == largest) continue;
-    for (FaceHandle f : fs) mesh.delete_face(f, true);
-    removed += fs.size();
+  for (FaceHandle f : mesh.faces()) {
+    if (!doomed[label_of(f)]) continue;
+    mesh.delete_face(f, true);
+    ++removed;
   }
   return removed;
 }
