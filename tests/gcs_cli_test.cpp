@@ -75,6 +75,27 @@ TEST_F(GcsCli, NoOrientWinnersSwitchesTheOrientedWinnersOff) {
   EXPECT_GT(s.faces, 400u);
 }
 
+TEST_F(GcsCli, RejoinBordersIsAcceptedAndAFlagWithoutAValue) {
+  // The twist operation's border re-join (off by default) on a thin shell, where the repair cuts:
+  // a valid manifold mesh, the twist report, the same file twice.
+  const fs::path shell = fs::path(EDGEFRONT_DATA_DIR) / "vault-shell.xyz";
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 400 --seed 3 --rejoin-borders --quiet";
+  const eftest::CommandResult ra = run(q(shell) + " -o " + q(a) + common);
+  ASSERT_EQ(ra.exit_code, 0) << ra.err;
+  EXPECT_NE(ra.out.find("twist-repair"), std::string::npos) << ra.out;
+  ASSERT_EQ(run(q(shell) + " -o " + q(b) + common).exit_code, 0);
+  EXPECT_EQ(eftest::slurp(a), eftest::slurp(b));
+  const edgefront::MeshStats s = edgefront::compute_stats(edgefront::load_mesh(a));
+  EXPECT_EQ(s.nonmanifold_vertices, 0u);
+  EXPECT_GT(s.faces, 100u);
+  // A value that is not a boolean: a usage error, no file.
+  const eftest::CommandResult bad = run(q(shell) + " -o " + q(dir_ / "c.off") + " --vertices 100 --rejoin-borders=maybe");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c.off"));
+  EXPECT_NE(run("--help").out.find("--rejoin-borders"), std::string::npos);
+}
+
 TEST_F(GcsCli, PictureAndSnapshots) {
   const fs::path snaps = dir_ / "snaps";
   fs::create_directories(snaps);
