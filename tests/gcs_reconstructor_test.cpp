@@ -312,6 +312,11 @@ TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
   bad = small(50);
   bad.steps_per_split = 0;
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
+  bad = small(50);
+  bad.film_samples = 65;  // more nearest samples per face than the film test allows
+  EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
+  bad.film_samples = 64;
+  EXPECT_NO_THROW(gcs::Reconstructor(ok, bad));
   PointCloud wrong_normals = ok;
   wrong_normals.normals.resize(3);
   EXPECT_THROW(gcs::Reconstructor(wrong_normals, small(50)), InvalidInput);
