@@ -147,6 +147,11 @@ TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
   EXPECT_EQ(twist::same_orientation_pairs(m).size(), 0u);
   o.peel_flaps = 17;
   EXPECT_THROW(twist::repair(m, o), InvalidInput);
+  o.peel_flaps = 1;
+  for (double share : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    o.min_cut_piece_share = share;
+    EXPECT_THROW(twist::repair(m, o), InvalidInput) << share;
+  }
 }
 
 TEST(TwistRepair, CorrectMeshIsLeftAlone) {
