@@ -186,4 +186,92 @@ TEST(GcsFillSlits, ATriangularHoleIsClosedByItsOwnTriangle) {
   EXPECT_EQ(edgefront::compute_stats(m).border_loops, 1u);
 }
 
+// A tube around the z axis: `rings` rings of 12 vertices at z = z0, z0 + 1, ..., radius r,
+// faces pointing away from the axis; its two ends are border loops.
+void add_tube(Mesh& m, double z0, int rings, double r) {
+  constexpr int n = 12;
+  std::vector<VertexHandle> v;
+  for (int k = 0; k < rings; ++k)
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * M_PI * i / n;
+      v.push_back(m.add_vertex(Vec3(r * std::cos(a), r * std::sin(a), z0 + k)));
+    }
+  const auto at = [&](int k, int i) { return v[static_cast<size_t>(k * n + (i % n))]; };
+  for (int k = 0; k + 1 < rings; ++k)
+    for (int i = 0; i < n; ++i) {
+      m.add_face(at(k, i), at(k, i + 1), at(k + 1, i + 1));
+      m.add_face(at(k, i), at(k + 1, i + 1), at(k + 1, i));
+    }
+}
+
+// The cylinder of radius 2 around the z axis as the cloud (outward normals).
+gcs::detail::CloudHit cylinder(const Vec3& p) {
+  const double rho = std::hypot(p[0], p[1]);
+  return {std::abs(rho - 2.0), rho > 0 ? Vec3(p[0] / rho, p[1] / rho, 0) : Vec3(1, 0, 0)};
+}
+
+// Every face points away from the z axis.
+void expect_outward(Mesh& m) {
+  m.update_face_normals();
+  for (auto f : m.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : m.fv_range(f)) c += m.point(v);
+    EXPECT_GT((m.normal(f) | Vec3(c[0], c[1], 0).normalized()), 0.8);
+  }
+}
+
+TEST(GcsTrimMerge, TwoTubesWhoseRimsSlidPastEachOtherAreJoinedAfterTrimmingARing) {
+  // Tube A: z = 0 ... 3 (radius 2); tube B: z = 2.6 ... 5.6 (radius 2.05): B's lower rim lies
+  // 0.4 below A's upper rim, just outside it. The strip between the two rims folds back.
+  Mesh m;
+  add_tube(m, 0.0, 4, 2.0);
+  add_tube(m, 2.6, 4, 2.05);
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 4u);
+  gcs::detail::MergeParams mp;
+  mp.mean_edge_length = 1.0;
+  mp.max_support_distance = 1.5;
+  Mesh untrimmed = m;
+  EXPECT_EQ(gcs::detail::merge_border_loops(untrimmed, cylinder, mp), 0u);  // the fold is refused
+  EXPECT_EQ(untrimmed.n_faces(), m.n_faces());
+  mp.max_trim_rings = 2;
+  EXPECT_EQ(gcs::detail::merge_border_loops(m, cylinder, mp), 1u);
+  m.garbage_collection();
+  const edgefront::MeshStats s = edgefront::compute_stats(m);
+  EXPECT_EQ(s.components, 1u);
+  EXPECT_EQ(s.border_loops, 2u);  // the tube's two ends
+  EXPECT_EQ(s.nonmanifold_vertices, 0u);
+  ASSERT_EQ(s.per_component.size(), 1u);
+  EXPECT_EQ(s.per_component[0].genus, 0);
+  expect_outward(m);
+  // The overlap is gone: no vertex of A above z = 2.5 and none of B below it.
+  for (auto v : m.vertices()) {
+    const Vec3& p = m.point(v);
+    const bool of_a = std::abs(std::hypot(p[0], p[1]) - 2.0) < 0.01;
+    EXPECT_TRUE(of_a ? p[2] < 2.5 : p[2] > 2.5) << p;
+  }
+}
+
+// A 10 x 10 grid on z = 0 with a 2 x 2 hole in the middle whose 8 rim vertices are raised to z = 2
+// (a curled rim: a fan over the hole lies off the samples and folds against the steep faces).
+Mesh grid_with_raised_hole() {
+  Mesh m = grid_without(10, 10, {{4, 4}, {4, 5}, {5, 4}, {5, 5}});
+  for (auto v : m.vertices())
+    if (m.is_boundary(v) && m.point(v)[0] >= 4 && m.point(v)[0] <= 6 && m.point(v)[1] >= 4 && m.point(v)[1] <= 6)
+      m.point(v)[2] = 2.0;
+  return m;
+}
+
+TEST(GcsTrimFill, ASmallHoleWithACurledRimClosesAfterTrimmingARing) {
+  Mesh m = grid_with_raised_hole();
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+  const size_t faces = m.n_faces();
+  EXPECT_EQ(gcs::detail::fill_small_holes(m, plane, 8, 1.5, 0.5), 0u);  // no trimming: refused
+  EXPECT_EQ(gcs::detail::fill_small_holes(m, plane, 8, 1.5, 0.5, {.rings = 2, .max_loop_length = 7.9}), 0u);  // loop too long
+  EXPECT_EQ(m.n_faces(), faces);
+  EXPECT_EQ(gcs::detail::fill_small_holes(m, plane, 8, 1.5, 0.5, {.rings = 2, .max_loop_length = 10}), 1u);
+  m.garbage_collection();
+  for (auto v : m.vertices()) EXPECT_LT(std::abs(m.point(v)[2]), 1e-12) << m.point(v);  // the raised rim is gone
+  expect_flat_disk(m);
+}
+
 }  // namespace

@@ -268,6 +268,135 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
   return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
 }
 
+namespace {
+
+enum class PairMerge { not_candidate, refused, merged };
+
+// Joins loops A and B by a strip when they are simple, disjoint, not joined by an edge, of similar
+// length, close (mean gap within the limit plus `extra_gap`) and run opposite at their closest
+// pair: `refused` when such a candidate pair's strip fails zip_strip's checks.
+PairMerge merge_pair(Mesh& mesh, const CloudQuery& cloud, const Loop& A, const Loop& B, const MergeParams& params,
+                     double extra_gap) {
+  const size_t nA = A.vertices.size(), nB = B.vertices.size();
+  if (nA < 3 || nB < 3 || nA * nB > 4'000'000) return PairMerge::not_candidate;
+  const double lmin = std::min(A.length, B.length), lmax = std::max(A.length, B.length);
+  if (!(lmin > 0) || lmax > params.max_length_ratio * lmin) return PairMerge::not_candidate;
+  // Simple, disjoint loops without an edge between them.
+  std::set<int> in_b;
+  for (auto v : B.vertices) in_b.insert(v.idx());
+  std::set<int> in_a;
+  for (auto v : A.vertices) in_a.insert(v.idx());
+  if (in_a.size() != nA || in_b.size() != nB) return PairMerge::not_candidate;
+  for (auto v : A.vertices) {
+    for (auto u : mesh.vv_range(v))
+      if (in_b.count(u.idx()) > 0) return PairMerge::not_candidate;
+  }
+  // Gap: mean distance from A's vertices to B's; the start pair is the closest one.
+  double gap = 0, best = std::numeric_limits<double>::infinity();
+  size_t i0 = 0, k0 = 0;
+  for (size_t i = 0; i < nA; ++i) {
+    double d_min = std::numeric_limits<double>::infinity();
+    size_t k_min = 0;
+    for (size_t k = 0; k < nB; ++k) {
+      const double d = (mesh.point(A.vertices[i]) - mesh.point(B.vertices[k])).norm();
+      if (d < d_min) {
+        d_min = d;
+        k_min = k;
+      }
+    }
+    gap += d_min;
+    if (d_min < best) {
+      best = d_min;
+      i0 = i;
+      k0 = k_min;
+    }
+  }
+  gap /= static_cast<double>(nA);
+  if (gap > std::max(params.max_gap_edges * params.mean_edge_length, params.max_gap_fraction * lmin) + extra_gap)
+    return PairMerge::not_candidate;
+  // Orientation: A's and B's boundary halfedges must run opposite at the start pair.
+  const Vec3 tA = mesh.point(loop_vertex(A, long(i0) + 1)) - mesh.point(loop_vertex(A, long(i0) - 1));
+  const Vec3 tB = mesh.point(loop_vertex(B, long(k0) + 1)) - mesh.point(loop_vertex(B, long(k0) - 1));
+  if ((tA | tB) >= 0) return PairMerge::not_candidate;
+  const Strip strip{[&](size_t i) { return loop_vertex(A, long(i0 + i)); },
+                    [&](size_t j) { return loop_vertex(B, long(k0) - long(j)); },
+                    [&](size_t i) { return loop_halfedge(A, long(i0 + i)); },
+                    [&](size_t j) { return loop_halfedge(B, long(k0) - long(j) - 1); }, nA, nB};
+  return zip_strip(mesh, cloud, strip, params.max_support_distance, params.min_normal_agreement) ? PairMerge::merged
+                                                                                                  : PairMerge::refused;
+}
+
+// Deletes the faces around `front` (vertices) and returns the vertices of those faces that are
+// left: the next ring. Vertices left without faces are deleted with their faces.
+std::vector<VertexHandle> trim_ring(Mesh& mesh, const std::vector<VertexHandle>& front) {
+  std::vector<FaceHandle> faces;
+  for (auto v : front) {
+    if (mesh.status(v).deleted()) continue;
+    for (auto f : mesh.vf_range(v)) faces.push_back(f);
+  }
+  std::vector<int> corner;
+  for (auto f : faces) {
+    if (mesh.status(f).deleted()) continue;
+    for (auto u : mesh.fv_range(f)) corner.push_back(u.idx());
+    mesh.delete_face(f, true);
+  }
+  std::sort(corner.begin(), corner.end());
+  corner.erase(std::unique(corner.begin(), corner.end()), corner.end());
+  std::vector<VertexHandle> next;
+  for (int k : corner) {
+    const VertexHandle u(k);
+    if (!mesh.status(u).deleted()) next.push_back(u);
+  }
+  return next;
+}
+
+// The loop with the most vertices in `marked` (a per-vertex flag), or loops.size() when none has any.
+size_t loop_with_most(const std::vector<Loop>& loops, const std::vector<char>& marked) {
+  size_t best = loops.size(), best_count = 0;
+  for (size_t l = 0; l < loops.size(); ++l) {
+    size_t count = 0;
+    for (auto v : loops[l].vertices) count += marked[static_cast<size_t>(v.idx())] != 0;
+    if (count > best_count) {
+      best_count = count;
+      best = l;
+    }
+  }
+  return best;
+}
+
+// A candidate pair whose strip was refused: on a copy of the mesh, removes `rings` rings of faces
+// along both loops (curled or overlapping rims: the two borders slid past each other, or bent
+// away from the gap) and tries the strip between the new borders (the gap limit grows by two mean
+// edge lengths per ring). Keeps the copy when the strip is added without splitting the mesh into
+// more components.
+bool trim_and_merge(Mesh& mesh, const CloudQuery& cloud, const Loop& A, const Loop& B, const MergeParams& params) {
+  const size_t components = edgefront::connected_components(mesh).count;
+  for (size_t rings = 1; rings <= params.max_trim_rings; ++rings) {
+    Mesh trial = mesh;
+    std::vector<VertexHandle> front_a = A.vertices, front_b = B.vertices;
+    for (size_t r = 0; r < rings; ++r) {
+      front_a = trim_ring(trial, front_a);
+      front_b = trim_ring(trial, front_b);
+    }
+    fix_nonmanifold_vertices(trial);
+    if (edgefront::connected_components(trial).count != components) continue;
+    const std::vector<Loop> loops = border_loops(trial);
+    std::vector<char> in_a(trial.n_vertices(), 0), in_b(trial.n_vertices(), 0);
+    for (auto v : front_a) in_a[static_cast<size_t>(v.idx())] = 1;
+    for (auto v : front_b) in_b[static_cast<size_t>(v.idx())] = 1;
+    const size_t la = loop_with_most(loops, in_a), lb = loop_with_most(loops, in_b);
+    if (la == loops.size() || lb == loops.size() || la == lb) continue;
+    const double extra_gap = 2.0 * static_cast<double>(rings) * params.mean_edge_length;
+    if (merge_pair(trial, cloud, loops[la], loops[lb], params, extra_gap) == PairMerge::merged) {
+      mesh = std::move(trial);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams& params) {
   std::vector<Loop> loops = border_loops(mesh);
   if (loops.size() < 2) return 0;
@@ -276,111 +405,101 @@ size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams
   for (size_t ia = 0; ia < loops.size(); ++ia) {
     for (size_t ib = ia + 1; ib < loops.size() && !used[ia]; ++ib) {
       if (used[ib]) continue;
-      const Loop& A = loops[ia];
-      const Loop& B = loops[ib];
-      const size_t nA = A.vertices.size(), nB = B.vertices.size();
-      if (nA < 3 || nB < 3 || nA * nB > 4'000'000) continue;
-      const double lmin = std::min(A.length, B.length), lmax = std::max(A.length, B.length);
-      if (!(lmin > 0) || lmax > params.max_length_ratio * lmin) continue;
-      // Simple, disjoint loops without an edge between them.
-      std::set<int> in_b;
-      for (auto v : B.vertices) in_b.insert(v.idx());
-      std::set<int> in_a;
-      for (auto v : A.vertices) in_a.insert(v.idx());
-      if (in_a.size() != nA || in_b.size() != nB) continue;
-      bool touching = false;
-      for (auto v : A.vertices) {
-        for (auto u : mesh.vv_range(v)) touching = touching || in_b.count(u.idx()) > 0;
+      const PairMerge m = merge_pair(mesh, cloud, loops[ia], loops[ib], params, 0.0);
+      if (m == PairMerge::merged) {
+        used[ia] = used[ib] = 1;
+        ++merged;
+      } else if (m == PairMerge::refused && params.max_trim_rings > 0 &&
+                 trim_and_merge(mesh, cloud, loops[ia], loops[ib], params)) {
+        return merged + 1;  // the trimming changed other loops' halfedges: the next pass sees them anew
       }
-      if (touching) continue;
-      // Gap: mean distance from A's vertices to B's; the start pair is the closest one.
-      double gap = 0, best = std::numeric_limits<double>::infinity();
-      size_t i0 = 0, k0 = 0;
-      for (size_t i = 0; i < nA; ++i) {
-        double d_min = std::numeric_limits<double>::infinity();
-        size_t k_min = 0;
-        for (size_t k = 0; k < nB; ++k) {
-          const double d = (mesh.point(A.vertices[i]) - mesh.point(B.vertices[k])).norm();
-          if (d < d_min) {
-            d_min = d;
-            k_min = k;
-          }
-        }
-        gap += d_min;
-        if (d_min < best) {
-          best = d_min;
-          i0 = i;
-          k0 = k_min;
-        }
-      }
-      gap /= static_cast<double>(nA);
-      if (gap > std::max(params.max_gap_edges * params.mean_edge_length, params.max_gap_fraction * lmin)) continue;
-      // Orientation: A's and B's boundary halfedges must run opposite at the start pair.
-      const Vec3 tA = mesh.point(loop_vertex(A, long(i0) + 1)) - mesh.point(loop_vertex(A, long(i0) - 1));
-      const Vec3 tB = mesh.point(loop_vertex(B, long(k0) + 1)) - mesh.point(loop_vertex(B, long(k0) - 1));
-      if ((tA | tB) >= 0) continue;
-      const Strip strip{[&](size_t i) { return loop_vertex(A, long(i0 + i)); },
-                        [&](size_t j) { return loop_vertex(B, long(k0) - long(j)); },
-                        [&](size_t i) { return loop_halfedge(A, long(i0 + i)); },
-                        [&](size_t j) { return loop_halfedge(B, long(k0) - long(j) - 1); }, nA, nB};
-      if (!zip_strip(mesh, cloud, strip, params.max_support_distance, params.min_normal_agreement)) continue;
-      used[ia] = used[ib] = 1;
-      ++merged;
     }
   }
   return merged;
 }
 
+namespace {
+
+// Fills one simple border loop by a fan around its centroid (a triangle for 3 vertices) when the
+// centroid lies on the cloud and the fan agrees with the faces around (see fill_small_holes).
+bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance,
+               double min_normal_agreement) {
+  const size_t n = loop.vertices.size();
+  if (n < 3) return false;
+  std::set<int> distinct;
+  for (auto v : loop.vertices) distinct.insert(v.idx());
+  if (distinct.size() != n) return false;
+  Vec3 c(0, 0, 0);
+  for (auto v : loop.vertices) c += mesh.point(v);
+  c /= static_cast<double>(n);
+  if (cloud(c).distance > max_support_distance) return false;
+  double agreement = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const Vec3 nf = tri_normal(mesh.point(loop.vertices[k]), mesh.point(loop.vertices[(k + 1) % n]), c);
+    const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[k]);
+    const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+    if (!(nf.norm() > 0) || !(na.norm() > 0)) return false;
+    agreement += (nf | na) / (nf.norm() * na.norm());
+  }
+  // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
+  // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
+  if (agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
+    return false;
+  const MuteOpenMeshErrors mute;
+  if (n == 3) return mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid();
+  const VertexHandle center = mesh.add_vertex(c);
+  std::vector<FaceHandle> added;
+  for (size_t k = 0; k < n; ++k) {
+    const FaceHandle f = mesh.add_face(loop.vertices[k], loop.vertices[(k + 1) % n], center);
+    if (!f.is_valid()) {
+      for (auto g : added) mesh.delete_face(g, false);
+      mesh.delete_vertex(center, false);
+      return false;
+    }
+    added.push_back(f);
+  }
+  return true;
+}
+
+// A small hole whose fan was refused (its rim curls): on a copy, removes 1 ... `rings` rings of
+// faces along the loop and fills the wider hole by a fan; keeps the copy when that fan is added
+// and the mesh keeps its number of components.
+bool trim_and_fill(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, size_t rings, double max_support_distance,
+                   double min_normal_agreement) {
+  const size_t components = edgefront::connected_components(mesh).count;
+  for (size_t r = 1; r <= rings; ++r) {
+    Mesh trial = mesh;
+    std::vector<VertexHandle> front = loop.vertices;
+    for (size_t k = 0; k < r; ++k) front = trim_ring(trial, front);
+    fix_nonmanifold_vertices(trial);
+    if (edgefront::connected_components(trial).count != components) continue;
+    const std::vector<Loop> loops = border_loops(trial);
+    std::vector<char> marked(trial.n_vertices(), 0);
+    for (auto v : front) marked[static_cast<size_t>(v.idx())] = 1;
+    const size_t l = loop_with_most(loops, marked);
+    if (l == loops.size()) continue;
+    if (fill_loop(trial, cloud, loops[l], max_support_distance, min_normal_agreement)) {
+      mesh = std::move(trial);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices, double max_support_distance,
-                        double min_normal_agreement) {
+                        double min_normal_agreement, const TrimParams& trim) {
   size_t filled = 0;
   for (const Loop& loop : border_loops(mesh)) {
     const size_t n = loop.vertices.size();
-    if (n < 3 || n > max_vertices) continue;
-    std::set<int> distinct;
-    for (auto v : loop.vertices) distinct.insert(v.idx());
-    if (distinct.size() != n) continue;
-    Vec3 c(0, 0, 0);
-    for (auto v : loop.vertices) c += mesh.point(v);
-    c /= static_cast<double>(n);
-    if (cloud(c).distance > max_support_distance) continue;
-    double agreement = 0;
-    bool ok = true;
-    for (size_t k = 0; k < n; ++k) {
-      const Vec3 nf = tri_normal(mesh.point(loop.vertices[k]), mesh.point(loop.vertices[(k + 1) % n]), c);
-      const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[k]);
-      const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
-      if (!(nf.norm() > 0) || !(na.norm() > 0)) {
-        ok = false;
-        break;
-      }
-      agreement += (nf | na) / (nf.norm() * na.norm());
+    if (n < 3) continue;
+    if (n <= max_vertices && fill_loop(mesh, cloud, loop, max_support_distance, min_normal_agreement)) {
+      ++filled;
+    } else if (trim.rings > 0 && loop.length <= trim.max_loop_length &&
+               trim_and_fill(mesh, cloud, loop, trim.rings, max_support_distance, min_normal_agreement)) {
+      return filled + 1;  // the trimming may have changed other loops' halfedges
     }
-    // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
-    // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
-    if (!ok || agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
-      continue;
-    if (n == 3) {  // no fan vertex
-      const MuteOpenMeshErrors mute;
-      if (mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid()) ++filled;
-      continue;
-    }
-    const VertexHandle center = mesh.add_vertex(c);
-    std::vector<FaceHandle> added;
-    {
-      const MuteOpenMeshErrors mute;
-      for (size_t k = 0; k < n && ok; ++k) {
-        const FaceHandle f = mesh.add_face(loop.vertices[k], loop.vertices[(k + 1) % n], center);
-        ok = f.is_valid();
-        if (ok) added.push_back(f);
-      }
-    }
-    if (!ok) {
-      for (auto f : added) mesh.delete_face(f, false);
-      mesh.delete_vertex(center, false);
-      continue;
-    }
-    ++filled;
   }
   return filled;
 }

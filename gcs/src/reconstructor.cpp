@@ -73,6 +73,7 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (!(o.long_edge_factor > 1) || !std::isfinite(o.long_edge_factor)) fail("long_edge_factor must be > 1");
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
   if (o.film_samples > 64) fail("film_samples must be at most 64");
+  if (o.border_trim_rings > 8) fail("border_trim_rings must be at most 8");
 }
 
 }  // namespace
@@ -81,6 +82,9 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
 // from their centroid at least this much (detail::normal_flux: a sphere 1, a flat sheet 0): a film
 // across a tunnel needs a surface around a volume; on flat sheets it curled the borders.
 constexpr double kEnclosingFlux = 0.2;
+// Holes whose fan fill is refused are retried with rings trimmed only when their border is at most
+// this many mean edge lengths long (ReconstructOptions::border_trim_rings).
+constexpr double kTrimHoleEdges = 10.0;
 
 struct Reconstructor::Impl {
   ReconstructOptions opt;
@@ -933,6 +937,7 @@ struct Reconstructor::Impl {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
       mp.max_support_distance = bridge;
+      mp.max_trim_rings = opt.border_trim_rings;
       tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
       if (opt.zip_slits) {
         detail::ZipParams zp;
@@ -942,7 +947,7 @@ struct Reconstructor::Impl {
       }
     }
     if (opt.create_borders) {
-      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5));
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = opt.border_trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
       if (opt.fill_slits_max_vertices > 8)
         tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5));
     }

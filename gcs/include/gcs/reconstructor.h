@@ -101,6 +101,14 @@ struct ReconstructOptions {
   /// have them in front, i.e. a film spanning a tunnel or gap outside the object (kitten.xyz's
   /// tail tunnel). 0 disables; at most 64.
   std::size_t film_samples = 8;
+  /// Curled or overlapping rims: when the strip joining two close, similar, orientation-compatible
+  /// border loops is refused (its faces fold back against the faces around: the rims slid past
+  /// each other or bend away from the gap, e.g. the two openings of kitten.xyz's tail tunnel), or
+  /// the fan closing a hole whose border is at most 10 mean edge lengths long is refused, the
+  /// join or fill is tried again with 1 ... this many rings of faces removed along the loop(s) (on
+  /// a copy, kept only when the strip or fan is then added and no piece is cut off). 0 disables;
+  /// at most 8.
+  std::size_t border_trim_rings = 2;
   /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
   /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
   /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.

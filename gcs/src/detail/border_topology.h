@@ -62,6 +62,10 @@ struct MergeParams {
   double max_gap_fraction = 0.1;     ///< ... or this fraction of the shorter loop's length
   double max_length_ratio = 1.6;     ///< longer loop length / shorter loop length
   double min_normal_agreement = 0.2; ///< mean cosine between strip faces and the faces they border
+  /// A close, similar, orientation-compatible pair whose strip is refused (the rims curl away from
+  /// the gap or slid past each other) is tried again with 1 ... this many rings of faces removed
+  /// along both loops (on a copy; kept only when the strip is then added). 0 = off.
+  std::size_t max_trim_rings = 0;
 };
 
 /// Joins pairs of border loops that are close, of similar length and orientation-compatible
@@ -89,14 +93,23 @@ struct ZipParams {
 /// the number of strips added.
 std::size_t zip_border_slits(edgefront::Mesh& mesh, const CloudQuery& cloud, const ZipParams& params);
 
+/// Retrying a refused hole fill after removing rings of faces along the loop (a curled rim).
+struct TrimParams {
+  std::size_t rings = 0;         ///< 1 ... this many rings are tried; 0 = off
+  double max_loop_length = 0;    ///< only for loops at most this long
+};
+
 /// Closes small holes: a border loop of at most `max_vertices` vertices whose fan of triangles
 /// around the loop's centroid lies within `max_support_distance` of the cloud and agrees with the
 /// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex;
 /// a loop of 3 vertices by its own triangle, which only needs a mean cosine above
 /// min(0, min_normal_agreement): it must not fold back).
+/// With `trim` on, a loop of at most trim.max_loop_length whose fill is refused is tried again on a
+/// copy with 1 ... trim.rings rings of faces along it removed, filled by a fan of any size; the
+/// copy is kept when that fan is added and the number of components stays (the call then stops).
 /// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
-                             double max_support_distance, double min_normal_agreement);
+                             double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
 
 /// Closes elongated holes (slits in a closed surface: a sparsely sampled stretch whose faces were
 /// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one
