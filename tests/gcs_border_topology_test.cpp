@@ -274,4 +274,19 @@ TEST(GcsTrimFill, ASmallHoleWithACurledRimClosesAfterTrimmingARing) {
   expect_flat_disk(m);
 }
 
+TEST(GcsTrimFill, ASlitWithCurledRimsIsZippedAfterTrimmingARing) {
+  Mesh m = grid_with_slit();
+  for (auto v : m.vertices())  // raise the slit's 18 border vertices (not the outer border)
+    if (m.is_boundary(v) && m.point(v)[1] >= 3 && m.point(v)[1] <= 4 && m.point(v)[0] >= 2 && m.point(v)[0] <= 10)
+      m.point(v)[2] = 2.0;
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+  const size_t faces = m.n_faces();
+  EXPECT_EQ(gcs::detail::fill_slit_holes(m, plane, 9, 64, 1.5, 0.5), 0u);  // the strip lies off the samples
+  EXPECT_EQ(m.n_faces(), faces);
+  EXPECT_EQ(gcs::detail::fill_slit_holes(m, plane, 9, 64, 1.5, 0.5, 2), 1u);
+  m.garbage_collection();
+  for (auto v : m.vertices()) EXPECT_LT(std::abs(m.point(v)[2]), 1e-12) << m.point(v);
+  expect_flat_disk(m);
+}
+
 }  // namespace

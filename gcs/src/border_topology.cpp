@@ -461,11 +461,10 @@ bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max
   return true;
 }
 
-// A small hole whose fan was refused (its rim curls): on a copy, removes 1 ... `rings` rings of
-// faces along the loop and fills the wider hole by a fan; keeps the copy when that fan is added
-// and the mesh keeps its number of components.
-bool trim_and_fill(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, size_t rings, double max_support_distance,
-                   double min_normal_agreement) {
+// A hole whose closing was refused (its rim curls): on a copy, removes 1 ... `rings` rings of
+// faces along the loop and tries `close` on the wider loop; keeps the copy when that succeeds and
+// the mesh keeps its number of components.
+bool trim_and_close(Mesh& mesh, const Loop& loop, size_t rings, const std::function<bool(Mesh&, const Loop&)>& close) {
   const size_t components = edgefront::connected_components(mesh).count;
   for (size_t r = 1; r <= rings; ++r) {
     Mesh trial = mesh;
@@ -478,7 +477,7 @@ bool trim_and_fill(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, size_t
     for (auto v : front) marked[static_cast<size_t>(v.idx())] = 1;
     const size_t l = loop_with_most(loops, marked);
     if (l == loops.size()) continue;
-    if (fill_loop(trial, cloud, loops[l], max_support_distance, min_normal_agreement)) {
+    if (close(trial, loops[l])) {
       mesh = std::move(trial);
       return true;
     }
@@ -497,39 +496,57 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
     if (n <= max_vertices && fill_loop(mesh, cloud, loop, max_support_distance, min_normal_agreement)) {
       ++filled;
     } else if (trim.rings > 0 && loop.length <= trim.max_loop_length &&
-               trim_and_fill(mesh, cloud, loop, trim.rings, max_support_distance, min_normal_agreement)) {
+               trim_and_close(mesh, loop, trim.rings, [&](Mesh& m, const Loop& wider) {
+                 return fill_loop(m, cloud, wider, max_support_distance, min_normal_agreement);
+               })) {
       return filled + 1;  // the trimming may have changed other loops' halfedges
     }
   }
   return filled;
 }
 
+namespace {
+
+// Zips the two halves of one simple loop of at least 6 vertices together (see fill_slit_holes).
+bool fill_slit_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& L, double max_support_distance,
+                    double min_normal_agreement) {
+  const size_t n = L.vertices.size();
+  if (n < 6) return false;
+  std::set<int> distinct;
+  for (auto v : L.vertices) distinct.insert(v.idx());
+  if (distinct.size() != n) return false;
+  // Tips: the pairs of loop vertices half a loop apart, farthest apart first; the strip runs from
+  // tip i along both sides of the loop to tip i + n/2.
+  std::vector<std::pair<double, size_t>> tips;
+  const size_t half = n / 2;
+  for (size_t i = 0; i < half; ++i)
+    tips.push_back({-(mesh.point(L.vertices[i]) - mesh.point(L.vertices[i + half])).norm(), i});
+  std::sort(tips.begin(), tips.end());
+  for (size_t t = 0; t < tips.size() && t < 3; ++t) {
+    const long i0 = static_cast<long>(tips[t].second);
+    const Strip strip{[&](size_t k) { return loop_vertex(L, i0 + long(k)); },
+                      [&](size_t k) { return loop_vertex(L, i0 - 1 - long(k)); },
+                      [&](size_t k) { return loop_halfedge(L, i0 + long(k)); },
+                      [&](size_t k) { return loop_halfedge(L, i0 - 2 - long(k)); }, half, n - half - 2};
+    if (zip_strip(mesh, cloud, strip, max_support_distance, min_normal_agreement)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 size_t fill_slit_holes(Mesh& mesh, const CloudQuery& cloud, size_t min_vertices, size_t max_vertices,
-                       double max_support_distance, double min_normal_agreement) {
+                       double max_support_distance, double min_normal_agreement, std::size_t trim_rings) {
   size_t filled = 0;
   for (const Loop& L : border_loops(mesh)) {
     const size_t n = L.vertices.size();
     if (n < std::max<size_t>(min_vertices, 6) || n > max_vertices) continue;
-    std::set<int> distinct;
-    for (auto v : L.vertices) distinct.insert(v.idx());
-    if (distinct.size() != n) continue;
-    // Tips: the pairs of loop vertices half a loop apart, farthest apart first; the strip runs from
-    // tip i along both sides of the loop to tip i + n/2.
-    std::vector<std::pair<double, size_t>> tips;
-    const size_t half = n / 2;
-    for (size_t i = 0; i < half; ++i)
-      tips.push_back({-(mesh.point(L.vertices[i]) - mesh.point(L.vertices[i + half])).norm(), i});
-    std::sort(tips.begin(), tips.end());
-    for (size_t t = 0; t < tips.size() && t < 3; ++t) {
-      const long i0 = static_cast<long>(tips[t].second);
-      const Strip strip{[&](size_t k) { return loop_vertex(L, i0 + long(k)); },
-                        [&](size_t k) { return loop_vertex(L, i0 - 1 - long(k)); },
-                        [&](size_t k) { return loop_halfedge(L, i0 + long(k)); },
-                        [&](size_t k) { return loop_halfedge(L, i0 - 2 - long(k)); }, half, n - half - 2};
-      if (zip_strip(mesh, cloud, strip, max_support_distance, min_normal_agreement)) {
-        ++filled;
-        break;
-      }
+    if (fill_slit_loop(mesh, cloud, L, max_support_distance, min_normal_agreement)) {
+      ++filled;
+    } else if (trim_rings > 0 && trim_and_close(mesh, L, trim_rings, [&](Mesh& m, const Loop& wider) {
+                 return fill_slit_loop(m, cloud, wider, max_support_distance, min_normal_agreement);
+               })) {
+      return filled + 1;  // the trimming may have changed other loops' halfedges
     }
   }
   return filled;

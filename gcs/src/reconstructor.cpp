@@ -911,6 +911,7 @@ struct Reconstructor::Impl {
     // across a sparsely sampled stretch is not refused by the test that tore it open.
     const double bridge = 1.5 * support;
     const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
+    const size_t trim_rings = opt.border_trim_rings;
     bool changed = false;
     const auto tally = [&changed](size_t& total, size_t n) {
       total += n;
@@ -937,7 +938,7 @@ struct Reconstructor::Impl {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
       mp.max_support_distance = bridge;
-      mp.max_trim_rings = opt.border_trim_rings;
+      mp.max_trim_rings = trim_rings;
       tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
       if (opt.zip_slits) {
         detail::ZipParams zp;
@@ -947,9 +948,10 @@ struct Reconstructor::Impl {
       }
     }
     if (opt.create_borders) {
-      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = opt.border_trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
       if (opt.fill_slits_max_vertices > 8)
-        tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5));
+        tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5,
+                                                       trim_rings));
     }
     if (changed) resync();
     seconds_topology += seconds_since(t0);

@@ -115,8 +115,12 @@ std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std
 /// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one
 /// strip of triangles zipping its two halves together, from the tip pair farthest apart (up to 3
 /// tip pairs are tried). The strip must lie on the cloud and agree with the faces it borders (as in
-/// merge_border_loops). Returns the number of loops filled.
+/// merge_border_loops). With trim_rings > 0, a loop whose strip is refused (curled rims) is tried
+/// again on a copy with 1 ... trim_rings rings of faces along it removed (the wider loop may have
+/// more than max_vertices vertices); the copy is kept when the strip is added and the number of
+/// components stays (the call then stops). Returns the number of loops filled.
 std::size_t fill_slit_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t min_vertices,
-                            std::size_t max_vertices, double max_support_distance, double min_normal_agreement);
+                            std::size_t max_vertices, double max_support_distance, double min_normal_agreement,
+                            std::size_t trim_rings = 0);
 
 }  // namespace gcs::detail
