@@ -317,6 +317,11 @@ TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
   bad.film_samples = 64;
   EXPECT_NO_THROW(gcs::Reconstructor(ok, bad));
+  bad = small(50);
+  bad.border_trim_rings = 9;  // more rings trimmed along a refused loop than allowed
+  EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
+  bad.border_trim_rings = 8;
+  EXPECT_NO_THROW(gcs::Reconstructor(ok, bad));
   PointCloud wrong_normals = ok;
   wrong_normals.normals.resize(3);
   EXPECT_THROW(gcs::Reconstructor(wrong_normals, small(50)), InvalidInput);
