@@ -129,6 +129,13 @@ std::vector<Loop> border_loops(const Mesh& mesh) {
   return loops;
 }
 
+// True when no vertex occurs twice on the loop.
+bool is_simple(const Loop& L) {
+  std::set<int> distinct;
+  for (auto v : L.vertices) distinct.insert(v.idx());
+  return distinct.size() == L.vertices.size();
+}
+
 // Vertex k of a loop, k taken cyclically (may be negative).
 VertexHandle loop_vertex(const Loop& L, long k) {
   const long n = static_cast<long>(L.vertices.size());
@@ -425,10 +432,7 @@ namespace {
 bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance,
                double min_normal_agreement) {
   const size_t n = loop.vertices.size();
-  if (n < 3) return false;
-  std::set<int> distinct;
-  for (auto v : loop.vertices) distinct.insert(v.idx());
-  if (distinct.size() != n) return false;
+  if (n < 3 || !is_simple(loop)) return false;
   Vec3 c(0, 0, 0);
   for (auto v : loop.vertices) c += mesh.point(v);
   c /= static_cast<double>(n);
@@ -511,10 +515,7 @@ namespace {
 bool fill_slit_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& L, double max_support_distance,
                     double min_normal_agreement) {
   const size_t n = L.vertices.size();
-  if (n < 6) return false;
-  std::set<int> distinct;
-  for (auto v : L.vertices) distinct.insert(v.idx());
-  if (distinct.size() != n) return false;
+  if (n < 6 || !is_simple(L)) return false;
   // Tips: the pairs of loop vertices half a loop apart, farthest apart first; the strip runs from
   // tip i along both sides of the loop to tip i + n/2.
   std::vector<std::pair<double, size_t>> tips;
