@@ -44,6 +44,8 @@ struct DRec {
   double d = kInf;
   int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
+  bool seed = false;     // a source vertex, or a vertex of a source point's face
+  bool early = false;    // window mode: lit before any neighbour settled; waits for one (see step)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -63,6 +65,17 @@ struct P2 {
 double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
 double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
 
+// A window (DistanceOptions::windows): the part [b0, b1] of a halfedge's edge lit straight from a
+// (pseudo) source, with the source unfolded into the halfedge's frame: its from-vertex at the
+// origin, its to-vertex at (|edge|, 0), its face (the one the window lights) at y > 0, so the
+// source lies at y <= 0. sigma: the distance already travelled at the source.
+struct Window {
+  int he;
+  double b0, b1;
+  P2 s;
+  double sigma;
+};
+
 
 std::string dname(double d) { return std::to_string(d); }
 
@@ -78,6 +91,15 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   size_t peak_heap = 0;
   bool line_source = false;
   std::function<void(VertexHandle, double, const Vec3&)> on_settled;
+
+  // Window mode (DistanceOptions::windows): the windows waiting in the heap (index -1 - w), their
+  // free slots, and the distances of settled vertices whose records were dropped (a window may
+  // still reach their faces; they must not be reached again).
+  bool windowed = false;
+  std::vector<Window> win;
+  std::vector<int> free_win;
+  detail::FlatMap<double> gone;
+  size_t n_windows = 0;  // windows propagated (statistics)
 
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
   // vertex, unit direction and length, the face after it (-1 in a border gap) and that face's
@@ -117,6 +139,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     n_settled = 0;
     peak_heap = 0;
     line_source = false;
+    windowed = false;
+    if (win.capacity() > 4096) std::vector<Window>().swap(win);
+    win.clear();
+    free_win.clear();
+    gone.clear();
+    n_windows = 0;
   }
 
   int count_unsettled(int v) const {
@@ -142,6 +170,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void offer(int v, const Candidate& k) {
     DRec& r = record(v);
     if (r.settled) return;
+    if (windowed) {
+      // Every candidate is the length of a real path: the shortest wins, no second source.
+      if (!(k.d < r.d * (1 - 1e-12)) && (k.d > r.d * (1 + 1e-12) || !(k.offset < r.offset))) return;
+      r.d = k.d;
+      r.source = k.source;
+      r.offset = k.offset;
+      r.face = k.face;
+      r.origin = k.origin;
+      heap.push(k.d, v);
+      peak_heap = std::max(peak_heap, heap.size());
+      return;
+    }
     // Better: shorter, or as short (to rounding) from a source nearer the true one (a smaller
     // offset). A pseudo source at a vertex that lies exactly on the straight path ties with the
     // true source; keeping the pseudo source would bend every path continued from it.
@@ -185,8 +225,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     clear_state(o);
     reset_structure(source);
     line_source = source.is_loop();
+    windowed = o.windows && !line_source;
     if (!line_source) {
-      for (uint32_t v : sources) offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
+      for (uint32_t v : sources) {
+        offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
+        record(static_cast<int>(v)).seed = true;
+      }
     } else {
       for (HalfedgeHandle h : source.loop) {
         const int v = mesh.to_vertex_handle(h).idx();
@@ -223,13 +267,205 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     }
     clear_state(o);
     reset_structure(FrontSource::from_vertices(verts));
+    windowed = o.windows;
     for (const SurfacePoint& p : points) {
       Vec3 x(0, 0, 0);
       int k = 0;
       for (VertexHandle v : mesh.fv_range(p.face)) x += mesh.point(v) * p.bary[k++];
-      for (VertexHandle v : mesh.fv_range(p.face)) offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
+      for (VertexHandle v : mesh.fv_range(p.face)) {
+        offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
+        record(v.idx()).seed = true;
+      }
+      if (windowed) {
+        // The point lights the three edges of its face from inside: windows on their far sides.
+        for (HalfedgeHandle h : mesh.fh_range(p.face)) {
+          const int g = h.idx() ^ 1;
+          push_window(g, 0, edge_length(g), in_frame(g, x), 0.0);
+        }
+      }
     }
     note_memory();
+  }
+
+  // ---- Windows (DistanceOptions::windows) ------------------------------------------------------
+  //
+  // A window is carried across the face it lights when it leaves the heap, at the smallest distance
+  // it gives a point of its interval: the face's third vertex takes the distance from the window's
+  // source when the straight line to it crosses the interval, and the lit parts of the face's two
+  // other edges become windows of the faces behind them (ICH: Xin & Wang 2009; MMP). Windows and
+  // vertices leave one heap in distance order, so a vertex settles only after every window that
+  // could light it more closely. A window is dropped when an end of its edge reaches the whole
+  // interval more closely (ICH's filter; exact: sigma + |s p| - |a p| never grows from a toward b).
+
+  double edge_length(int h) const {
+    return (mesh.point(VertexHandle(tov(h))) - mesh.point(VertexHandle(fromv(h)))).norm();
+  }
+
+  // A point on the far side of halfedge h's face (or on the edge) in h's frame (see Window).
+  P2 in_frame(int h, const Vec3& p) const {
+    const Vec3& a = mesh.point(VertexHandle(fromv(h)));
+    const Vec3 ab = mesh.point(VertexHandle(tov(h))) - a;
+    const double l = ab.norm();
+    const Vec3 w = p - a;
+    const double x = OpenMesh::dot(w, ab) / l;
+    return P2{x, -std::sqrt(std::max(w.sqrnorm() - x * x, 0.0))};
+  }
+
+  // The best distance known for v: its record's, or a dropped settled record's; +inf if none.
+  double known_d(int v) const {
+    if (const DRec* r = dt.find(static_cast<uint32_t>(v))) return r->d;
+    if (const double* g = gone.find(static_cast<uint32_t>(v))) return *g;
+    return kInf;
+  }
+
+  bool has_settled_neighbour(int v) const {
+    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
+      const DRec* r = dt.find(static_cast<uint32_t>(y.idx()));
+      if ((r && r->settled) || gone.find(static_cast<uint32_t>(y.idx()))) return true;
+    }
+    return false;
+  }
+
+  // Drops the record of a settled vertex whose neighbours are all settled.
+  void drop(int v) {
+    if (windowed) {
+      if (const DRec* r = dt.find(static_cast<uint32_t>(v))) gone.insert(static_cast<uint32_t>(v), r->d);
+    }
+    dt.erase(static_cast<uint32_t>(v));
+  }
+
+  void push_window(int h, double b0, double b1, P2 s, double sigma) {
+    if (!(b1 > b0) || !has_face(h)) return;
+    const double foot = std::clamp(s.x, b0, b1);
+    const double dmin = sigma + std::hypot(s.x - foot, s.y);
+    int id;
+    if (!free_win.empty()) {
+      id = free_win.back();
+      free_win.pop_back();
+    } else {
+      id = static_cast<int>(win.size());
+      win.emplace_back();
+    }
+    win[id] = Window{h, b0, b1, s, sigma};
+    heap.push(dmin, -1 - id);
+    peak_heap = std::max(peak_heap, heap.size());
+  }
+
+  // A (pseudo) source at the settled vertex x (ring built): windows on the far sides of the edges
+  // opposite x in its faces.
+  void emit_vertex_windows(int x, double sigma) {
+    const Vec3& px = mesh.point(VertexHandle(x));
+    for (const Ray& r : ring) {
+      if (r.face_after < 0) continue;
+      const int g = mesh.next_halfedge_handle(HalfedgeHandle(r.he)).idx() ^ 1;  // z -> y, across the face x, y, z
+      push_window(g, 0, edge_length(g), in_frame(g, px), sigma);
+    }
+  }
+
+  // Whether x (ring built) is a border vertex or its corner angles sum to more than a full turn: a
+  // geodesic can bend there, so it becomes a pseudo source. The angles are added as unit complex
+  // numbers; `turns` counts the full turns passed (each corner is below a half turn).
+  bool bends_geodesics() {
+    if (!ring_closed) return true;
+    double re = 1, im = 0;
+    int turns = 0;
+    for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
+      if (ring[i].face_after < 0) return true;
+      const P2 c = corner_after(i);
+      const double r2 = re * c.x - im * c.y, i2 = re * c.y + im * c.x;
+      turns += im < 0 && i2 >= 0;
+      re = r2;
+      im = i2;
+    }
+    if (turns >= 2) return true;
+    if (turns == 0) return false;
+    return !(re > 0 && im >= 0 && im <= kFlatDefect);  // more than a full turn, beyond round-off
+  }
+
+  // Carries window w across its face (see above).
+  void propagate_window(const Window& w) {
+    ++n_windows;
+    const int h = w.he;
+    const int hn = nexth(h);
+    const int a = fromv(h), b = tov(h), c = tov(hn);
+    const Vec3& pa = mesh.point(VertexHandle(a));
+    const Vec3& pb = mesh.point(VertexHandle(b));
+    const Vec3& pc = mesh.point(VertexHandle(c));
+    const double l = (pb - pa).norm(), la = (pc - pa).norm(), lb = (pc - pb).norm();
+    if (!(l > 0) || !(la > 0) || !(lb > 0)) return;
+    const P2 s = w.s;
+    // ICH's filter: an end of the edge that reaches the interval's far end more closely reaches
+    // all of it more closely (and everything it lights).
+    const double at_b1 = w.sigma + std::hypot(w.b1 - s.x, s.y);
+    const double at_b0 = w.sigma + std::hypot(w.b0 - s.x, s.y);
+    if (known_d(a) + w.b1 < at_b1 * (1 - 1e-12) || known_d(b) + (l - w.b0) < at_b0 * (1 - 1e-12)) return;
+    const double cx = (l * l + la * la - lb * lb) / (2 * l);
+    const double cy = std::sqrt(std::max(la * la - cx * cx, 0.0));
+    if (!(cy > 0)) return;
+    const P2 c2{cx, cy};
+    const double tol = 1e-12 * l;
+    const int g_ac = prevh(h) ^ 1;  // a -> c, lighting the face behind a-c
+    const int g_cb = hn ^ 1;        // c -> b
+    if (s.y > -tol) {
+      // The source lies on the edge (a source point on it): it sees the whole face.
+      if (s.x < w.b0 - tol || s.x > w.b1 + tol) return;
+      offer_window_vertex(c, w.sigma + std::hypot(cx - s.x, cy), s, w.sigma, h, l, c2);
+      push_child(g_ac, P2{0, 0}, c2, la, 0, 1, s, w.sigma);
+      push_child(g_cb, c2, P2{l, 0}, lb, 0, 1, s, w.sigma);
+      return;
+    }
+    // Where the line from the source through c crosses the edge.
+    const double tc = s.x + (cx - s.x) * (-s.y) / (cy - s.y);
+    if (tc >= w.b0 - tol && tc <= w.b1 + tol) {
+      offer_window_vertex(c, w.sigma + std::hypot(cx - s.x, cy - s.y), s, w.sigma, h, l, c2);
+    }
+    // The lit parts of a-c and c-b: where the lines through b0 and b1 (and c) meet them.
+    auto meet = [&](double t, P2 p, P2 q) {
+      const P2 d{t - s.x, -s.y};
+      const double den = cross2(d, P2{q.x - p.x, q.y - p.y});
+      if (den == 0) return t <= tc ? 0.0 : 1.0;
+      return std::clamp(cross2(d, P2{s.x - p.x, s.y - p.y}) / den, 0.0, 1.0);
+    };
+    if (w.b0 < tc) {
+      const double t1 = std::min(w.b1, tc);
+      push_child(g_ac, P2{0, 0}, c2, la, meet(w.b0, P2{0, 0}, c2), t1 >= tc ? 1.0 : meet(t1, P2{0, 0}, c2), s,
+                 w.sigma);
+    }
+    if (w.b1 > tc) {
+      const double t0 = std::max(w.b0, tc);
+      push_child(g_cb, c2, P2{l, 0}, lb, t0 <= tc ? 0.0 : meet(t0, c2, P2{l, 0}), meet(w.b1, c2, P2{l, 0}), s,
+                 w.sigma);
+    }
+  }
+
+  // The window on halfedge g whose edge runs from p to q (length len) in the parent's frame, lit
+  // over [u0, u1] (fractions from p), with the parent's source s.
+  void push_child(int g, P2 p, P2 q, double len, double u0, double u1, P2 s, double sigma) {
+    if (!(u1 > u0)) return;
+    const P2 ex{(q.x - p.x) / len, (q.y - p.y) / len};
+    const P2 ey{-ex.y, ex.x};
+    const P2 w{s.x - p.x, s.y - p.y};
+    push_window(g, u0 * len, u1 * len, P2{dot2(w, ex), std::min(dot2(w, ey), 0.0)}, sigma);
+  }
+
+  // The face-vertex c of halfedge h's face takes distance d from the window's source s (in h's
+  // frame; c at c2, the edge of length l).
+  void offer_window_vertex(int c, double d, P2 s, double sigma, int h, double l, P2 c2) {
+    if (gone.find(static_cast<uint32_t>(c))) return;
+    if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && (rc->settled || !(d < rc->d))) return;
+    // The source in 3D, in the plane of h's face (for the direction at c).
+    const Vec3& pa = mesh.point(VertexHandle(fromv(h)));
+    const Vec3 ex = (mesh.point(VertexHandle(tov(h))) - pa) / l;
+    Vec3 ey = (mesh.point(VertexHandle(tov(nexth(h)))) - pa) - ex * c2.x;
+    const double ly = ey.norm();
+    if (ly > 0) ey /= ly;
+    Candidate k;
+    k.d = d;
+    k.source = pa + ex * s.x + ey * s.y;
+    k.origin = k.source;
+    k.offset = sigma;
+    k.face = mesh.face_handle(HalfedgeHandle(h)).idx();
+    offer(c, k);
   }
 
   // ---- Candidates from a settled vertex x for its neighbour c ---------------------------------
@@ -542,6 +778,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     through_x.offset = rx.d;
     through_x.face = f_left.is_valid() ? f_left.idx() : mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
     offer(c, through_x);
+    if (windowed) return;  // the straight lines come from the windows
     // (2) The straight lines: from x's virtual source and, when that finds no way to c, from x's
     // second source (see DRec).
     // A straight line is never shorter at c than at x: nothing to gain if c is already there.
@@ -742,9 +979,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (rc) {
         --rc->unsettled;
         if (rc->settled) {
-          if (rc->unsettled <= 0) dt.erase(static_cast<uint32_t>(c));
+          if (rc->unsettled <= 0) drop(c);
           return;
         }
+      }
+      if (rc && rc->early) {
+        // Lit by a window across a long edge before any neighbour settled: it settles right after
+        // x, at x's distance (the settle order stays monotone; its source is kept).
+        rc->early = false;
+        rc->d = rx.d;
+        heap.push(rx.d, c);
+        peak_heap = std::max(peak_heap, heap.size());
+        return;
       }
       if (rx.loop_in >= 0 && line_source && rx.d == 0) {
         propagate_from_line(x, rx, c);
@@ -773,7 +1019,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
           visit(r.v, HalfedgeHandle(r.he));
         } else if (DRec* ry = dt.find(static_cast<uint32_t>(r.v))) {
           --ry->unsettled;
-          if (ry->settled && ry->unsettled <= 0) dt.erase(static_cast<uint32_t>(r.v));
+          if (ry->settled && ry->unsettled <= 0) drop(r.v);
         }
       }
     } else {
@@ -782,14 +1028,27 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         visit(r.v, HalfedgeHandle(r.he));
       }
     }
+    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
+    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d);
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
-    if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));
+    if (r && r->unsettled <= 0) drop(x);
   }
 
   bool step() {
     while (!heap.empty()) {
       const auto [d, v] = heap.top();
+      if (v < 0) {  // a window
+        if (d > opts.max_distance) {
+          stop = DistanceStop::MaxDistance;
+          return false;
+        }
+        heap.pop();
+        const Window w = win[static_cast<size_t>(-1 - v)];
+        free_win.push_back(-1 - v);
+        propagate_window(w);
+        continue;
+      }
       DRec* r = dt.find(static_cast<uint32_t>(v));
       if (!r || r->settled || r->d != d) {
         heap.pop();
@@ -800,6 +1059,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         return false;
       }
       heap.pop();
+      if (windowed && !r->seed && !has_settled_neighbour(v)) {
+        dt.find(static_cast<uint32_t>(v))->early = true;  // not next to the settled region yet (see settle_neighbours)
+        continue;
+      }
       r->settled = true;
       ++n_settled;
       // The ring walk first: its cache misses overlap the caller's callback.
@@ -826,7 +1089,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   }
 
   size_t total_bytes() const {
-    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry);
+    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
+           gone.memory_bytes();
   }
 };
 
@@ -861,7 +1125,8 @@ size_t MinimalDistanceFront::front_size() const { return impl_->live_nodes; }
 size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes; }
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
-  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry);
+  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
+         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes();
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 

@@ -55,6 +55,12 @@ struct DistanceOptions {
   std::optional<VertexHandle> target = std::nullopt;
   /// Record, per vertex, the unit direction toward the source along the surface.
   bool directions = true;
+  /// Window propagation (as in exact MMP/ICH): every face edge the front crosses carries the
+  /// intervals lit straight from a (pseudo) source, with the source unfolded next to it, and they
+  /// are carried on face by face in the same distance order as the vertices; saddle and border
+  /// vertices become pseudo sources. Off: one virtual source per vertex (faster, less accurate).
+  /// Vertex and surface-point sources only; a loop source ignores it.
+  bool windows = false;
 };
 
 /// Why a distance computation stopped.
