@@ -6,6 +6,8 @@
 #include <cmath>
 #include <queue>
 #include <string>
+#include <cstdio>
+#include <cstdlib>
 
 #include "detail/edge_front_core.h"
 #include "detail/min_heap.h"
@@ -76,6 +78,75 @@ struct Window {
   double sigma;
 };
 
+// The last windows carried across a halfedge's face (MMP's windows of an edge, bounded): a later
+// window on the same halfedge keeps only the part where it is shorter than all of them.
+constexpr int kLitPerEdge = 4;
+struct LitSet {
+  int n = 0;     // windows held (at most kLitPerEdge)
+  int next = 0;  // the slot the next one replaces when full
+  std::array<Window, kLitPerEdge> w;
+};
+
+// The part of w's interval where it is shorter than u (its hull: a window stays one interval).
+// sigma + |s p| of the two cross at most twice along the edge (a hyperbola branch and a line).
+// False: nothing is left.
+double g_wtol = std::getenv("WTOL") ? std::atof(std::getenv("WTOL")) : -1e-12;
+bool trim_against(Window& w, const Window& u) {
+  const double lo = std::max(w.b0, u.b0), hi = std::min(w.b1, u.b1);
+  if (!(hi > lo)) return true;
+  auto diff = [&](double t) {
+    return (w.sigma + std::hypot(t - w.s.x, w.s.y)) - (u.sigma + std::hypot(t - u.s.x, u.s.y));
+  };
+  // Roots of sigma_w + a(t) = sigma_u + b(t): a^2 - b^2 = alpha t + beta, so
+  // (alpha t + beta - delta^2)^2 = 4 delta^2 b(t)^2 with delta = sigma_u - sigma_w.
+  std::array<double, 8> cut{};
+  int n = 0;
+  cut[n++] = w.b0;
+  cut[n++] = lo;
+  const double delta = u.sigma - w.sigma;
+  const double alpha = 2 * (u.s.x - w.s.x);
+  const double beta = w.s.x * w.s.x + w.s.y * w.s.y - u.s.x * u.s.x - u.s.y * u.s.y;
+  const double g = beta - delta * delta;
+  const double qa = alpha * alpha - 4 * delta * delta;
+  const double qb = 2 * alpha * g + 8 * delta * delta * u.s.x;
+  const double qc = g * g - 4 * delta * delta * (u.s.x * u.s.x + u.s.y * u.s.y);
+  auto add_root = [&](double t) {
+    if (t > lo && t < hi) cut[n++] = t;
+  };
+  if (std::abs(qa) > 1e-300) {
+    const double disc = qb * qb - 4 * qa * qc;
+    if (disc >= 0) {
+      const double sq = std::sqrt(disc);
+      add_root((-qb - sq) / (2 * qa));
+      add_root((-qb + sq) / (2 * qa));
+    }
+  } else if (std::abs(qb) > 1e-300) {
+    add_root(-qc / qb);
+  }
+  cut[n++] = hi;
+  cut[n++] = w.b1;
+  for (int i = 1; i < n; ++i) {  // insertion sort (at most six)
+    for (int j = i; j > 0 && cut[static_cast<size_t>(j)] < cut[static_cast<size_t>(j - 1)]; --j) {
+      std::swap(cut[static_cast<size_t>(j)], cut[static_cast<size_t>(j - 1)]);
+    }
+  }
+  double keep0 = kInf, keep1 = -kInf;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double a = cut[i], b = cut[i + 1];
+    if (!(b > a)) continue;
+    const double m = 0.5 * (a + b);
+    const bool useful = m < lo || m > hi || diff(m) < -g_wtol * (w.sigma + std::hypot(m - w.s.x, w.s.y));
+    if (useful) {
+      keep0 = std::min(keep0, a);
+      keep1 = std::max(keep1, b);
+    }
+  }
+  if (!(keep1 > keep0)) return false;
+  w.b0 = keep0;
+  w.b1 = keep1;
+  return true;
+}
+
 
 std::string dname(double d) { return std::to_string(d); }
 
@@ -99,6 +170,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   std::vector<Window> win;
   std::vector<int> free_win;
   detail::FlatMap<double> gone;
+  detail::FlatMap<LitSet> lit_edges;  // per halfedge, the windows carried across its face lately
   size_t n_windows = 0;  // windows propagated (statistics)
 
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
@@ -144,6 +216,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     win.clear();
     free_win.clear();
     gone.clear();
+    lit_edges.clear();
     n_windows = 0;
   }
 
@@ -330,12 +403,47 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void drop(int v) {
     if (windowed) {
       if (const DRec* r = dt.find(static_cast<uint32_t>(v))) gone.insert(static_cast<uint32_t>(v), r->d);
+      // The windows remembered on v's edges: the front has passed them.
+      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
+        lit_edges.erase(static_cast<uint32_t>(h.idx()));
+        lit_edges.erase(static_cast<uint32_t>(h.idx() ^ 1));
+      }
     }
     dt.erase(static_cast<uint32_t>(v));
   }
 
+  // ICH's filter, as a trim (MMP): the part of [b0, b1] that an end of the edge (distance da at
+  // the from-vertex, db at the to-vertex, edge length l) reaches more closely along the edge goes.
+  // Sound: sigma + |s p| - (da + |a p|) never grows from a toward b, so that part is an end piece;
+  // the path through the end vertex is a real path. False: nothing is left.
+  static bool trim(double& b0, double& b1, P2 s, double sigma, double da, double db, double l) {
+    auto via_s = [&](double t) { return sigma + std::hypot(t - s.x, s.y); };
+    const double kTol = std::max(-g_wtol, -1e-9);
+    if (da < kInf) {
+      if (via_s(b1) > (da + b1) * (1 + kTol)) return false;
+      if (via_s(b0) > (da + b0) * (1 + kTol)) {
+        // sigma + |s p| = da + t: |s p| = k + t, k = da - sigma
+        const double k = da - sigma, den = 2 * (s.x + k);
+        if (den > 0) b0 = std::clamp((s.x * s.x + s.y * s.y - k * k) / den, b0, b1);
+      }
+    }
+    if (db < kInf) {
+      if (via_s(b0) > (db + l - b0) * (1 + kTol)) return false;
+      if (via_s(b1) > (db + l - b1) * (1 + kTol)) {
+        const double m = db - sigma + l, den = 2 * (m - s.x);
+        if (den > 0) b1 = std::clamp((m * m - s.x * s.x - s.y * s.y) / den, b0, b1);
+      }
+    }
+    return b1 > b0;
+  }
+
   void push_window(int h, double b0, double b1, P2 s, double sigma) {
     if (!(b1 > b0) || !has_face(h)) return;
+    if (!trim(b0, b1, s, sigma, known_d(fromv(h)), known_d(tov(h)), edge_length(h))) return;
+    Window nw{h, b0, b1, s, sigma};
+    if (!trim_against_lit(nw)) return;
+    b0 = nw.b0;
+    b1 = nw.b1;
     const double foot = std::clamp(s.x, b0, b1);
     const double dmin = sigma + std::hypot(s.x - foot, s.y);
     int id;
@@ -382,8 +490,24 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return !(re > 0 && im >= 0 && im <= kFlatDefect);  // more than a full turn, beyond round-off
   }
 
+  bool trim_against_lit(Window& w) const {
+    const LitSet* ls = lit_edges.find(static_cast<uint32_t>(w.he));
+    if (!ls) return true;
+    for (int i = 0; i < ls->n; ++i) {
+      if (!trim_against(w, ls->w[static_cast<size_t>(i)])) return false;
+    }
+    return true;
+  }
+
+  void remember(const Window& w) {
+    LitSet& ls = *lit_edges.insert(static_cast<uint32_t>(w.he), LitSet{}).first;
+    ls.w[static_cast<size_t>(ls.next)] = w;
+    ls.next = (ls.next + 1) % kLitPerEdge;
+    ls.n = std::min(ls.n + 1, kLitPerEdge);
+  }
+
   // Carries window w across its face (see above).
-  void propagate_window(const Window& w) {
+  void propagate_window(Window w) {
     ++n_windows;
     const int h = w.he;
     const int hn = nexth(h);
@@ -394,11 +518,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     const double l = (pb - pa).norm(), la = (pc - pa).norm(), lb = (pc - pb).norm();
     if (!(l > 0) || !(la > 0) || !(lb > 0)) return;
     const P2 s = w.s;
-    // ICH's filter: an end of the edge that reaches the interval's far end more closely reaches
-    // all of it more closely (and everything it lights).
-    const double at_b1 = w.sigma + std::hypot(w.b1 - s.x, s.y);
-    const double at_b0 = w.sigma + std::hypot(w.b0 - s.x, s.y);
-    if (known_d(a) + w.b1 < at_b1 * (1 - 1e-12) || known_d(b) + (l - w.b0) < at_b0 * (1 - 1e-12)) return;
+    // The ends' distances may have dropped since the window was made.
+    if (!trim(w.b0, w.b1, s, w.sigma, known_d(a), known_d(b), l)) return;
+    if (!trim_against_lit(w)) return;
+    remember(w);
     const double cx = (l * l + la * la - lb * lb) / (2 * l);
     const double cy = std::sqrt(std::max(la * la - cx * cx, 0.0));
     if (!(cy > 0)) return;
@@ -1029,7 +1152,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
     }
     // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
-    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d);
+    if (windowed && (rx.d == 0 || (!std::getenv("NOSADDLE") && bends_geodesics()))) emit_vertex_windows(x, rx.d);
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) drop(x);
@@ -1079,6 +1202,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       return true;
     }
     stop = DistanceStop::Exhausted;
+    if (windowed && std::getenv("MDF_WDEBUG")) fprintf(stderr, "settled %zu windows %zu peak_heap %zu pool %zu\n", n_settled, n_windows, peak_heap, win.size());
     return false;
   }
 
@@ -1090,7 +1214,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   size_t total_bytes() const {
     return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
-           gone.memory_bytes();
+           gone.memory_bytes() + lit_edges.memory_bytes();
   }
 };
 
@@ -1126,7 +1250,7 @@ size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes;
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
   return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
-         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes();
+         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes();
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 
