@@ -6,8 +6,6 @@
 #include <cmath>
 #include <queue>
 #include <string>
-#include <cstdio>
-#include <cstdlib>
 
 #include "detail/edge_front_core.h"
 #include "detail/min_heap.h"
@@ -47,7 +45,7 @@ struct DRec {
   int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
   bool seed = false;     // a source vertex, or a vertex of a source point's face
-  bool early = false;    // window mode: lit before any neighbour settled; waits for one (see step)
+  bool unexpanded = false;  // window mode: settled before it joined the front (see step)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -90,7 +88,11 @@ struct LitSet {
 // The part of w's interval where it is shorter than u (its hull: a window stays one interval).
 // sigma + |s p| of the two cross at most twice along the edge (a hyperbola branch and a line).
 // False: nothing is left.
-double g_wtol = std::getenv("WTOL") ? std::atof(std::getenv("WTOL")) : -1e-12;
+// A window is kept only where it is shorter by this (relative) than the windows carried across
+// the same halfedge before and than the path through an end of the edge: a window that would
+// only shave off less goes (MMP/ICH keep every one; this bounds their number, about 1/3 fewer on
+// the scanned models, for an error of about 1e-5 relative).
+constexpr double kWindowGain = 1e-5;
 bool trim_against(Window& w, const Window& u) {
   const double lo = std::max(w.b0, u.b0), hi = std::min(w.b1, u.b1);
   if (!(hi > lo)) return true;
@@ -135,7 +137,7 @@ bool trim_against(Window& w, const Window& u) {
     const double a = cut[i], b = cut[i + 1];
     if (!(b > a)) continue;
     const double m = 0.5 * (a + b);
-    const bool useful = m < lo || m > hi || diff(m) < -g_wtol * (w.sigma + std::hypot(m - w.s.x, w.s.y));
+    const bool useful = m < lo || m > hi || diff(m) < -kWindowGain * (w.sigma + std::hypot(m - w.s.x, w.s.y));
     if (useful) {
       keep0 = std::min(keep0, a);
       keep1 = std::max(keep1, b);
@@ -186,6 +188,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     int he;  // the outgoing halfedge x -> v
   };
   std::vector<Ray> ring;
+  std::vector<double> ang;  // scratch: the ring's cumulative corner angles
   bool ring_closed = false;
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
@@ -391,12 +394,22 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return kInf;
   }
 
-  bool has_settled_neighbour(int v) const {
-    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
-      const DRec* r = dt.find(static_cast<uint32_t>(y.idx()));
-      if ((r && r->settled) || gone.find(static_cast<uint32_t>(y.idx()))) return true;
+  // A window across a long edge can light a vertex more closely than any of its neighbours: it
+  // settles first, before the front reaches it (expand_vertex has nothing to do then). When a
+  // neighbour has settled and brought it onto the front, it is expanded (and so on outward).
+  std::vector<int> late;  // scratch
+  void expand_late_neighbours() {
+    late.clear();
+    for (const Ray& r : ring) late.push_back(r.v);
+    while (!late.empty()) {
+      const int c = late.back();
+      late.pop_back();
+      DRec* rc = dt.find(static_cast<uint32_t>(c));
+      if (!rc || !rc->unexpanded || !vt.find(static_cast<uint32_t>(c))) continue;
+      rc->unexpanded = false;
+      if (!expand_vertex(c)) continue;
+      for (VertexHandle y : mesh.vv_range(VertexHandle(c))) late.push_back(y.idx());
     }
-    return false;
   }
 
   // Drops the record of a settled vertex whose neighbours are all settled.
@@ -418,18 +431,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // the path through the end vertex is a real path. False: nothing is left.
   static bool trim(double& b0, double& b1, P2 s, double sigma, double da, double db, double l) {
     auto via_s = [&](double t) { return sigma + std::hypot(t - s.x, s.y); };
-    const double kTol = std::max(-g_wtol, -1e-9);
+    constexpr double kKeep = 1 - kWindowGain;  // a window must beat the path through the end by this
     if (da < kInf) {
-      if (via_s(b1) > (da + b1) * (1 + kTol)) return false;
-      if (via_s(b0) > (da + b0) * (1 + kTol)) {
+      if (via_s(b1) > (da + b1) * kKeep) return false;
+      if (via_s(b0) > (da + b0) * kKeep) {
         // sigma + |s p| = da + t: |s p| = k + t, k = da - sigma
         const double k = da - sigma, den = 2 * (s.x + k);
         if (den > 0) b0 = std::clamp((s.x * s.x + s.y * s.y - k * k) / den, b0, b1);
       }
     }
     if (db < kInf) {
-      if (via_s(b0) > (db + l - b0) * (1 + kTol)) return false;
-      if (via_s(b1) > (db + l - b1) * (1 + kTol)) {
+      if (via_s(b0) > (db + l - b0) * kKeep) return false;
+      if (via_s(b1) > (db + l - b1) * kKeep) {
         const double m = db - sigma + l, den = 2 * (m - s.x);
         if (den > 0) b1 = std::clamp((m * m - s.x * s.x - s.y * s.y) / den, b0, b1);
       }
@@ -461,10 +474,54 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   // A (pseudo) source at the settled vertex x (ring built): windows on the far sides of the edges
   // opposite x in its faces.
-  void emit_vertex_windows(int x, double sigma) {
+  // shadow_only: a pseudo source (rx: x's record) lights only its shadow, the directions more than a
+  // half turn away from the way to the source on both sides (the geodesics that bend at x); the
+  // faces that meet it get windows.
+  void emit_vertex_windows(int x, double sigma, const DRec* shadow_only = nullptr) {
     const Vec3& px = mesh.point(VertexHandle(x));
-    for (const Ray& r : ring) {
+    const int m = static_cast<int>(ring.size());
+    // The shadow: [lo, hi] in ring angles (mod full when closed); at a border vertex also [0, hi2].
+    double lo = 0, hi = -1, hi2 = -1, full = 0;
+    bool known = false;
+    if (shadow_only) {
+      ang.assign(static_cast<size_t>(m) + 1, 0.0);
+      int jf = -1;
+      for (int i = 0; i < m; ++i) {
+        const P2 c = corner_after(i);
+        ang[static_cast<size_t>(i) + 1] = ang[static_cast<size_t>(i)] + (ring[i].face_after >= 0 ? std::atan2(c.y, c.x) : 0.0);
+        if (ring[i].face_after == shadow_only->face) jf = i;
+      }
+      full = ang[static_cast<size_t>(m)];
+      const Vec3 w = shadow_only->source - px;
+      if (jf >= 0 && w.sqrnorm() > 0) {
+        const Vec3& u0 = ring[jf].u;
+        Vec3 nrm = OpenMesh::cross(u0, ring[(jf + 1) % m].u);
+        const double nl = nrm.norm();
+        if (nl > 0) {
+          nrm /= nl;
+          const double phi = ang[static_cast<size_t>(jf)] +
+                             std::atan2(OpenMesh::dot(nrm, OpenMesh::cross(u0, w)), OpenMesh::dot(u0, w));
+          constexpr double kPi = kTwoPi / 2, kSlack = 1e-7;
+          lo = phi + kPi - kSlack;
+          hi = ring_closed ? phi + full - kPi + kSlack : full + kSlack;
+          if (!ring_closed) hi2 = phi - kPi + kSlack;
+          known = true;
+        }
+      }
+      if (!known) shadow_only = nullptr;  // no direction known: light every face
+    }
+    for (int i = 0; i < m; ++i) {
+      const Ray& r = ring[i];
       if (r.face_after < 0) continue;
+      if (shadow_only) {
+        const double a0 = ang[static_cast<size_t>(i)], a1 = ang[static_cast<size_t>(i) + 1];
+        bool meets = !ring_closed && hi2 >= 0 && a0 <= hi2;
+        for (int k = -2; k <= 2 && !meets; ++k) {
+          if (!ring_closed && k != 0) continue;
+          meets = a1 + k * full >= lo && a0 + k * full <= hi;
+        }
+        if (!meets) continue;
+      }
       const int g = mesh.next_halfedge_handle(HalfedgeHandle(r.he)).idx() ^ 1;  // z -> y, across the face x, y, z
       push_window(g, 0, edge_length(g), in_frame(g, px), sigma);
     }
@@ -1106,15 +1163,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
           return;
         }
       }
-      if (rc && rc->early) {
-        // Lit by a window across a long edge before any neighbour settled: it settles right after
-        // x, at x's distance (the settle order stays monotone; its source is kept).
-        rc->early = false;
-        rc->d = rx.d;
-        heap.push(rx.d, c);
-        peak_heap = std::max(peak_heap, heap.size());
-        return;
-      }
       if (rx.loop_in >= 0 && line_source && rx.d == 0) {
         propagate_from_line(x, rx, c);
       } else {
@@ -1152,7 +1200,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
     }
     // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
-    if (windowed && (rx.d == 0 || (!std::getenv("NOSADDLE") && bends_geodesics()))) emit_vertex_windows(x, rx.d);
+    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d, rx.d == 0 ? nullptr : &rx);
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) drop(x);
@@ -1182,18 +1230,16 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         return false;
       }
       heap.pop();
-      if (windowed && !r->seed && !has_settled_neighbour(v)) {
-        dt.find(static_cast<uint32_t>(v))->early = true;  // not next to the settled region yet (see settle_neighbours)
-        continue;
-      }
       r->settled = true;
       ++n_settled;
       // The ring walk first: its cache misses overlap the caller's callback.
       start_ring(v);
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
-      expand_vertex(v);
+      const bool expanded = expand_vertex(v);
+      if (windowed && !expanded && !r->seed) r->unexpanded = true;
       settle_neighbours(v);
+      if (windowed) expand_late_neighbours();
       note_memory();
       if (opts.target && opts.target->idx() == v) {
         stop = DistanceStop::TargetReached;
@@ -1202,7 +1248,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       return true;
     }
     stop = DistanceStop::Exhausted;
-    if (windowed && std::getenv("MDF_WDEBUG")) fprintf(stderr, "settled %zu windows %zu peak_heap %zu pool %zu\n", n_settled, n_windows, peak_heap, win.size());
     return false;
   }
 
