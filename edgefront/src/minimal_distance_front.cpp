@@ -431,7 +431,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // the path through the end vertex is a real path. False: nothing is left.
   static bool trim(double& b0, double& b1, P2 s, double sigma, double da, double db, double l) {
     auto via_s = [&](double t) { return sigma + std::hypot(t - s.x, s.y); };
-    constexpr double kKeep = 1 - kWindowGain;  // a window must beat the path through the end by this
+    constexpr double kKeep = 1 + 1e-12;  // exact: the end vertex may not carry the line on (not a pseudo source)
     if (da < kInf) {
       if (via_s(b1) > (da + b1) * kKeep) return false;
       if (via_s(b0) > (da + b0) * kKeep) {
