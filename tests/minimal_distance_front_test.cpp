@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "edgefront/error.h"
@@ -29,6 +30,38 @@ VertexHandle nearest_vertex(const Mesh& mesh, const Vec3& p) {
     }
   }
   return best;
+}
+
+// Planar and convex: s (0), then c (4) behind the long edge a (3) - b (1), then d (2).
+// c's neighbours are a, b, d, all farther from s than c.
+Mesh long_edge_mesh() {
+  Mesh mesh;
+  const VertexHandle s = mesh.add_vertex(Vec3(0, 0, 0));
+  const VertexHandle b = mesh.add_vertex(Vec3(0.5, -4, 0));
+  const VertexHandle d = mesh.add_vertex(Vec3(4, 0.5, 0));
+  const VertexHandle a = mesh.add_vertex(Vec3(0.5, 4, 0));
+  const VertexHandle c = mesh.add_vertex(Vec3(1, 0, 0));
+  mesh.add_face(s, b, a);
+  mesh.add_face(a, b, c);
+  mesh.add_face(b, d, c);
+  mesh.add_face(d, a, c);
+  return mesh;
+}
+
+// x (0) lifted, c (1), y0 (2), y1 (3) a dented ring vertex of x, y2 (4), s (5), and a spike w
+// over y0-y1-y2: from s the shortest path to c bends at y1 (see the tests).
+Mesh saddle_mesh() {
+  Mesh mesh;
+  auto add = [&](double px, double py, double pz) { return mesh.add_vertex(Vec3(px, py, pz)); };
+  const VertexHandle x = add(0, 0, 0.1), c = add(1, 0, 0), y0 = add(0.8, 0.6, 0), y1 = add(0.15, 0.4, 0),
+                     y2 = add(-0.3, 1.2, 0), s = add(-1.5, 1.5, 0), p = add(-1, -0.5, 0), r = add(0.5, -1, 0),
+                     t1 = add(1.4, 0.9, 0), w = add(0.45, 0.95, 2.0), t2 = add(-0.4, 2.0, 0);
+  for (const auto& f : std::vector<std::array<VertexHandle, 3>>{
+           {x, c, y0}, {x, y0, y1}, {x, y1, y2}, {x, y2, s}, {x, s, p}, {x, p, r}, {x, r, c},
+           {y1, y0, w}, {y2, y1, w}, {y0, c, t1}, {y0, t1, w}, {y2, w, t2}, {s, y2, t2}}) {
+    EXPECT_TRUE(mesh.add_face(f[0], f[1], f[2]).is_valid());
+  }
+  return mesh;
 }
 
 // Property 3: on any triangulation of a convex planar region the distance from a vertex is the
@@ -67,16 +100,8 @@ TEST(Mdf, PlanarConvexRegionsAreExact) { expect_planar_exact({}); }
 // that neighbour, and keeps the true source (its direction and everything beyond it stay exact).
 TEST(Mdf, VertexNearerThanAllItsNeighboursTakesTheFirstNeighboursDistance) {
   // Planar and convex: s, then c behind the long edge a-b, then d. c's neighbours are a, b, d.
-  Mesh mesh;
-  const VertexHandle s = mesh.add_vertex(Vec3(0, 0, 0));
-  const VertexHandle b = mesh.add_vertex(Vec3(0.5, -4, 0));
-  const VertexHandle d = mesh.add_vertex(Vec3(4, 0.5, 0));
-  const VertexHandle a = mesh.add_vertex(Vec3(0.5, 4, 0));
-  const VertexHandle c = mesh.add_vertex(Vec3(1, 0, 0));
-  mesh.add_face(s, b, a);
-  mesh.add_face(a, b, c);
-  mesh.add_face(b, d, c);
-  mesh.add_face(d, a, c);
+  const Mesh mesh = long_edge_mesh();
+  const VertexHandle s(0), b(1), d(2), a(3), c(4);
   const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
   ASSERT_EQ(f.stop, DistanceStop::Exhausted);
   double nearest_neighbour = kInf;
@@ -98,16 +123,8 @@ TEST(Mdf, VertexNearerThanAllItsNeighboursTakesTheFirstNeighboursDistance) {
 // Here both the taut string around y1 and x's second source (a pseudo source at y1) find it; the
 // string is what helps where the second source holds another way round (the model benchmark).
 TEST(Mdf, GeodesicBendsAroundASaddleVertexNotOverIt) {
-  Mesh mesh;
-  auto add = [&](double px, double py, double pz) { return mesh.add_vertex(Vec3(px, py, pz)); };
-  const VertexHandle x = add(0, 0, 0.1), c = add(1, 0, 0), y0 = add(0.8, 0.6, 0), y1 = add(0.15, 0.4, 0),
-                     y2 = add(-0.3, 1.2, 0), s = add(-1.5, 1.5, 0), p = add(-1, -0.5, 0), r = add(0.5, -1, 0),
-                     t1 = add(1.4, 0.9, 0), w = add(0.45, 0.95, 2.0), t2 = add(-0.4, 2.0, 0);
-  for (const auto& f : std::vector<std::array<VertexHandle, 3>>{
-           {x, c, y0}, {x, y0, y1}, {x, y1, y2}, {x, y2, s}, {x, s, p}, {x, p, r}, {x, r, c},
-           {y1, y0, w}, {y2, y1, w}, {y0, c, t1}, {y0, t1, w}, {y2, w, t2}, {s, y2, t2}}) {
-    ASSERT_TRUE(mesh.add_face(f[0], f[1], f[2]).is_valid());
-  }
+  const Mesh mesh = saddle_mesh();
+  const VertexHandle x(0), c(1), y1(3), s(5);
   const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s));
   ASSERT_EQ(f.stop, DistanceStop::Exhausted);
   // CGAL's exact values for y1 (a straight line over x's lifted faces) and c (bent at y1).
@@ -150,6 +167,29 @@ TEST(Mdf, OpenCylinderUnrollsExactly) {
   EXPECT_LT(mean, 1e-9);  // what the unfolding actually achieves
 }
 
+// Property 2 and 1: Euclidean <= d <= Dijkstra, reached iff connected, the sources are 0, the
+// settling order is (nearly) non-decreasing.
+void expect_bounds_and_order(const Mesh& mesh, const std::vector<VertexHandle>& sources,
+                             const DistanceOptions& options, const std::string& name) {
+  const FrontSource src = FrontSource::from_vertices(sources);
+  const DistanceField f = geodesic_distance(mesh, src, options);
+  const DistanceField dj = dijkstra_distance(mesh, src);
+  const auto hops = eftest::bfs_levels(mesh, sources);
+  for (VertexHandle v : mesh.vertices()) {
+    const double d = f.distance[v.idx()];
+    ASSERT_EQ(std::isinf(d), hops[v.idx()] < 0) << name << ": reached iff connected";
+    if (std::isinf(d)) continue;
+    double euclid = kInf;
+    for (VertexHandle s : sources) euclid = std::min(euclid, (mesh.point(v) - mesh.point(s)).norm());
+    ASSERT_GE(d, euclid * (1 - 1e-9) - 1e-12) << name << " vertex " << v.idx();
+    ASSERT_LE(d, dj.distance[v.idx()] * (1 + 1e-9) + 1e-12) << name << " vertex " << v.idx();
+  }
+  for (VertexHandle s : sources) EXPECT_EQ(f.distance[s.idx()], 0.0);
+  for (size_t i = 1; i < f.order.size(); ++i) {
+    ASSERT_GE(f.distance[f.order[i].idx()], f.distance[f.order[i - 1].idx()] - 1e-9) << name << ": settling order";
+  }
+}
+
 // Property 2 and 1: Euclidean <= d <= Dijkstra, the source is 0, settling order is (nearly)
 // non-decreasing; on every generated shape from random sources.
 class MdfOnShapes : public ::testing::TestWithParam<eftest::NamedMesh> {};
@@ -159,23 +199,7 @@ TEST_P(MdfOnShapes, BoundsAndOrder) {
   std::mt19937_64 rng(8);
   for (int trial = 0; trial < 10; ++trial) {
     const auto sources = eftest::random_vertices(mesh, rng, 1 + trial % 2);
-    const FrontSource src = FrontSource::from_vertices(sources);
-    const DistanceField f = geodesic_distance(mesh, src);
-    const DistanceField dj = dijkstra_distance(mesh, src);
-    const auto hops = eftest::bfs_levels(mesh, sources);
-    for (VertexHandle v : mesh.vertices()) {
-      const double d = f.distance[v.idx()];
-      ASSERT_EQ(std::isinf(d), hops[v.idx()] < 0) << GetParam().name << ": reached iff connected";
-      if (std::isinf(d)) continue;
-      double euclid = kInf;
-      for (VertexHandle s : sources) euclid = std::min(euclid, (mesh.point(v) - mesh.point(s)).norm());
-      ASSERT_GE(d, euclid * (1 - 1e-9) - 1e-12) << GetParam().name << " vertex " << v.idx();
-      ASSERT_LE(d, dj.distance[v.idx()] * (1 + 1e-9) + 1e-12) << GetParam().name << " vertex " << v.idx();
-    }
-    for (VertexHandle s : sources) EXPECT_EQ(f.distance[s.idx()], 0.0);
-    for (size_t i = 1; i < f.order.size(); ++i) {
-      ASSERT_GE(f.distance[f.order[i].idx()], f.distance[f.order[i - 1].idx()] - 1e-9) << "settling order";
-    }
+    expect_bounds_and_order(mesh, sources, {}, GetParam().name);
   }
 }
 
@@ -442,18 +466,21 @@ TEST(Mdf, BadInputIsRefused) {
   EXPECT_THROW(front2.reset(FrontSource::vertex(VertexHandle(3))), InvalidInput);
 }
 
-TEST(Mdf, ReusedFrontGivesTheSameField) {
+// A reused front (large query, small, large again) gives the fields of fresh ones.
+void expect_reuse_gives_same_fields(const DistanceOptions& options) {
   const Mesh mesh = shapes::torus(24, 10);
   MinimalDistanceFront front(mesh);
   std::vector<double> d(mesh.n_vertices());
   front.set_settled_callback([&](VertexHandle v, double x, const Vec3&) { d[v.idx()] = x; });
   for (int s : {5, 60, 5}) {
     std::fill(d.begin(), d.end(), kInf);
-    front.reset(FrontSource::vertex(VertexHandle(s)));
+    front.reset(FrontSource::vertex(VertexHandle(s)), options);
     front.run();
-    EXPECT_EQ(d, geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s))).distance);
+    EXPECT_EQ(d, geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)), options).distance);
   }
 }
+
+TEST(Mdf, ReusedFrontGivesTheSameField) { expect_reuse_gives_same_fields({}); }
 
 // ---- DistanceOptions::windows: windows per edge (MMP/ICH) instead of one source per vertex ----
 
@@ -467,16 +494,8 @@ TEST(MdfWindows, OpenCylinderUnrollsExactly) { EXPECT_LT(cylinder_mean_error(kWi
 // reaches it; the settle order stays monotone and the front stays valid (one vertex source per
 // vertex gives it its first neighbour's distance instead, see above).
 TEST(MdfWindows, VertexNearerThanAllItsNeighboursGetsItsOwnDistance) {
-  Mesh mesh;
-  const VertexHandle s = mesh.add_vertex(Vec3(0, 0, 0));
-  const VertexHandle b = mesh.add_vertex(Vec3(0.5, -4, 0));
-  const VertexHandle d = mesh.add_vertex(Vec3(4, 0.5, 0));
-  const VertexHandle a = mesh.add_vertex(Vec3(0.5, 4, 0));
-  const VertexHandle c = mesh.add_vertex(Vec3(1, 0, 0));
-  mesh.add_face(s, b, a);
-  mesh.add_face(a, b, c);
-  mesh.add_face(b, d, c);
-  mesh.add_face(d, a, c);
+  const Mesh mesh = long_edge_mesh();
+  const VertexHandle s(0), b(1), d(2), a(3), c(4);
   MinimalDistanceFront front(mesh);
   front.reset(FrontSource::vertex(s), kWindows);
   std::vector<double> order;
@@ -494,16 +513,8 @@ TEST(MdfWindows, VertexNearerThanAllItsNeighboursGetsItsOwnDistance) {
 
 // The saddle: the path bends at y1 (CGAL's exact values), found by y1's pseudo-source windows.
 TEST(MdfWindows, GeodesicBendsAroundASaddleVertex) {
-  Mesh mesh;
-  auto add = [&](double px, double py, double pz) { return mesh.add_vertex(Vec3(px, py, pz)); };
-  const VertexHandle x = add(0, 0, 0.1), c = add(1, 0, 0), y0 = add(0.8, 0.6, 0), y1 = add(0.15, 0.4, 0),
-                     y2 = add(-0.3, 1.2, 0), s = add(-1.5, 1.5, 0), p = add(-1, -0.5, 0), r = add(0.5, -1, 0),
-                     t1 = add(1.4, 0.9, 0), w = add(0.45, 0.95, 2.0), t2 = add(-0.4, 2.0, 0);
-  for (const auto& f : std::vector<std::array<VertexHandle, 3>>{
-           {x, c, y0}, {x, y0, y1}, {x, y1, y2}, {x, y2, s}, {x, s, p}, {x, p, r}, {x, r, c},
-           {y1, y0, w}, {y2, y1, w}, {y0, c, t1}, {y0, t1, w}, {y2, w, t2}, {s, y2, t2}}) {
-    ASSERT_TRUE(mesh.add_face(f[0], f[1], f[2]).is_valid());
-  }
+  const Mesh mesh = saddle_mesh();
+  const VertexHandle c(1), y1(3), s(5);
   const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s), kWindows);
   EXPECT_NEAR(f.distance[y1.idx()], 1.9871441751306769, 1e-12);
   EXPECT_NEAR(f.distance[c.idx()], 2.9334930630665106, 1e-12);
@@ -540,23 +551,8 @@ TEST_P(MdfOnShapes, WindowsBoundsOrderAndFront) {
   MinimalDistanceFront front(mesh);
   for (int trial = 0; trial < 4; ++trial) {
     const auto sources = eftest::random_vertices(mesh, rng, 1 + trial % 2);
-    const FrontSource src = FrontSource::from_vertices(sources);
-    const DistanceField f = geodesic_distance(mesh, src, kWindows);
-    const DistanceField dj = dijkstra_distance(mesh, src);
-    const auto hops = eftest::bfs_levels(mesh, sources);
-    for (VertexHandle v : mesh.vertices()) {
-      const double d = f.distance[v.idx()];
-      ASSERT_EQ(std::isinf(d), hops[v.idx()] < 0) << GetParam().name << ": reached iff connected";
-      if (std::isinf(d)) continue;
-      double euclid = kInf;
-      for (VertexHandle s : sources) euclid = std::min(euclid, (mesh.point(v) - mesh.point(s)).norm());
-      ASSERT_GE(d, euclid * (1 - 1e-9) - 1e-12) << GetParam().name << " vertex " << v.idx();
-      ASSERT_LE(d, dj.distance[v.idx()] * (1 + 1e-9) + 1e-12) << GetParam().name << " vertex " << v.idx();
-    }
-    for (size_t i = 1; i < f.order.size(); ++i) {
-      ASSERT_GE(f.distance[f.order[i].idx()], f.distance[f.order[i - 1].idx()] - 1e-9) << "settling order";
-    }
-    front.reset(src, kWindows);
+    expect_bounds_and_order(mesh, sources, kWindows, GetParam().name);
+    front.reset(FrontSource::from_vertices(sources), kWindows);
     front.validate();
     while (front.step()) front.validate();
     EXPECT_EQ(front.stop_reason(), DistanceStop::Exhausted);
@@ -638,16 +634,7 @@ TEST(MdfWindows, SurfacePointSources) {
 
 // A reused front gives the same field; a loop source ignores the option.
 TEST(MdfWindows, ReusedFrontAndLoopSource) {
-  const Mesh mesh = shapes::torus(24, 10);
-  MinimalDistanceFront front(mesh);
-  std::vector<double> d(mesh.n_vertices());
-  front.set_settled_callback([&](VertexHandle v, double x, const Vec3&) { d[v.idx()] = x; });
-  for (int s : {5, 60, 5}) {
-    std::fill(d.begin(), d.end(), kInf);
-    front.reset(FrontSource::vertex(VertexHandle(s)), kWindows);
-    front.run();
-    EXPECT_EQ(d, geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)), kWindows).distance);
-  }
+  expect_reuse_gives_same_fields(kWindows);
   const Mesh grid = shapes::grid(shapes::GridOptions{.cells = 8});
   std::vector<VertexHandle> ring;
   for (const Vec3& q : {Vec3(-0.25, -0.25, 0), Vec3(0, -0.25, 0), Vec3(0.25, -0.25, 0), Vec3(0.25, 0, 0),

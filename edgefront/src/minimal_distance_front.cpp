@@ -246,23 +246,16 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void offer(int v, const Candidate& k) {
     DRec& r = record(v);
     if (r.settled) return;
-    if (windowed) {
-      // Every candidate is the length of a real path: the shortest wins, no second source.
-      if (!(k.d < r.d * (1 - 1e-12)) && (k.d > r.d * (1 + 1e-12) || !(k.offset < r.offset))) return;
-      r.d = k.d;
-      r.source = k.source;
-      r.offset = k.offset;
-      r.face = k.face;
-      r.origin = k.origin;
-      heap.push(k.d, v);
-      peak_heap = std::max(peak_heap, heap.size());
-      return;
-    }
     // Better: shorter, or as short (to rounding) from a source nearer the true one (a smaller
     // offset). A pseudo source at a vertex that lies exactly on the straight path ties with the
     // true source; keeping the pseudo source would bend every path continued from it.
     const bool shorter = k.d < r.d * (1 - 1e-12);
     const bool tie_but_straighter = !(k.d > r.d * (1 + 1e-12)) && k.offset < r.offset;
+    if (windowed) {
+      // Every candidate is the length of a real path: the shortest wins, no second source.
+      if (shorter || tie_but_straighter) take(v, r, k);
+      return;
+    }
     const bool same_source = std::isfinite(r.d) && same_virtual_source(r.source, r.offset, k.source, k.offset, r.d);
     if (!shorter && !tie_but_straighter) {
       if (!same_source && k.face >= 0 && k.d < r.alt.d) r.alt = k;
@@ -273,6 +266,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     } else if (r.alt.d < kInf && same_virtual_source(r.alt.source, r.alt.offset, k.source, k.offset, k.d)) {
       r.alt.d = kInf;  // the new best is the old second source
     }
+    take(v, r, k);
+  }
+
+  void take(int v, DRec& r, const Candidate& k) {
     r.d = k.d;
     r.source = k.source;
     r.offset = k.offset;
