@@ -63,6 +63,9 @@ struct P2 {
   double x, y;
 };
 double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
+// |(x, y)| without std::hypot's overflow care (a fifth of the windows' time; lengths here are
+// mesh-sized).
+double norm2(double x, double y) { return std::sqrt(x * x + y * y); }
 double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
 
 // A window (DistanceOptions::windows): the part [b0, b1] of a halfedge's edge lit straight from a
@@ -97,7 +100,7 @@ bool trim_against(Window& w, const Window& u) {
   const double lo = std::max(w.b0, u.b0), hi = std::min(w.b1, u.b1);
   if (!(hi > lo)) return true;
   auto diff = [&](double t) {
-    return (w.sigma + std::hypot(t - w.s.x, w.s.y)) - (u.sigma + std::hypot(t - u.s.x, u.s.y));
+    return (w.sigma + norm2(t - w.s.x, w.s.y)) - (u.sigma + norm2(t - u.s.x, u.s.y));
   };
   // Roots of sigma_w + a(t) = sigma_u + b(t): a^2 - b^2 = alpha t + beta, so
   // (alpha t + beta - delta^2)^2 = 4 delta^2 b(t)^2 with delta = sigma_u - sigma_w.
@@ -137,7 +140,7 @@ bool trim_against(Window& w, const Window& u) {
     const double a = cut[i], b = cut[i + 1];
     if (!(b > a)) continue;
     const double m = 0.5 * (a + b);
-    const bool useful = m < lo || m > hi || diff(m) < -kWindowGain * (w.sigma + std::hypot(m - w.s.x, w.s.y));
+    const bool useful = m < lo || m > hi || diff(m) < -kWindowGain * (w.sigma + norm2(m - w.s.x, w.s.y));
     if (useful) {
       keep0 = std::min(keep0, a);
       keep1 = std::max(keep1, b);
@@ -427,7 +430,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // Sound: sigma + |s p| - (da + |a p|) never grows from a toward b, so that part is an end piece;
   // the path through the end vertex is a real path. False: nothing is left.
   static bool trim(double& b0, double& b1, P2 s, double sigma, double da, double db, double l) {
-    auto via_s = [&](double t) { return sigma + std::hypot(t - s.x, s.y); };
+    auto via_s = [&](double t) { return sigma + norm2(t - s.x, s.y); };
     constexpr double kKeep = 1 + 1e-12;  // exact: the end vertex may not carry the line on (not a pseudo source)
     if (da < kInf) {
       if (via_s(b1) > (da + b1) * kKeep) return false;
@@ -455,7 +458,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     b0 = nw.b0;
     b1 = nw.b1;
     const double foot = std::clamp(s.x, b0, b1);
-    const double dmin = sigma + std::hypot(s.x - foot, s.y);
+    const double dmin = sigma + norm2(s.x - foot, s.y);
     int id;
     if (!free_win.empty()) {
       id = free_win.back();
@@ -586,7 +589,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (s.y > -tol) {
       // The source lies on the edge (a source point on it): it sees the whole face.
       if (s.x < w.b0 - tol || s.x > w.b1 + tol) return;
-      offer_window_vertex(c, w.sigma + std::hypot(cx - s.x, cy), s, w.sigma, h, l, c2);
+      offer_window_vertex(c, w.sigma + norm2(cx - s.x, cy), s, w.sigma, h, l, c2);
       push_child(g_ac, P2{0, 0}, c2, la, 0, 1, s, w.sigma);
       push_child(g_cb, c2, P2{l, 0}, lb, 0, 1, s, w.sigma);
       return;
@@ -594,7 +597,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // Where the line from the source through c crosses the edge.
     const double tc = s.x + (cx - s.x) * (-s.y) / (cy - s.y);
     if (tc >= w.b0 - tol && tc <= w.b1 + tol) {
-      offer_window_vertex(c, w.sigma + std::hypot(cx - s.x, cy - s.y), s, w.sigma, h, l, c2);
+      offer_window_vertex(c, w.sigma + norm2(cx - s.x, cy - s.y), s, w.sigma, h, l, c2);
     }
     // The lit parts of a-c and c-b: where the lines through b0 and b1 (and c) meet them.
     auto meet = [&](double t, P2 p, P2 q) {
