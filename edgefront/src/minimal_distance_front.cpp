@@ -398,7 +398,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // settles first, before the front reaches it (expand_vertex has nothing to do then). When a
   // neighbour has settled and brought it onto the front, it is expanded (and so on outward).
   std::vector<int> late;  // scratch
-  void expand_late_neighbours() {
+  [[gnu::noinline]] void expand_late_neighbours() {
     late.clear();
     for (const Ray& r : ring) late.push_back(r.v);
     while (!late.empty()) {
@@ -477,7 +477,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // shadow_only: a pseudo source (rx: x's record) lights only its shadow, the directions more than a
   // half turn away from the way to the source on both sides (the geodesics that bend at x); the
   // faces that meet it get windows.
-  void emit_vertex_windows(int x, double sigma, const DRec* shadow_only = nullptr) {
+  [[gnu::noinline]] void emit_vertex_windows(int x, double sigma, const DRec* shadow_only = nullptr) {
     const Vec3& px = mesh.point(VertexHandle(x));
     const int m = static_cast<int>(ring.size());
     // The shadow: [lo, hi] in ring angles (mod full when closed); at a border vertex also [0, hi2].
@@ -530,7 +530,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // Whether x (ring built) is a border vertex or its corner angles sum to more than a full turn: a
   // geodesic can bend there, so it becomes a pseudo source. The angles are added as unit complex
   // numbers; `turns` counts the full turns passed (each corner is below a half turn).
-  bool bends_geodesics() {
+  [[gnu::noinline]] bool bends_geodesics() {
     if (!ring_closed) return true;
     double re = 1, im = 0;
     int turns = 0;
@@ -564,7 +564,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   }
 
   // Carries window w across its face (see above).
-  void propagate_window(Window w) {
+  // (Not inlined: the window code stays out of the default mode's hot loop.)
+  [[gnu::noinline]] void propagate_window(Window w) {
     ++n_windows;
     const int h = w.he;
     const int hn = nexth(h);
@@ -1209,7 +1210,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   bool step() {
     while (!heap.empty()) {
       const auto [d, v] = heap.top();
-      if (v < 0) {  // a window
+      if (v < 0) [[unlikely]] {  // a window
         if (d > opts.max_distance) {
           stop = DistanceStop::MaxDistance;
           return false;
