@@ -241,9 +241,14 @@ struct Timed {
   double seconds = 0;
 };
 
+// --windows: the MDF runs with DistanceOptions::windows.
+bool g_windows = false;
+
 Timed run_mdf(const Mesh& mesh, int source, const DistanceOptions& options = {}) {
   const auto t0 = std::chrono::steady_clock::now();
-  DistanceField f = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(source)), options);
+  DistanceOptions o = options;
+  o.windows = o.windows || g_windows;
+  DistanceField f = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(source)), o);
   return {std::move(f), seconds_since(t0)};
 }
 
@@ -275,6 +280,7 @@ SymmetryStats symmetry(const Mesh& mesh, int pairs, std::uint64_t seed) {
     while (b == a) b = usable[rng() % usable.size()];
     DistanceOptions o;
     o.directions = false;
+    o.windows = g_windows;
     o.target = VertexHandle(b);
     const double dab = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(a)), o)
                            .distance[static_cast<size_t>(b)];
@@ -760,8 +766,8 @@ int run_synthetic(const fs::path& ref_dir, size_t worst) {
 
 void print_usage(std::ostream& os) {
   os << "usage: geodesic_accuracy MESH --ref PREFIX [--sources a,b,...] [--name NAME] [--pairs N] [--seed S]\n"
-        "                         [--worst K]\n"
-        "       geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K]\n"
+        "                         [--worst K] [--windows]\n"
+        "       geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K] [--windows]\n"
         "       geodesic_accuracy --write-shapes DIR\n";
 }
 
@@ -799,6 +805,8 @@ int run_cli(int argc, char** argv) {
       m.seed = static_cast<std::uint64_t>(integer(0, std::numeric_limits<long long>::max()));
     } else if (arg == "--worst") {
       m.worst = static_cast<size_t>(integer(0, 100000));
+    } else if (arg == "--windows") {
+      g_windows = true;
     } else if (arg == "--synthetic") {
       synthetic = true;
     } else if (arg == "--ref-dir") {

@@ -2,7 +2,7 @@
 //
 //   geodesic_speed [--model PATH] [--subdiv K] [--sources N] [--reps R] [--seed S]
 //                  [--small CELLS] [--large CELLS] [--cell H] [--dmax D] [--queries Q]
-//                  [--skip-full] [--skip-dmax]
+//                  [--skip-full] [--skip-dmax] [--windows]
 //
 // 1. Full field: the model (default data/models/armadillo.off) Loop-subdivided K times (default 2:
 //    the armadillo's 52K triangles become 832K) with OpenMesh's LoopT; from N random sources
@@ -17,6 +17,8 @@
 //    memory, the heap growth measured here (every operator new / delete of the process is
 //    counted), time of the first query and mean time of Q repeated queries (default 200). For
 //    contrast, the free functions geodesic_distance and dijkstra_distance with max_distance.
+//
+// --windows: the MDF runs with DistanceOptions::windows (windows per edge).
 //
 // Output: markdown on stdout, progress on stderr. Exit codes: 0 done, 1 error, 2 usage.
 
@@ -185,6 +187,7 @@ struct Args {
   int queries = 200;
   bool full = true;
   bool dmax_part = true;
+  bool windows = false;  // --windows: the MDF with DistanceOptions::windows
 };
 
 // ---- part 1: full field --------------------------------------------------------------------
@@ -229,6 +232,7 @@ void full_field(const Args& a) {
     const FrontSource src = FrontSource::vertex(VertexHandle(s));
     DistanceOptions with_dir, no_dir;
     no_dir.directions = false;
+    with_dir.windows = no_dir.windows = a.windows;
     std::vector<double> td, tm, tdn, tmn, cd, cm;
     DistanceField mdf, dij;
     for (int r = 0; r < a.reps; ++r) {
@@ -381,6 +385,7 @@ void dmax_queries(const Args& a) {
 
   DistanceOptions opt;
   opt.max_distance = a.dmax;
+  opt.windows = a.windows;
   // First query on each grid, with a callback that checks distances against the Euclidean ones.
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];
@@ -533,10 +538,12 @@ Args parse(int argc, char** argv) {
       a.full = false;
     else if (arg == "--skip-dmax")
       a.dmax_part = false;
+    else if (arg == "--windows")
+      a.windows = true;
     else if (arg == "-h" || arg == "--help") {
       std::cout << "usage: geodesic_speed [--model PATH] [--subdiv K] [--sources N] [--reps R] [--seed S]\n"
                    "                      [--small CELLS] [--large CELLS] [--cell H] [--dmax D] [--queries Q]\n"
-                   "                      [--skip-full] [--skip-dmax]\n";
+                   "                      [--skip-full] [--skip-dmax] [--windows]\n";
       std::exit(0);
     } else
       throw UsageError("unknown argument " + arg);

@@ -44,6 +44,8 @@ struct DRec {
   double d = kInf;
   int unsettled = 0;     // neighbours not settled yet (set when the vertex settles; see record())
   bool settled = false;
+  bool seed = false;     // a source vertex, or a vertex of a source point's face
+  bool unexpanded = false;  // window mode: settled before it joined the front (see step)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -61,7 +63,94 @@ struct P2 {
   double x, y;
 };
 double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
+// |(x, y)| without std::hypot's overflow care (a fifth of the windows' time; lengths here are
+// mesh-sized).
+double norm2(double x, double y) { return std::sqrt(x * x + y * y); }
 double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
+
+// A window (DistanceOptions::windows): the part [b0, b1] of a halfedge's edge lit straight from a
+// (pseudo) source, with the source unfolded into the halfedge's frame: its from-vertex at the
+// origin, its to-vertex at (|edge|, 0), its face (the one the window lights) at y > 0, so the
+// source lies at y <= 0. sigma: the distance already travelled at the source.
+struct Window {
+  int he;
+  double b0, b1;
+  P2 s;
+  double sigma;
+};
+
+// The last windows carried across a halfedge's face (MMP's windows of an edge, bounded): a later
+// window on the same halfedge keeps only the part where it is shorter than all of them.
+constexpr int kLitPerEdge = 4;
+struct LitSet {
+  int n = 0;     // windows held (at most kLitPerEdge)
+  int next = 0;  // the slot the next one replaces when full
+  std::array<Window, kLitPerEdge> w;
+};
+
+// The part of w's interval where it is shorter than u (its hull: a window stays one interval).
+// sigma + |s p| of the two cross at most twice along the edge (a hyperbola branch and a line).
+// False: nothing is left.
+// A window is kept only where it is shorter by this (relative) than the windows carried across
+// the same halfedge before and than the path through an end of the edge: a window that would
+// only shave off less goes (MMP/ICH keep every one; this bounds their number, about 1/3 fewer on
+// the scanned models, for an error of about 1e-5 relative).
+constexpr double kWindowGain = 1e-5;
+bool trim_against(Window& w, const Window& u) {
+  const double lo = std::max(w.b0, u.b0), hi = std::min(w.b1, u.b1);
+  if (!(hi > lo)) return true;
+  auto diff = [&](double t) {
+    return (w.sigma + norm2(t - w.s.x, w.s.y)) - (u.sigma + norm2(t - u.s.x, u.s.y));
+  };
+  // Roots of sigma_w + a(t) = sigma_u + b(t): a^2 - b^2 = alpha t + beta, so
+  // (alpha t + beta - delta^2)^2 = 4 delta^2 b(t)^2 with delta = sigma_u - sigma_w.
+  std::array<double, 8> cut{};
+  int n = 0;
+  cut[n++] = w.b0;
+  cut[n++] = lo;
+  const double delta = u.sigma - w.sigma;
+  const double alpha = 2 * (u.s.x - w.s.x);
+  const double beta = w.s.x * w.s.x + w.s.y * w.s.y - u.s.x * u.s.x - u.s.y * u.s.y;
+  const double g = beta - delta * delta;
+  const double qa = alpha * alpha - 4 * delta * delta;
+  const double qb = 2 * alpha * g + 8 * delta * delta * u.s.x;
+  const double qc = g * g - 4 * delta * delta * (u.s.x * u.s.x + u.s.y * u.s.y);
+  auto add_root = [&](double t) {
+    if (t > lo && t < hi) cut[n++] = t;
+  };
+  if (std::abs(qa) > 1e-300) {
+    const double disc = qb * qb - 4 * qa * qc;
+    if (disc >= 0) {
+      const double sq = std::sqrt(disc);
+      add_root((-qb - sq) / (2 * qa));
+      add_root((-qb + sq) / (2 * qa));
+    }
+  } else if (std::abs(qb) > 1e-300) {
+    add_root(-qc / qb);
+  }
+  cut[n++] = hi;
+  cut[n++] = w.b1;
+  for (int i = 1; i < n; ++i) {  // insertion sort (at most six)
+    for (int j = i; j > 0 && cut[static_cast<size_t>(j)] < cut[static_cast<size_t>(j - 1)]; --j) {
+      std::swap(cut[static_cast<size_t>(j)], cut[static_cast<size_t>(j - 1)]);
+    }
+  }
+  double keep0 = kInf, keep1 = -kInf;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double a = cut[i], b = cut[i + 1];
+    if (!(b > a)) continue;
+    const double m = 0.5 * (a + b);
+    const bool useful = m < lo || m > hi || diff(m) < -kWindowGain * (w.sigma + norm2(m - w.s.x, w.s.y));
+    if (useful) {
+      keep0 = std::min(keep0, a);
+      keep1 = std::max(keep1, b);
+    }
+  }
+  if (!(keep1 > keep0)) return false;
+  w.b0 = keep0;
+  w.b1 = keep1;
+  return true;
+}
 
 
 std::string dname(double d) { return std::to_string(d); }
@@ -79,6 +168,16 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   bool line_source = false;
   std::function<void(VertexHandle, double, const Vec3&)> on_settled;
 
+  // Window mode (DistanceOptions::windows): the windows waiting in the heap (index -1 - w), their
+  // free slots, and the distances of settled vertices whose records were dropped (a window may
+  // still reach their faces; they must not be reached again).
+  bool windowed = false;
+  std::vector<Window> win;
+  std::vector<int> free_win;
+  detail::FlatMap<double> gone;
+  detail::FlatMap<LitSet> lit_edges;  // per halfedge, the windows carried across its face lately
+  size_t n_windows = 0;  // windows propagated (statistics)
+
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
   // vertex, unit direction and length, the face after it (-1 in a border gap) and that face's
   // corner angle at the vertex. Rebuilt for every settled vertex; reused storage.
@@ -92,6 +191,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     int he;  // the outgoing halfedge x -> v
   };
   std::vector<Ray> ring;
+  std::vector<double> ang;  // scratch: the ring's cumulative corner angles
   bool ring_closed = false;
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
@@ -117,6 +217,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     n_settled = 0;
     peak_heap = 0;
     line_source = false;
+    windowed = false;
+    if (win.capacity() > 4096) std::vector<Window>().swap(win);
+    win.clear();
+    free_win.clear();
+    gone.clear();
+    lit_edges.clear();
+    n_windows = 0;
   }
 
   int count_unsettled(int v) const {
@@ -147,6 +254,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // true source; keeping the pseudo source would bend every path continued from it.
     const bool shorter = k.d < r.d * (1 - 1e-12);
     const bool tie_but_straighter = !(k.d > r.d * (1 + 1e-12)) && k.offset < r.offset;
+    if (windowed) {
+      // Every candidate is the length of a real path: the shortest wins, no second source.
+      if (shorter || tie_but_straighter) take(v, r, k);
+      return;
+    }
     const bool same_source = std::isfinite(r.d) && same_virtual_source(r.source, r.offset, k.source, k.offset, r.d);
     if (!shorter && !tie_but_straighter) {
       if (!same_source && k.face >= 0 && k.d < r.alt.d) r.alt = k;
@@ -157,6 +269,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     } else if (r.alt.d < kInf && same_virtual_source(r.alt.source, r.alt.offset, k.source, k.offset, k.d)) {
       r.alt.d = kInf;  // the new best is the old second source
     }
+    take(v, r, k);
+  }
+
+  void take(int v, DRec& r, const Candidate& k) {
     r.d = k.d;
     r.source = k.source;
     r.offset = k.offset;
@@ -185,8 +301,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     clear_state(o);
     reset_structure(source);
     line_source = source.is_loop();
+    windowed = o.windows && !line_source;
     if (!line_source) {
-      for (uint32_t v : sources) offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
+      for (uint32_t v : sources) {
+        offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
+        record(static_cast<int>(v)).seed = true;
+      }
     } else {
       for (HalfedgeHandle h : source.loop) {
         const int v = mesh.to_vertex_handle(h).idx();
@@ -223,13 +343,310 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     }
     clear_state(o);
     reset_structure(FrontSource::from_vertices(verts));
+    windowed = o.windows;
     for (const SurfacePoint& p : points) {
       Vec3 x(0, 0, 0);
       int k = 0;
       for (VertexHandle v : mesh.fv_range(p.face)) x += mesh.point(v) * p.bary[k++];
-      for (VertexHandle v : mesh.fv_range(p.face)) offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
+      for (VertexHandle v : mesh.fv_range(p.face)) {
+        offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
+        record(v.idx()).seed = true;
+      }
+      if (windowed) {
+        // The point lights the three edges of its face from inside: windows on their far sides.
+        for (HalfedgeHandle h : mesh.fh_range(p.face)) {
+          const int g = h.idx() ^ 1;
+          push_window(g, 0, edge_length(g), in_frame(g, x), 0.0);
+        }
+      }
     }
     note_memory();
+  }
+
+  // ---- Windows (DistanceOptions::windows) ------------------------------------------------------
+  //
+  // A window is carried across the face it lights when it leaves the heap, at the smallest distance
+  // it gives a point of its interval: the face's third vertex takes the distance from the window's
+  // source when the straight line to it crosses the interval, and the lit parts of the face's two
+  // other edges become windows of the faces behind them (ICH: Xin & Wang 2009; MMP). Windows and
+  // vertices leave one heap in distance order, so a vertex settles only after every window that
+  // could light it more closely. A window is dropped when an end of its edge reaches the whole
+  // interval more closely (ICH's filter; exact: sigma + |s p| - |a p| never grows from a toward b).
+
+  double edge_length(int h) const {
+    return (mesh.point(VertexHandle(tov(h))) - mesh.point(VertexHandle(fromv(h)))).norm();
+  }
+
+  // A point on the far side of halfedge h's face (or on the edge) in h's frame (see Window).
+  P2 in_frame(int h, const Vec3& p) const {
+    const Vec3& a = mesh.point(VertexHandle(fromv(h)));
+    const Vec3 ab = mesh.point(VertexHandle(tov(h))) - a;
+    const double l = ab.norm();
+    const Vec3 w = p - a;
+    const double x = OpenMesh::dot(w, ab) / l;
+    return P2{x, -std::sqrt(std::max(w.sqrnorm() - x * x, 0.0))};
+  }
+
+  // The best distance known for v: its record's, or a dropped settled record's; +inf if none.
+  double known_d(int v) const {
+    if (const DRec* r = dt.find(static_cast<uint32_t>(v))) return r->d;
+    if (const double* g = gone.find(static_cast<uint32_t>(v))) return *g;
+    return kInf;
+  }
+
+  // A window across a long edge can light a vertex more closely than any of its neighbours: it
+  // settles first, before the front reaches it (expand_vertex has nothing to do then). When a
+  // neighbour has settled and brought it onto the front, it is expanded (and so on outward).
+  std::vector<int> late;  // scratch
+  [[gnu::noinline]] void expand_late_neighbours() {
+    late.clear();
+    for (const Ray& r : ring) late.push_back(r.v);
+    while (!late.empty()) {
+      const int c = late.back();
+      late.pop_back();
+      DRec* rc = dt.find(static_cast<uint32_t>(c));
+      if (!rc || !rc->unexpanded || !vt.find(static_cast<uint32_t>(c))) continue;
+      rc->unexpanded = false;
+      if (!expand_vertex(c)) continue;
+      for (VertexHandle y : mesh.vv_range(VertexHandle(c))) late.push_back(y.idx());
+    }
+  }
+
+  // Drops the record of a settled vertex whose neighbours are all settled.
+  void drop(int v) {
+    if (windowed) {
+      if (const DRec* r = dt.find(static_cast<uint32_t>(v))) gone.insert(static_cast<uint32_t>(v), r->d);
+      // The windows remembered on v's edges: the front has passed them.
+      for (HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
+        lit_edges.erase(static_cast<uint32_t>(h.idx()));
+        lit_edges.erase(static_cast<uint32_t>(h.idx() ^ 1));
+      }
+    }
+    dt.erase(static_cast<uint32_t>(v));
+  }
+
+  // ICH's filter, as a trim (MMP): the part of [b0, b1] that an end of the edge (distance da at
+  // the from-vertex, db at the to-vertex, edge length l) reaches more closely along the edge goes.
+  // Sound: sigma + |s p| - (da + |a p|) never grows from a toward b, so that part is an end piece;
+  // the path through the end vertex is a real path. False: nothing is left.
+  static bool trim(double& b0, double& b1, P2 s, double sigma, double da, double db, double l) {
+    auto via_s = [&](double t) { return sigma + norm2(t - s.x, s.y); };
+    constexpr double kKeep = 1 + 1e-12;  // exact: the end vertex may not carry the line on (not a pseudo source)
+    if (da < kInf) {
+      if (via_s(b1) > (da + b1) * kKeep) return false;
+      if (via_s(b0) > (da + b0) * kKeep) {
+        // sigma + |s p| = da + t: |s p| = k + t, k = da - sigma
+        const double k = da - sigma, den = 2 * (s.x + k);
+        if (den > 0) b0 = std::clamp((s.x * s.x + s.y * s.y - k * k) / den, b0, b1);
+      }
+    }
+    if (db < kInf) {
+      if (via_s(b0) > (db + l - b0) * kKeep) return false;
+      if (via_s(b1) > (db + l - b1) * kKeep) {
+        const double m = db - sigma + l, den = 2 * (m - s.x);
+        if (den > 0) b1 = std::clamp((m * m - s.x * s.x - s.y * s.y) / den, b0, b1);
+      }
+    }
+    return b1 > b0;
+  }
+
+  void push_window(int h, double b0, double b1, P2 s, double sigma) {
+    if (!(b1 > b0) || !has_face(h)) return;
+    if (!trim(b0, b1, s, sigma, known_d(fromv(h)), known_d(tov(h)), edge_length(h))) return;
+    Window nw{h, b0, b1, s, sigma};
+    if (!trim_against_lit(nw)) return;
+    b0 = nw.b0;
+    b1 = nw.b1;
+    const double foot = std::clamp(s.x, b0, b1);
+    const double dmin = sigma + norm2(s.x - foot, s.y);
+    int id;
+    if (!free_win.empty()) {
+      id = free_win.back();
+      free_win.pop_back();
+    } else {
+      id = static_cast<int>(win.size());
+      win.emplace_back();
+    }
+    win[id] = Window{h, b0, b1, s, sigma};
+    heap.push(dmin, -1 - id);
+    peak_heap = std::max(peak_heap, heap.size());
+  }
+
+  // A (pseudo) source at the settled vertex x (ring built): windows on the far sides of the edges
+  // opposite x in its faces.
+  // shadow_only: a pseudo source (rx: x's record) lights only its shadow, the directions more than a
+  // half turn away from the way to the source on both sides (the geodesics that bend at x); the
+  // faces that meet it get windows.
+  [[gnu::noinline]] void emit_vertex_windows(int x, double sigma, const DRec* shadow_only = nullptr) {
+    const Vec3& px = mesh.point(VertexHandle(x));
+    const int m = static_cast<int>(ring.size());
+    // The shadow: [lo, hi] in ring angles (mod full when closed); at a border vertex also [0, hi2].
+    double lo = 0, hi = -1, hi2 = -1, full = 0;
+    bool known = false;
+    if (shadow_only) {
+      ang.assign(static_cast<size_t>(m) + 1, 0.0);
+      int jf = -1;
+      for (int i = 0; i < m; ++i) {
+        const P2 c = corner_after(i);
+        ang[static_cast<size_t>(i) + 1] = ang[static_cast<size_t>(i)] + (ring[i].face_after >= 0 ? std::atan2(c.y, c.x) : 0.0);
+        if (ring[i].face_after == shadow_only->face) jf = i;
+      }
+      full = ang[static_cast<size_t>(m)];
+      const Vec3 w = shadow_only->source - px;
+      if (jf >= 0 && w.sqrnorm() > 0) {
+        const Vec3& u0 = ring[jf].u;
+        Vec3 nrm = OpenMesh::cross(u0, ring[(jf + 1) % m].u);
+        const double nl = nrm.norm();
+        if (nl > 0) {
+          nrm /= nl;
+          const double phi = ang[static_cast<size_t>(jf)] +
+                             std::atan2(OpenMesh::dot(nrm, OpenMesh::cross(u0, w)), OpenMesh::dot(u0, w));
+          constexpr double kPi = kTwoPi / 2, kSlack = 1e-7;
+          lo = phi + kPi - kSlack;
+          hi = ring_closed ? phi + full - kPi + kSlack : full + kSlack;
+          if (!ring_closed) hi2 = phi - kPi + kSlack;
+          known = true;
+        }
+      }
+      if (!known) shadow_only = nullptr;  // no direction known: light every face
+    }
+    for (int i = 0; i < m; ++i) {
+      const Ray& r = ring[i];
+      if (r.face_after < 0) continue;
+      if (shadow_only) {
+        const double a0 = ang[static_cast<size_t>(i)], a1 = ang[static_cast<size_t>(i) + 1];
+        bool meets = !ring_closed && hi2 >= 0 && a0 <= hi2;
+        for (int k = -2; k <= 2 && !meets; ++k) {
+          if (!ring_closed && k != 0) continue;
+          meets = a1 + k * full >= lo && a0 + k * full <= hi;
+        }
+        if (!meets) continue;
+      }
+      const int g = mesh.next_halfedge_handle(HalfedgeHandle(r.he)).idx() ^ 1;  // z -> y, across the face x, y, z
+      push_window(g, 0, edge_length(g), in_frame(g, px), sigma);
+    }
+  }
+
+  // Whether x (ring built) is a border vertex or its corner angles sum to more than a full turn: a
+  // geodesic can bend there, so it becomes a pseudo source. The angles are added as unit complex
+  // numbers; `turns` counts the full turns passed (each corner is below a half turn).
+  [[gnu::noinline]] bool bends_geodesics() {
+    if (!ring_closed) return true;
+    double re = 1, im = 0;
+    int turns = 0;
+    for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
+      if (ring[i].face_after < 0) return true;
+      const P2 c = corner_after(i);
+      const double r2 = re * c.x - im * c.y, i2 = re * c.y + im * c.x;
+      turns += im < 0 && i2 >= 0;
+      re = r2;
+      im = i2;
+    }
+    if (turns >= 2) return true;
+    if (turns == 0) return false;
+    return !(re > 0 && im >= 0 && im <= kFlatDefect);  // more than a full turn, beyond round-off
+  }
+
+  bool trim_against_lit(Window& w) const {
+    const LitSet* ls = lit_edges.find(static_cast<uint32_t>(w.he));
+    if (!ls) return true;
+    for (int i = 0; i < ls->n; ++i) {
+      if (!trim_against(w, ls->w[static_cast<size_t>(i)])) return false;
+    }
+    return true;
+  }
+
+  void remember(const Window& w) {
+    LitSet& ls = *lit_edges.insert(static_cast<uint32_t>(w.he), LitSet{}).first;
+    ls.w[static_cast<size_t>(ls.next)] = w;
+    ls.next = (ls.next + 1) % kLitPerEdge;
+    ls.n = std::min(ls.n + 1, kLitPerEdge);
+  }
+
+  // Carries window w across its face (see above).
+  // (Not inlined: the window code stays out of the default mode's hot loop.)
+  [[gnu::noinline]] void propagate_window(Window w) {
+    ++n_windows;
+    const int h = w.he;
+    const int hn = nexth(h);
+    const int a = fromv(h), b = tov(h), c = tov(hn);
+    const Vec3& pa = mesh.point(VertexHandle(a));
+    const Vec3& pb = mesh.point(VertexHandle(b));
+    const Vec3& pc = mesh.point(VertexHandle(c));
+    const double l = (pb - pa).norm(), la = (pc - pa).norm(), lb = (pc - pb).norm();
+    if (!(l > 0) || !(la > 0) || !(lb > 0)) return;
+    const P2 s = w.s;
+    // The ends' distances may have dropped since the window was made.
+    if (!trim(w.b0, w.b1, s, w.sigma, known_d(a), known_d(b), l)) return;
+    if (!trim_against_lit(w)) return;
+    remember(w);
+    const double cx = (l * l + la * la - lb * lb) / (2 * l);
+    const double cy = std::sqrt(std::max(la * la - cx * cx, 0.0));
+    if (!(cy > 0)) return;
+    const P2 c2{cx, cy};
+    const double tol = 1e-12 * l;
+    const int g_ac = prevh(h) ^ 1;  // a -> c, lighting the face behind a-c
+    const int g_cb = hn ^ 1;        // c -> b
+    if (s.y > -tol) {
+      // The source lies on the edge (a source point on it): it sees the whole face.
+      if (s.x < w.b0 - tol || s.x > w.b1 + tol) return;
+      offer_window_vertex(c, w.sigma + norm2(cx - s.x, cy), s, w.sigma, h, l, c2);
+      push_child(g_ac, P2{0, 0}, c2, la, 0, 1, s, w.sigma);
+      push_child(g_cb, c2, P2{l, 0}, lb, 0, 1, s, w.sigma);
+      return;
+    }
+    // Where the line from the source through c crosses the edge.
+    const double tc = s.x + (cx - s.x) * (-s.y) / (cy - s.y);
+    if (tc >= w.b0 - tol && tc <= w.b1 + tol) {
+      offer_window_vertex(c, w.sigma + norm2(cx - s.x, cy - s.y), s, w.sigma, h, l, c2);
+    }
+    // The lit parts of a-c and c-b: where the lines through b0 and b1 (and c) meet them.
+    auto meet = [&](double t, P2 p, P2 q) {
+      const P2 d{t - s.x, -s.y};
+      const double den = cross2(d, P2{q.x - p.x, q.y - p.y});
+      if (den == 0) return t <= tc ? 0.0 : 1.0;
+      return std::clamp(cross2(d, P2{s.x - p.x, s.y - p.y}) / den, 0.0, 1.0);
+    };
+    if (w.b0 < tc) {
+      const double t1 = std::min(w.b1, tc);
+      push_child(g_ac, P2{0, 0}, c2, la, meet(w.b0, P2{0, 0}, c2), t1 >= tc ? 1.0 : meet(t1, P2{0, 0}, c2), s,
+                 w.sigma);
+    }
+    if (w.b1 > tc) {
+      const double t0 = std::max(w.b0, tc);
+      push_child(g_cb, c2, P2{l, 0}, lb, t0 <= tc ? 0.0 : meet(t0, c2, P2{l, 0}), meet(w.b1, c2, P2{l, 0}), s,
+                 w.sigma);
+    }
+  }
+
+  // The window on halfedge g whose edge runs from p to q (length len) in the parent's frame, lit
+  // over [u0, u1] (fractions from p), with the parent's source s.
+  void push_child(int g, P2 p, P2 q, double len, double u0, double u1, P2 s, double sigma) {
+    if (!(u1 > u0)) return;
+    const P2 ex{(q.x - p.x) / len, (q.y - p.y) / len};
+    const P2 ey{-ex.y, ex.x};
+    const P2 w{s.x - p.x, s.y - p.y};
+    push_window(g, u0 * len, u1 * len, P2{dot2(w, ex), std::min(dot2(w, ey), 0.0)}, sigma);
+  }
+
+  // The face-vertex c of halfedge h's face takes distance d from the window's source s (in h's
+  // frame; c at c2, the edge of length l).
+  void offer_window_vertex(int c, double d, P2 s, double sigma, int h, double l, P2 c2) {
+    if (gone.find(static_cast<uint32_t>(c))) return;
+    if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && (rc->settled || !(d < rc->d))) return;
+    // The source in 3D, in the plane of h's face (for the direction at c).
+    const Vec3& pa = mesh.point(VertexHandle(fromv(h)));
+    const Vec3 ex = (mesh.point(VertexHandle(tov(h))) - pa) / l;
+    Vec3 ey = (mesh.point(VertexHandle(tov(nexth(h)))) - pa) - ex * c2.x;
+    const double ly = ey.norm();
+    if (ly > 0) ey /= ly;
+    Candidate k;
+    k.d = d;
+    k.source = pa + ex * s.x + ey * s.y;
+    k.origin = k.source;
+    k.offset = sigma;
+    k.face = mesh.face_handle(HalfedgeHandle(h)).idx();
+    offer(c, k);
   }
 
   // ---- Candidates from a settled vertex x for its neighbour c ---------------------------------
@@ -542,6 +959,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     through_x.offset = rx.d;
     through_x.face = f_left.is_valid() ? f_left.idx() : mesh.face_handle(mesh.opposite_halfedge_handle(hxc)).idx();
     offer(c, through_x);
+    if (windowed) return;  // the straight lines come from the windows
     // (2) The straight lines: from x's virtual source and, when that finds no way to c, from x's
     // second source (see DRec).
     // A straight line is never shorter at c than at x: nothing to gain if c is already there.
@@ -742,7 +1160,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (rc) {
         --rc->unsettled;
         if (rc->settled) {
-          if (rc->unsettled <= 0) dt.erase(static_cast<uint32_t>(c));
+          if (rc->unsettled <= 0) drop(c);
           return;
         }
       }
@@ -773,7 +1191,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
           visit(r.v, HalfedgeHandle(r.he));
         } else if (DRec* ry = dt.find(static_cast<uint32_t>(r.v))) {
           --ry->unsettled;
-          if (ry->settled && ry->unsettled <= 0) dt.erase(static_cast<uint32_t>(r.v));
+          if (ry->settled && ry->unsettled <= 0) drop(r.v);
         }
       }
     } else {
@@ -782,14 +1200,27 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         visit(r.v, HalfedgeHandle(r.he));
       }
     }
+    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
+    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d, rx.d == 0 ? nullptr : &rx);
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
-    if (r && r->unsettled <= 0) dt.erase(static_cast<uint32_t>(x));
+    if (r && r->unsettled <= 0) drop(x);
   }
 
   bool step() {
     while (!heap.empty()) {
       const auto [d, v] = heap.top();
+      if (v < 0) [[unlikely]] {  // a window
+        if (d > opts.max_distance) {
+          stop = DistanceStop::MaxDistance;
+          return false;
+        }
+        heap.pop();
+        const Window w = win[static_cast<size_t>(-1 - v)];
+        free_win.push_back(-1 - v);
+        propagate_window(w);
+        continue;
+      }
       DRec* r = dt.find(static_cast<uint32_t>(v));
       if (!r || r->settled || r->d != d) {
         heap.pop();
@@ -806,8 +1237,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       start_ring(v);
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
-      expand_vertex(v);
+      const bool expanded = expand_vertex(v);
+      if (windowed && !expanded && !r->seed) r->unexpanded = true;
       settle_neighbours(v);
+      if (windowed) expand_late_neighbours();
       note_memory();
       if (opts.target && opts.target->idx() == v) {
         stop = DistanceStop::TargetReached;
@@ -826,7 +1259,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   }
 
   size_t total_bytes() const {
-    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry);
+    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
+           gone.memory_bytes() + lit_edges.memory_bytes();
   }
 };
 
@@ -861,7 +1295,8 @@ size_t MinimalDistanceFront::front_size() const { return impl_->live_nodes; }
 size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes; }
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
-  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry);
+  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
+         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes();
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 

@@ -18,6 +18,8 @@
 /// One source per vertex is kept (not a window per edge as in exact MMP/ICH): a value is never
 /// below the straight line from the real source, but it can fall slightly below the exact
 /// geodesic where a line strays from the faces its source was unfolded along.
+/// `DistanceOptions::windows` keeps windows per edge instead (MMP/ICH carried in the same front
+/// order): below 5e-4% mean error on the scanned models, about 3-4x the time of the default.
 ///
 /// Accuracy (bench/results/geodesic-*.md): exact (1e-14) on planar meshes under any
 /// triangulation and on open cylinders; cones 1e-5% mean; on CGAL's scanned models the mean
@@ -55,6 +57,18 @@ struct DistanceOptions {
   std::optional<VertexHandle> target = std::nullopt;
   /// Record, per vertex, the unit direction toward the source along the surface.
   bool directions = true;
+  /// Window propagation (as in exact MMP/ICH): every face edge the front crosses carries the
+  /// intervals lit straight from a (pseudo) source, with the source unfolded next to it, and they
+  /// are carried on face by face in the same distance order as the vertices; saddle and border
+  /// vertices become pseudo sources for the directions they shadow. Windows that shorten the
+  /// distance by less than 1e-5 (relative) are dropped. Planar and developable meshes come out
+  /// exact to round-off (up to ~1e-5 on strongly anisotropic or folded ones); on CGAL's scanned
+  /// models the mean error is below 5e-4% (bench/results/geodesic-windows.md). It costs about
+  /// 3-4x the default (CPU), and the working memory also holds the windows waiting in the queue, the
+  /// last windows per crossed edge, and the distances of settled vertices (12 bytes + hash
+  /// overhead each; O(settled), not O(front)). Off: one virtual source per vertex.
+  /// Vertex and surface-point sources only; a loop source ignores it.
+  bool windows = false;
 };
 
 /// Why a distance computation stopped.
