@@ -278,6 +278,18 @@ TEST_F(AppsFrontTest, EfDistanceFromAVertexMatchesTheLibraryExactly) {
   EXPECT_EQ(e, edgefront::dijkstra_distance(mesh, source).distance);
   ASSERT_EQ(e.size(), d.size());
   for (size_t i = 0; i < d.size(); ++i) EXPECT_LE(d[i], e[i] * (1 + 1e-12)) << i;  // MDF below the edge paths
+
+  // --method windows: the library's windowed field, byte for byte, and never above the edge paths.
+  const CommandResult win = run(quoted(data_file("torus.off")) + " --source 7 --method windows");
+  ASSERT_EQ(win.exit_code, 0) << win.err;
+  const std::vector<double> w = parse_distances(win.out);
+  edgefront::DistanceOptions windowed;
+  windowed.windows = true;
+  EXPECT_EQ(w, edgefront::geodesic_distance(mesh, source, windowed).distance);
+  EXPECT_NE(w, d);  // the two modes really differ on the torus
+  ASSERT_EQ(w.size(), e.size());
+  for (size_t i = 0; i < w.size(); ++i) EXPECT_LE(w[i], e[i] * (1 + 1e-12)) << i;
+  EXPECT_NE(win.err.find("windows, "), std::string::npos) << win.err;
 }
 
 TEST_F(AppsFrontTest, EfDistanceMaxDistanceBoundsEveryFiniteOutput) {
@@ -392,6 +404,7 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_usage_error(torus + " --source 0 --loop 0,1,2");
   expect_usage_error(torus + " --source 0 --point 0:1,0,0");
   expect_usage_error(torus + " --point 0:1,0,0 --method dijkstra");
+  expect_usage_error(torus + " --loop 0,1,2 --method windows", "--loop");
   expect_usage_error(torus + " --source 0 --method heat");
   expect_usage_error(torus + " --source 0 --max-distance -1");
   expect_usage_error(torus + " --source 0 --max-distance nan");
