@@ -117,6 +117,8 @@ struct Reconstructor::Impl {
   size_t next_reorder_live = 2048;  // smaller meshes fit in the caches
 
   std::mt19937_64 rng;
+  static constexpr size_t kNoSample = std::numeric_limits<size_t>::max();
+  size_t next_sample = kNoSample;  // the sample of the next basic step, drawn ahead (basic_step)
   std::uint64_t steps = 0;
   std::uint64_t next_collapse_scan = 0;
   size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, slits_zipped = 0, holes_filled = 0, batches = 0;
@@ -379,7 +381,14 @@ struct Reconstructor::Impl {
 
   // ---------------------------------------------------------------- the basic step
   void basic_step() {
-    const size_t si = draw_index(rng, cloud.size());
+    // The samples are drawn one step ahead (the same sequence) so that the next one's point and
+    // normal can be fetched from memory while this step runs (a large cloud is far bigger than
+    // the caches).
+    if (next_sample == kNoSample) next_sample = draw_index(rng, cloud.size());
+    const size_t si = next_sample;
+    next_sample = draw_index(rng, cloud.size());
+    __builtin_prefetch(&cloud.points[next_sample]);
+    if (oriented) __builtin_prefetch(&oriented_normal(next_sample));
     const Vec3& s = cloud.points[si];
     // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
     const int wi = oriented && live >= opt.topology_min_vertices
