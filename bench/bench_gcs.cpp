@@ -5,6 +5,7 @@
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
 //    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
+//    (--case sphere --seeds N: the sphere case with seeds 1..N.)
 // 6. (--case nested only) nested spheres (shapes::sample "nested-spheres", 20K points) at 4K
 //    vertices: components, border loops, genus per component (target: two closed spheres).
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
@@ -165,7 +166,13 @@ int main(int argc, char** argv) {
     }
     if (!want("sphere")) {
     } else if (std::filesystem::exists(models / "sphere_20k.xyz")) {
-      print_mesh("sphere_20k.xyz at 10K", run(edgefront::read_points(models / "sphere_20k.xyz"), 10000));
+      const edgefront::PointCloud sphere = edgefront::read_points(models / "sphere_20k.xyz");
+      print_mesh("sphere_20k.xyz at 10K", run(sphere, 10000));
+      for (size_t seed = 2; seed <= seeds; ++seed) {  // --seeds N: also seeds 2..N
+        g_seed = seed;
+        print_mesh(("sphere_20k.xyz at 10K, seed " + std::to_string(seed)).c_str(), run(sphere, 10000));
+      }
+      g_seed = 1;
     } else {
       std::printf("sphere_20k.xyz: missing (run data/fetch-models.sh)\n");
     }

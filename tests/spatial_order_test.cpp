@@ -87,7 +87,7 @@ TEST(SpatialOrder, RenumberingKeepsTheMeshAndDropsDeletedElements) {
   const size_t live_v = static_cast<size_t>(std::distance(mesh.vertices().begin(), mesh.vertices().end()));
   const size_t nv_old = mesh.n_vertices(), nf_old = mesh.n_faces();
 
-  const gcs::detail::Renumbering map = gcs::detail::renumber_spatially(mesh);
+  const gcs::MeshRenumbering map = gcs::detail::renumber_spatially(mesh);
   ASSERT_EQ(map.vertex.size(), nv_old);
   ASSERT_EQ(map.face.size(), nf_old);
   EXPECT_EQ(mesh.n_vertices(), live_v);  // deleted elements gone

@@ -117,6 +117,8 @@ struct Reconstructor::Impl {
   size_t next_reorder_live = 2048;  // smaller meshes fit in the caches
 
   std::mt19937_64 rng;
+  static constexpr size_t kNoSample = std::numeric_limits<size_t>::max();
+  size_t next_sample = kNoSample;  // the sample of the next basic step, drawn ahead (basic_step)
   std::uint64_t steps = 0;
   std::uint64_t next_collapse_scan = 0;
   size_t splits = 0, collapses = 0, faces_removed = 0, loops_merged = 0, slits_zipped = 0, holes_filled = 0, batches = 0;
@@ -379,7 +381,14 @@ struct Reconstructor::Impl {
 
   // ---------------------------------------------------------------- the basic step
   void basic_step() {
-    const size_t si = draw_index(rng, cloud.size());
+    // The samples are drawn one step ahead (the same sequence) so that the next one's point and
+    // normal can be fetched from memory while this step runs (a large cloud is far bigger than
+    // the caches).
+    if (next_sample == kNoSample) next_sample = draw_index(rng, cloud.size());
+    const size_t si = next_sample;
+    next_sample = draw_index(rng, cloud.size());
+    __builtin_prefetch(&cloud.points[next_sample]);
+    if (oriented) __builtin_prefetch(&oriented_normal(next_sample));
     const Vec3& s = cloud.points[si];
     // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
     const int wi = oriented && live >= opt.topology_min_vertices
@@ -392,15 +401,18 @@ struct Reconstructor::Impl {
     stamp(w);
     if (opt.neighbor_rate > 0 && opt.smoothing_iterations > 0) {
       gather_ring(w);
+      // The passes update the mesh positions in place (member by member, as in the paper's loop).
+      Vec3* const pos = &mesh.point(VertexHandle(0));
       for (int it = 0; it < opt.smoothing_iterations; ++it) {
-        for (size_t i = 0; i < ring.members.size(); ++i) smooth_local(i);
+        if (it == 0) {
+          for (RingCache::Member& m : ring.members) smooth_member_first(pos, m);
+        } else {
+          for (const RingCache::Member& m : ring.members) smooth_member(pos, m);
+        }
       }
-      for (size_t i = 0; i < ring.members.size(); ++i) {
-        const int l = ring.members[i].local;
-        const VertexHandle v(ring.vid[l]);
-        mesh.point(v) = ring.pos[l];
-        grid.move(v.idx(), ring.pos[l]);
-        stamp(v);
+      for (const RingCache::Member& m : ring.members) {
+        grid.move(m.vid, pos[m.vid]);
+        vstamp[static_cast<size_t>(m.vid)] = clock;
       }
     }
     tau[wi] += 1.0 / scale;
@@ -411,125 +423,80 @@ struct Reconstructor::Impl {
     ++steps;
   }
 
-  // The winner's 1-ring and the rings of its members, gathered once per basic step so that the
-  // smoothing passes run over small local arrays instead of re-walking the halfedge structure.
-  // Same arithmetic in the same order as walking the mesh: the results are identical.
+  // The winner's 1-ring (the members) with the ring of each member, gathered once per basic step
+  // as vertex ids, so that the smoothing passes run over two small arrays instead of re-walking
+  // the halfedge structure.
   struct RingCache {
     struct Member {
-      int local;             // index of the member in pos / vid
+      int vid;               // the member's vertex id
       int begin, end;        // its neighbours: entries [begin, end)
-      int border_a = -1;     // border members: the two border neighbours (local indices)
+      int border_a = -1;     // border members: the two border neighbours (vertex ids)
       int border_b = -1;
+      double inv_k = 0;      // 1 / (end - begin)
+      double n0 = 0, n1 = 0, n2 = 0;  // its normal for this basic step (smooth_member_first)
+      double inv_nn = 0;              // 1 / |n|^2, 0 without a usable normal
     };
     struct Entry {
-      int a;  // neighbour (local), in outgoing-halfedge order
-      int b;  // the next vertex of the face of that halfedge (local), -1 at a border
+      int a;  // neighbour, in outgoing-halfedge order
+      int b;  // the next vertex of the face of that halfedge, -1 at a border
     };
-    std::vector<Vec3> pos;
-    std::vector<int> vid;
     std::vector<Member> members;
     std::vector<Entry> entries;
-    // Mesh vertex id -> local index: a small open-addressing table (power-of-two size, linear
-    // probing, at most half full; 64 slots unless a ring is unusually large), emptied per step.
-    std::vector<int> table_id, table_local;
   } ring;
 
-  static std::uint32_t ring_hash(int id) { return static_cast<std::uint32_t>(id) * 2654435761u; }
-
-  void ring_grow_table(size_t capacity) {
-    ring.table_id.assign(capacity, -1);
-    ring.table_local.assign(capacity, -1);
-    const size_t mask = capacity - 1;
-    for (size_t l = 0; l < ring.vid.size(); ++l) {
-      size_t s = ring_hash(ring.vid[l]) & mask;
-      while (ring.table_id[s] >= 0) s = (s + 1) & mask;
-      ring.table_id[s] = ring.vid[l];
-      ring.table_local[s] = static_cast<int>(l);
-    }
-  }
-
-  int ring_local(VertexHandle v) {
-    const int id = v.idx();
-    const size_t mask = ring.table_id.size() - 1;
-    size_t s = ring_hash(id) & mask;
-    for (; ring.table_id[s] >= 0; s = (s + 1) & mask)
-      if (ring.table_id[s] == id) return ring.table_local[s];
-    const int l = static_cast<int>(ring.pos.size());
-    ring.table_id[s] = id;
-    ring.table_local[s] = l;
-    ring.pos.push_back(mesh.point(v));
-    ring.vid.push_back(id);
-    if (2 * ring.vid.size() > ring.table_id.size()) ring_grow_table(2 * ring.table_id.size());
-    return l;
-  }
-
   void gather_ring(VertexHandle w) {
-    if (ring.table_id.empty()) ring_grow_table(64);
-    std::fill(ring.table_id.begin(), ring.table_id.end(), -1);
-    ring.pos.clear();
-    ring.vid.clear();
     ring.members.clear();
-    ring.entries.clear();
-    ring_local(w);
     // Outgoing halfedges in the order of mesh.voh_range (clockwise: next(opposite(h))).
     const HalfedgeHandle w0 = mesh.halfedge_handle(w);
     if (!w0.is_valid()) return;
+    int n = 0;  // entries used
     HalfedgeHandle h = w0;
     do {
-      ring.members.push_back({ring_local(mesh.to_vertex_handle(h)), 0, 0});
+      const VertexHandle v = mesh.to_vertex_handle(h);
+      RingCache::Member m{v.idx(), n, 0};
+      // Around v, the face of outgoing halfedge e (v, a_e, b_e) is the face on the far side of
+      // halfedge e - 1 in this clockwise order, so b_e = a_(e-1) (cyclically: the first entry's
+      // is the last neighbour). At a border halfedge (no face) b_e = -1, and the border
+      // neighbours are a_e and a_(e-1) (the end of the incoming border halfedge).
+      int border_e = -1;
+      int prev_a = -1;
+      bool first_has_face = false;
+      const HalfedgeHandle v0 = mesh.halfedge_handle(v);
+      HalfedgeHandle g = v0;
+      do {
+        if (static_cast<size_t>(n) == ring.entries.size()) ring.entries.resize(2 * ring.entries.size() + 64);
+        const int a = mesh.to_vertex_handle(g).idx();
+        const bool has_face = mesh.face_handle(g).is_valid();
+        if (n == m.begin) first_has_face = has_face;
+        if (!has_face) border_e = n;
+        ring.entries[static_cast<size_t>(n++)] = {a, has_face ? prev_a : -1};
+        prev_a = a;
+        g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
+      } while (g != v0);
+      m.end = n;
+      m.inv_k = 1.0 / static_cast<double>(m.end - m.begin);
+      if (first_has_face) ring.entries[static_cast<size_t>(m.begin)].b = prev_a;
+      if (border_e >= 0) {
+        m.border_a = ring.entries[static_cast<size_t>(border_e)].a;
+        m.border_b = border_e == m.begin ? prev_a : ring.entries[static_cast<size_t>(border_e - 1)].a;
+      }
+      ring.members.push_back(m);
       h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
     } while (h != w0);
-    // Around a member v, the face of outgoing halfedge e (v, a_e, b_e) is the face on the far side
-    // of halfedge e - 1 in this clockwise order, so b_e = a_(e-1) (cyclically): one lookup per
-    // halfedge. At a border halfedge (no face) b_e = -1, and the border neighbours are a_e and
-    // a_(e-1) (the end of the incoming border halfedge).
-    for (auto& m : ring.members) {
-      const VertexHandle v(ring.vid[m.local]);
-      m.begin = static_cast<int>(ring.entries.size());
-      int border_e = -1;
-      const HalfedgeHandle v0 = mesh.halfedge_handle(v);
-      h = v0;
-      do {
-        const bool has_face = mesh.face_handle(h).is_valid();
-        if (!has_face) border_e = static_cast<int>(ring.entries.size());
-        ring.entries.push_back({ring_local(mesh.to_vertex_handle(h)), has_face ? 0 : -1});
-        h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
-      } while (h != v0);
-      m.end = static_cast<int>(ring.entries.size());
-      const auto before = [&m](int e) { return e == m.begin ? m.end - 1 : e - 1; };
-      for (int e = m.begin; e < m.end; ++e)
-        if (ring.entries[e].b == 0) ring.entries[e].b = ring.entries[before(e)].a;
-      if (border_e >= 0) {
-        m.border_a = ring.entries[border_e].a;
-        m.border_b = ring.entries[before(border_e)].a;
-      }
-    }
   }
 
-  // One tangential Laplacian update of ring member i (border vertices: along the border only):
-  // the ring mean minus the vertex, without its component along the area-weighted normal.
-  // Written on scalars (the same operations in the same order as the OpenMesh vector operators:
-  // identical results) so that the compiler keeps the values in registers.
-  void smooth_local(size_t i) {
-    const RingCache::Member& m = ring.members[i];
+  // The tangential Laplacian update of ring member m (border vertices: along the border only):
+  // the ring mean minus the vertex, without its component along the member's area-weighted
+  // normal n: L_t = L - (L.n / n.n) n (no square root). The normal is computed in the first pass
+  // of a basic step (smooth_member_first) and kept for the other passes: a pass moves the members
+  // by 5% of their Laplacian, which turns the normal by a small fraction of a degree, so the
+  // recomputation bought nothing measurable (bench/results/gcs.md, session 6) at about half of the
+  // smoothing's cost. On scalars so that the compiler keeps the values in registers; `pos` is the
+  // mesh's position array.
+  void smooth_member(Vec3* pos, const RingCache::Member& m) const {
     if (m.end <= m.begin) return;
-    const Vec3* const pos = ring.pos.data();
-    const double x0 = pos[m.local][0], x1 = pos[m.local][1], x2 = pos[m.local][2];
-    double s0 = 0, s1 = 0, s2 = 0, n0 = 0, n1 = 0, n2 = 0;
-    for (int e = m.begin; e < m.end; ++e) {
-      const RingCache::Entry en = ring.entries[e];
-      const double a0 = pos[en.a][0], a1 = pos[en.a][1], a2 = pos[en.a][2];
-      s0 += a0;
-      s1 += a1;
-      s2 += a2;
-      if (en.b >= 0) {
-        const double u0 = a0 - x0, u1 = a1 - x1, u2 = a2 - x2;
-        const double v0 = pos[en.b][0] - x0, v1 = pos[en.b][1] - x1, v2 = pos[en.b][2] - x2;
-        n0 += u1 * v2 - u2 * v1;
-        n1 += u2 * v0 - u0 * v2;
-        n2 += u0 * v1 - u1 * v0;
-      }
-    }
+    Vec3& x = pos[m.vid];
+    const double x0 = x[0], x1 = x[1], x2 = x[2];
     double l0, l1, l2;
     if (m.border_a >= 0) {
       const Vec3& a = pos[m.border_a];
@@ -538,25 +505,49 @@ struct Reconstructor::Impl {
       l1 = (a[1] + b[1]) * 0.5 - x1;
       l2 = (a[2] + b[2]) * 0.5 - x2;
     } else {
-      const double k = static_cast<double>(m.end - m.begin);
-      l0 = s0 / k - x0;
-      l1 = s1 / k - x1;
-      l2 = s2 / k - x2;
+      double s0 = 0, s1 = 0, s2 = 0;
+      const RingCache::Entry* const entries = ring.entries.data();
+      for (int e = m.begin; e < m.end; ++e) {
+        const Vec3& a = pos[entries[e].a];
+        s0 += a[0];
+        s1 += a[1];
+        s2 += a[2];
+      }
+      l0 = s0 * m.inv_k - x0;
+      l1 = s1 * m.inv_k - x1;
+      l2 = s2 * m.inv_k - x2;
     }
-    const double ln = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
-    if (ln > 0) {
-      n0 /= ln;
-      n1 /= ln;
-      n2 /= ln;
-      const double d = l0 * n0 + l1 * n1 + l2 * n2;
-      l0 -= d * n0;
-      l1 -= d * n1;
-      l2 -= d * n2;
+    const double d = (l0 * m.n0 + l1 * m.n1 + l2 * m.n2) * m.inv_nn;
+    x[0] = x0 + opt.neighbor_rate * (l0 - d * m.n0);
+    x[1] = x1 + opt.neighbor_rate * (l1 - d * m.n1);
+    x[2] = x2 + opt.neighbor_rate * (l2 - d * m.n2);
+  }
+
+  // The first pass: computes and keeps m's normal (sum over its faces of the cross products, taken
+  // relative to the member), then updates it as above.
+  void smooth_member_first(Vec3* pos, RingCache::Member& m) const {
+    if (m.end <= m.begin) return;
+    const double x0 = pos[m.vid][0], x1 = pos[m.vid][1], x2 = pos[m.vid][2];
+    double n0 = 0, n1 = 0, n2 = 0;
+    const RingCache::Entry* const entries = ring.entries.data();
+    for (int e = m.begin; e < m.end; ++e) {
+      const RingCache::Entry en = entries[e];
+      if (en.b < 0) continue;
+      const double u0 = pos[en.a][0] - x0, u1 = pos[en.a][1] - x1, u2 = pos[en.a][2] - x2;
+      const double v0 = pos[en.b][0] - x0, v1 = pos[en.b][1] - x1, v2 = pos[en.b][2] - x2;
+      n0 += u1 * v2 - u2 * v1;
+      n1 += u2 * v0 - u0 * v2;
+      n2 += u0 * v1 - u1 * v0;
     }
-    Vec3& x = ring.pos[m.local];
-    x[0] += opt.neighbor_rate * l0;
-    x[1] += opt.neighbor_rate * l1;
-    x[2] += opt.neighbor_rate * l2;
+    const double nn = n0 * n0 + n1 * n1 + n2 * n2;
+    const double inv_nn = nn > 0 ? 1.0 / nn : 0.0;
+    // No usable normal (degenerate faces, or a square that overflows): the plain Laplacian.
+    const bool usable = std::isfinite(inv_nn) && std::isfinite(nn);
+    m.n0 = usable ? n0 : 0.0;
+    m.n1 = usable ? n1 : 0.0;
+    m.n2 = usable ? n2 : 0.0;
+    m.inv_nn = usable ? inv_nn : 0.0;
+    smooth_member(pos, m);
   }
 
   // ---------------------------------------------------------------- vertex split
@@ -679,12 +670,15 @@ struct Reconstructor::Impl {
 
   // Splits append vertices, edges and faces at the ends of the mesh's arrays, so a vertex's ring
   // spreads over memory as the mesh grows; renumbering the mesh in spatial order (Morton) brings
-  // it back together (fewer cache misses per basic step on large meshes). Only without registered
-  // operations: they may keep handles between their calls. Also drops the deleted elements.
+  // it back together (fewer cache misses per basic step on large meshes). Registered operations
+  // may keep handles between their calls: only when all of them can follow (operation.h), and they
+  // get the maps. Also drops the deleted elements.
   void reorder_if_due() {
-    if (!ops.empty() || live < next_reorder_live) return;
+    if (live < next_reorder_live) return;
+    for (const Registered& r : ops)
+      if (!r.op->can_follow_renumbering()) return;  // asked again at the next split
     next_reorder_live = live + live / 2;
-    const detail::Renumbering map = detail::renumber_spatially(mesh);
+    const MeshRenumbering map = detail::renumber_spatially(mesh);
     const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
     std::vector<double> new_tau(nv, -1.0);
     std::vector<std::uint64_t> new_last_win(nv, steps), new_vstamp(nv, clock), new_fstamp(nf, clock);
@@ -716,6 +710,7 @@ struct Reconstructor::Impl {
       order.set(static_cast<int>(i), tau[i]);
       grid.insert(static_cast<int>(i), mesh.point(VertexHandle(static_cast<int>(i))));
     }
+    for (Registered& r : ops) r.op->on_renumbered(mesh, map);
   }
 
   // ---------------------------------------------------------------- collapses

@@ -70,9 +70,10 @@ std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
   return order;
 }
 
-Renumbering renumber_spatially(Mesh& mesh) {
-  Renumbering map;
+MeshRenumbering renumber_spatially(Mesh& mesh) {
+  MeshRenumbering map;
   map.vertex.assign(mesh.n_vertices(), -1);
+  map.edge.assign(mesh.n_edges(), -1);
   map.face.assign(mesh.n_faces(), -1);
 
   // Vertices by Morton code of their position.
@@ -118,6 +119,7 @@ Renumbering renumber_spatially(Mesh& mesh) {
   std::vector<HalfedgeHandle> hnew(mesh.n_halfedges());
   for (const auto& [key, e] : edges) {
     const HalfedgeHandle h0 = mesh.halfedge_handle(EdgeHandle(e), 0);
+    map.edge[static_cast<std::size_t>(e)] = static_cast<int>(out.n_edges());
     const HalfedgeHandle n0 =
         out.new_edge(VertexHandle(vnew(mesh.from_vertex_handle(h0))), VertexHandle(vnew(mesh.to_vertex_handle(h0))));
     hnew[h0.idx()] = n0;

@@ -20,6 +20,12 @@ const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& 
   return repairer_ ? repairer_->cuts() : none;
 }
 
+// Renumbering (operation.h): twist::TwistRepairer keeps state by handle index (retwist places,
+// cut pairs, face snapshots, face grid) and cannot translate it. Until a region was found, that
+// state is only caches, which a new repairer rebuilds on the next call: follow then, not after.
+bool TwistOperation::can_follow_renumbering() const { return stats_.regions_found == 0; }
+void TwistOperation::on_renumbered(const edgefront::Mesh&, const MeshRenumbering&) { repairer_.reset(); }
+
 OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) {
   const std::clock_t cpu0 = std::clock();
   struct AddCpu {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "edgefront/error.h"
 
@@ -131,17 +132,13 @@ int VertexGrid::linear_nearest(const edgefront::Vec3& p) const {
 
 int VertexGrid::nearest(const edgefront::Vec3& p) const {
   if (count_ == 0) return -1;
+  const double px = p[0] * inv_h_, py = p[1] * inv_h_, pz = p[2] * inv_h_;
   const std::int64_t ci = cell_coord(p[0], inv_h_), cj = cell_coord(p[1], inv_h_), ck = cell_coord(p[2], inv_h_);
-  // Lower bound of the distance from p to any cell of ring r + 1: distance to its own cell's
-  // faces plus r whole cells.
-  const double fx = p[0] * inv_h_ - std::floor(p[0] * inv_h_), fy = p[1] * inv_h_ - std::floor(p[1] * inv_h_),
-               fz = p[2] * inv_h_ - std::floor(p[2] * inv_h_);
-  const double margin = std::min({fx, 1 - fx, fy, 1 - fy, fz, 1 - fz}) * h_;
+  // Position of p inside its cell, in [0, 1) per axis.
+  const double fx = px - std::floor(px), fy = py - std::floor(py), fz = pz - std::floor(pz);
   int best = -1;
   double best_d = std::numeric_limits<double>::infinity();
   std::size_t visited = 0;
-  const std::size_t budget = 8 * count_ + 64;  // then a linear scan is cheaper
-  const double px = p[0] * inv_h_, py = p[1] * inv_h_, pz = p[2] * inv_h_;
   // Squared distance (in cells) from p to cell (i, j, k); cells farther than the best are skipped.
   const auto gap = [](double x, std::int64_t c) {
     const double lo = static_cast<double>(c), hi = lo + 1;
@@ -163,6 +160,25 @@ int VertexGrid::nearest(const edgefront::Vec3& p) const {
       }
     }
   };
+  // First the 2x2x2 block of cells nearest to p (its own cell and the neighbours on the side of p
+  // along each axis): any cell outside the block is at least max(f, 1 - f) >= 1/2 cell away along
+  // some axis, so a point found within that distance is the nearest (the usual case: the loop keeps
+  // the cell size near the mean edge length, and samples lie within about half an edge of a
+  // vertex). Otherwise the search continues in rings (which may revisit the block: the result,
+  // the smallest (distance, id), does not depend on the visiting order).
+  constexpr std::int64_t kInner = kBias - 4;  // away from the clamped border cells
+  if (std::max({std::abs(ci), std::abs(cj), std::abs(ck)}) < kInner) {
+    const std::int64_t si = fx < 0.5 ? -1 : 1, sj = fy < 0.5 ? -1 : 1, sk = fz < 0.5 ? -1 : 1;
+    for (int c = 0; c < 8; ++c) visit(ci + ((c & 1) ? si : 0), cj + ((c & 2) ? sj : 0), ck + ((c & 4) ? sk : 0));
+    if (best >= 0) {
+      const double bound = std::min({std::max(fx, 1 - fx), std::max(fy, 1 - fy), std::max(fz, 1 - fz)}) * h_;
+      if (best_d <= bound * bound) return best;
+    }
+  }
+  // Lower bound of the distance from p to any cell of ring r + 1: distance to its own cell's
+  // faces plus r whole cells.
+  const double margin = std::min({fx, 1 - fx, fy, 1 - fy, fz, 1 - fz}) * h_;
+  const std::size_t budget = 8 * count_ + 64;  // then a linear scan is cheaper
   for (std::int64_t r = 0;; ++r) {
     for (std::int64_t di = -r; di <= r; ++di) {
       for (std::int64_t dj = -r; dj <= r; ++dj) {

@@ -11,6 +11,12 @@
 /// re-synchronizes its own state (signal counters, spatial index, activity) with the mesh; see
 /// `Reconstructor::validate`.
 ///
+/// Renumbering: on large meshes the loop renumbers the mesh's elements in spatial order now and
+/// then, between two calls (memory locality of the basic step; deleted elements are dropped). An
+/// operation that keeps handles from one call to the next must translate them then: it opts in
+/// with `can_follow_renumbering` and gets the old -> new maps in `on_renumbered`. By default an
+/// operation does not opt in, and the loop does not renumber while it is registered.
+///
 /// \code
 ///   class DeleteFarFaces : public gcs::Operation {
 ///    public:
@@ -45,6 +51,33 @@ struct ChangeSet {
   bool empty() const { return vertices.empty() && faces.empty(); }
 };
 
+/// Old index -> new index of the mesh's elements after the reconstructor renumbered its mesh (-1:
+/// the element was deleted and is gone). Halfedges follow their edge with the same direction:
+/// halfedge 2e + s becomes 2 edge[e] + s. Positions, connectivity and each vertex's and face's
+/// circulation start are unchanged; only the indices change.
+struct MeshRenumbering {
+  std::vector<int> vertex;  ///< by old vertex index
+  std::vector<int> edge;    ///< by old edge index
+  std::vector<int> face;    ///< by old face index
+
+  /// The new handle of an old one; an invalid handle when the element is gone or `old` is
+  /// invalid or out of range.
+  edgefront::VertexHandle operator()(edgefront::VertexHandle old) const {
+    return edgefront::VertexHandle(lookup(vertex, old.idx()));
+  }
+  edgefront::FaceHandle operator()(edgefront::FaceHandle old) const { return edgefront::FaceHandle(lookup(face, old.idx())); }
+  edgefront::EdgeHandle operator()(edgefront::EdgeHandle old) const { return edgefront::EdgeHandle(lookup(edge, old.idx())); }
+  edgefront::HalfedgeHandle operator()(edgefront::HalfedgeHandle old) const {
+    const int e = old.is_valid() ? lookup(edge, old.idx() / 2) : -1;
+    return edgefront::HalfedgeHandle(e < 0 ? -1 : 2 * e + old.idx() % 2);
+  }
+
+ private:
+  static int lookup(const std::vector<int>& map, int i) {
+    return i >= 0 && static_cast<std::size_t>(i) < map.size() ? map[static_cast<std::size_t>(i)] : -1;
+  }
+};
+
 /// What an operation may read besides the mesh. Cheap to build; valid only during the call.
 struct OperationContext {
   const edgefront::PointCloud& points;  ///< the input samples (normals when the input had them)
@@ -73,6 +106,18 @@ class Operation {
   /// May throw an `edgefront::Error`; the reconstructor then stops and rethrows it.
   virtual OperationResult apply(edgefront::Mesh& mesh, const ChangeSet& changed,
                                 const OperationContext& context) = 0;
+  /// Asked right before the loop would renumber the mesh (see the file comment): true when the
+  /// operation can translate the handles it keeps (in `on_renumbered`). The default, false, keeps
+  /// the loop from renumbering while this operation is registered; the loop asks again later.
+  virtual bool can_follow_renumbering() const { return false; }
+  /// Called right after the loop renumbered the mesh (only after `can_follow_renumbering` returned
+  /// true), with the renumbered mesh and the maps from old to new indices. Handles kept from an
+  /// earlier call are old handles: translate them with `map`. The next `apply` gets a change set
+  /// in the new numbering (the elements changed since the previous call, as usual).
+  virtual void on_renumbered(const edgefront::Mesh& mesh, const MeshRenumbering& map) {
+    (void)mesh;
+    (void)map;
+  }
 };
 
 }  // namespace gcs

@@ -73,6 +73,9 @@ class TwistOperation : public Operation {
   ~TwistOperation() override;
   std::string name() const override { return "twist-repair"; }
   OperationResult apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) override;
+  /// Follows the loop's renumbering only until a region was found (see twist_operation.cpp).
+  bool can_follow_renumbering() const override;
+  void on_renumbered(const edgefront::Mesh& mesh, const MeshRenumbering& map) override;
   const TwistOperationStats& stats() const { return stats_; }
   /// What the repairs cut so far: (vertex copy, original) pairs, at the same position, along the
   /// cuts (handles of the current mesh; cleared when the final call garbage-collects). A

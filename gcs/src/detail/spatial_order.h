@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "edgefront/mesh.h"
+#include "gcs/operation.h"
 
 namespace gcs::detail {
 
@@ -18,19 +19,12 @@ namespace gcs::detail {
 /// bits per axis), ties by index: result[k] is the index of the k-th point in Morton order.
 std::vector<std::size_t> morton_order(const std::vector<edgefront::Vec3>& points);
 
-/// Old index -> new index of the live elements after renumber_spatially (-1: the element was
-/// deleted and is gone).
-struct Renumbering {
-  std::vector<int> vertex;
-  std::vector<int> face;
-};
-
 /// Rebuilds `mesh` with the same connectivity, positions, face normals and circulation starts
 /// (each vertex keeps its outgoing halfedge, each face its halfedge, so circulators visit the same
 /// elements in the same order), without the deleted elements, numbered in spatial order:
 /// vertices by the Morton code of their position, edges by their two new vertex indices, faces by
 /// their three. Other properties and status flags are not carried over (the caller must not have
-/// any that matter). Returns the maps from old to new indices.
-Renumbering renumber_spatially(edgefront::Mesh& mesh);
+/// any that matter). Returns the maps from old to new indices (edges keep their direction).
+MeshRenumbering renumber_spatially(edgefront::Mesh& mesh);
 
 }  // namespace gcs::detail
