@@ -946,7 +946,7 @@ struct Reconstructor::Impl {
         zp.mean_edge_length = ell;
         zp.max_support_distance = bridge;
         tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
-      } else if (opt.join_components && edgefront::connected_components(mesh).count > 1) {
+      } else if (opt.join_components && !encloses && edgefront::connected_components(mesh).count > 1) {
         detail::ZipParams zp;
         zp.mean_edge_length = ell;
         zp.max_support_distance = bridge;
