@@ -578,6 +578,9 @@ size_t zip_border_slits(Mesh& mesh, const CloudQuery& cloud, const ZipParams& pa
       for (const auto& [l, k] : where) simple.push_back(count[loop_vertex(loops[l], k).idx()] == 1);
     }
     const edgefront::PointIndex index(pts);
+    std::vector<int> component;
+    if (params.only_across_components) component = edgefront::connected_components(mesh).vertex_component;
+    const auto vertex_of = [&](size_t p) { return loop_vertex(loops[static_cast<size_t>(where[p].first)], where[p].second); };
     // Candidate seeds: close pairs of boundary vertices whose loops run opposite there.
     struct Seed {
       double d;
@@ -597,6 +600,7 @@ size_t zip_border_slits(Mesh& mesh, const CloudQuery& cloud, const ZipParams& pa
         const auto [lp, kp] = where[p];
         const auto [lq, kq] = where[q];
         if (lp != lq && !params.across_loops) continue;
+        if (params.only_across_components && component[vertex_of(p).idx()] == component[vertex_of(q).idx()]) continue;
         if (lp == lq) {
           const long n = static_cast<long>(loops[static_cast<size_t>(lp)].vertices.size());
           const long d = std::abs(kp - kq);

@@ -17,6 +17,7 @@
 #include "detail/spatial_order.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
 
 namespace gcs {
@@ -939,6 +940,13 @@ struct Reconstructor::Impl {
         detail::ZipParams zp;
         zp.mean_edge_length = ell;
         zp.max_support_distance = bridge;
+        tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
+      } else if (opt.join_components && !encloses && edgefront::connected_components(mesh).count > 1) {
+        detail::ZipParams zp;
+        zp.mean_edge_length = ell;
+        zp.max_support_distance = bridge;
+        zp.across_loops = true;
+        zp.only_across_components = true;
         tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
       }
     }

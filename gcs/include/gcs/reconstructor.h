@@ -81,6 +81,14 @@ struct ReconstructOptions {
   /// tube). On kitten.xyz this splits the torn tail loop into several loops that the loop merge
   /// does not join (no handle yet), so it is not on by default.
   bool zip_slits = false;
+  /// For clouds that do not surround a volume (see film_samples: open sheets, landscapes), when
+  /// the mesh has several components, border chains of two different components that run within
+  /// 2 mean edge lengths of each other in opposite directions are zipped together by a strip that
+  /// lies on the cloud and agrees with the faces around (a piece torn off an open sheet, e.g. a
+  /// corner of a small planar cloud, is joined back). Not for clouds around a volume: there it
+  /// zipped nested surfaces (nested spheres) together while they separate. Not with zip_slits
+  /// (which zips within and across loops anyway).
+  bool join_components = true;
   /// Border loops of 9 up to this many vertices are closed by a strip zipping their two halves
   /// together when that strip lies on the cloud and agrees with the faces around (a slit torn into
   /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.

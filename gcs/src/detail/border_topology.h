@@ -82,6 +82,7 @@ struct ZipParams {
   double min_normal_agreement = 0.2;  ///< mean cosine between strip faces and the faces they border
   std::size_t max_zips = 32;          ///< strips added per call
   bool across_loops = false;          ///< also zip chains of two different loops (joins them)
+  bool only_across_components = false;  ///< only zip chains of loops in two different components
 };
 
 /// Closes slits: where two border chains (of the same loop or of two loops) run close to each other
