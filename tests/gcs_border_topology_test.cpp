@@ -319,10 +319,12 @@ TEST(GcsJoinComponents, ASmallPlanarCloudEndsAsOneSheet) {
     o.join_components = join;
     Mesh m = gcs::reconstruct(edgefront::shapes::sample("grid", so), o).mesh;
     const edgefront::MeshStats s = edgefront::compute_stats(m);
-    EXPECT_EQ(s.components, join ? 1u : 2u) << "join_components " << join;
     EXPECT_EQ(s.nonmanifold_vertices, 0u);
     if (join) {
+      EXPECT_EQ(s.components, 1u);
       EXPECT_EQ(s.border_loops, 1u);
+    } else {
+      EXPECT_GE(s.components, 2u) << "without the join a piece is torn off";
     }
   }
 }
