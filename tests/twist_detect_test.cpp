@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -129,6 +130,55 @@ TEST(TwistDetect, AHairpinGapLooksLikeAnInvertedWallWithoutReference) {
   twist::DetectOptions o;
   o.radius = 0.02;  // below the gap (0.05): no layer is found
   EXPECT_TRUE(twist::detect(m, o).empty());
+}
+
+TEST(TwistDetect, WithReferenceNormalsAHairpinGapIsNoTwist) {
+  // Two right surface parts facing each other across a gap narrower than the radius (as a
+  // kitten's tail over its back in a coarse reconstruction): the reference confirms both sides,
+  // so the facing layers mark no twist.
+  edgefront::shapes::MeshOptions mo;
+  mo.resolution = 12;
+  const Mesh m = edgefront::shapes::make("hairpin", mo);
+  ASSERT_FALSE(twist::detect(m).empty()) << "without reference the gap looks like an inverted wall";
+  edgefront::shapes::SampleOptions so;
+  so.points = 4000;
+  const twist::ReferenceNormals ref(edgefront::shapes::sample_mesh(m, so));
+  twist::DetectOptions o;
+  o.reference = &ref;
+  const auto result = twist::detect_regions(m, o);
+  EXPECT_TRUE(result.regions.empty());
+  EXPECT_GT(result.stats.flagged_faces, 0u) << "the facing layers are still seen (they may mark a twist line)";
+}
+
+TEST(TwistDetect, FacesFlippedOverInACreaseAreNoTwist) {
+  // A clean closed genus-1 surface as a reconstruction in progress leaves it: every vertex
+  // jittered, and one vertex dragged across the opposite edge of one of its triangles, so that
+  // the triangle and its neighbour there are turned over against their right surroundings (a
+  // tangle the loop's smoothing undoes). The reference (samples of the untangled torus) judges
+  // those faces wrong, yet they are no wrongly oriented patch: no region, with or without it.
+  edgefront::shapes::MeshOptions mo;
+  mo.resolution = 24;
+  const Mesh clean = edgefront::shapes::make("torus", mo);
+  Mesh m = clean;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  for (auto v : m.vertices()) m.set_point(v, m.point(v) + Vec3(jitter(rng), jitter(rng), jitter(rng)));
+  const FaceHandle f(100);
+  auto fv = m.fv_range(f).begin();
+  const auto a = *fv++, b = *fv++, c = *fv;
+  const Vec3 mid = 0.5 * (m.point(b) + m.point(c));
+  m.set_point(a, mid + 0.6 * (mid - m.point(a)));  // a crosses bc: f turns over
+  edgefront::shapes::SampleOptions so;
+  so.points = 6000;
+  const twist::ReferenceNormals ref(edgefront::shapes::sample_mesh(clean, so));
+  twist::DetectOptions o;
+  o.reference = &ref;
+  ASSERT_LT(twist::reference_vote(ref, o, m.calc_face_centroid(f), m.calc_face_normal(f)), 0)
+      << "the turned face disagrees with the reference";
+  const auto with_reference = twist::detect_regions(m, o);
+  EXPECT_TRUE(with_reference.regions.empty()) << with_reference.regions.size() << " region(s)";
+  EXPECT_GT(with_reference.stats.flagged_faces, 0u);
+  EXPECT_TRUE(twist::detect(m).empty());
 }
 
 TEST(TwistDetect, IncrementalDetectionFromAFewChangedFacesFindsTheWholeRegionLocally) {

@@ -16,7 +16,8 @@
 ///   out: both flagged) or both point the same way (two layers with the same orientation: only
 ///   the one pointing at the other is flagged). Convention and limit: two distinct surface parts
 ///   facing each other across a gap narrower than `radius` (a hairpin's arms) look like an
-///   inverted wall; pass reference normals for such inputs or lower `radius`.
+///   inverted wall; pass reference normals for such inputs (they then decide the side, see
+///   `DetectOptions::require_orientation_evidence`) or lower `radius`.
 /// - **Folded edge**: an edge whose two faces fold onto each other (n_f·n_g <= `fold_cos`,
 ///   dihedral angle near 0).
 /// - **Self-intersection**: f intersects a face it shares no vertex with.
@@ -154,9 +155,14 @@ struct DetectOptions {
   /// filling and trimming) are dropped: mostly unflagged regions are grown around stray evidence,
   /// such as a fold band left over right faces after a cut. In [0, 1].
   double min_flagged_share = 0.3;
-  /// Keep only regions with at least one face of orientation evidence (reference or facing
-  /// layer). Folds and self-intersections alone mark where a twist line runs, not which side is
-  /// wrong (a correct surface can fold or intersect itself, e.g. a GCS mesh in transit).
+  /// Keep only regions with a core of orientation evidence: a face with reference or facing-layer
+  /// evidence whose neighbours across all its edges have it too. Folds and self-intersections
+  /// alone mark where a twist line runs, not which side is wrong (a correct surface can fold or
+  /// intersect itself, e.g. a GCS mesh in transit), and a triangle or two turned over against
+  /// right neighbours in a crease is a tangle, not a wrongly oriented patch. With a `reference`,
+  /// facing-layer evidence counts for the core only where the side judge abstains
+  /// (`reference_side_weight` > 0 and a vote of 0): wherever the reference decides, a layer in
+  /// front of a face it confirms is another right part of the surface across a narrow gap.
   bool require_orientation_evidence = true;
   /// Oriented reference points (not owned; may be null). When set, reference evidence is used.
   const ReferenceNormals* reference = nullptr;
