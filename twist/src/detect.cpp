@@ -635,6 +635,31 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   result.stats = det.stats;
   result.stats.flagged_faces = flagged.size();
   if (flagged.empty()) return result;
+  // A region needs a core: a face with orientation evidence whose neighbours across every edge
+  // have it too, i.e. a patch whose orientation is wrong, not only faces turned against right
+  // neighbours (a tangle: a triangle or two flipped over in a crease while the mesh moves, which
+  // the loop's smoothing undoes and a cut would only tear open). With a reference, the reference
+  // tells the side wherever it decides: a facing layer then only marks where a twist line may
+  // run (two right parts of the surface also face each other across a gap narrower than the
+  // radius: a tail over a back, a leg along a body), and counts for the core only where the side
+  // judge abstains between the walls of a wall thinner than the faces.
+  auto core_evidence = [&](FaceHandle f) {
+    const auto it = flagged.find(f.idx());
+    if (it == flagged.end()) return false;
+    if (it->second.kind == EvidenceKind::Reference) return true;
+    if (it->second.kind != EvidenceKind::FacingLayer) return false;
+    return !options.reference || (options.reference_side_weight > 0 && det.vote(f) == 0);
+  };
+  auto is_core = [&](FaceHandle f) {
+    if (!core_evidence(f)) return false;
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      const FaceHandle g = mesh.opposite_face_handle(h);
+      if (g.is_valid() && !core_evidence(g)) return false;
+    }
+    return true;
+  };
+  // No core anywhere: no region can be kept, so none is grown (most calls of a refinement loop).
+  if (options.require_orientation_evidence && std::none_of(order.begin(), order.end(), is_core)) return result;
 
   // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
   std::vector<VertexHandle> sources;
@@ -764,31 +789,10 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     }
     std::tie(r.border, r.border_on_mesh_border) = border_loops(mesh, r.faces);
   }
-  // A region needs a core: a face with orientation evidence whose neighbours across every edge
-  // have it too, i.e. a patch whose orientation is wrong, not only faces turned against right
-  // neighbours (a tangle: a triangle or two flipped over in a crease while the mesh moves, which
-  // the loop's smoothing undoes and a cut would only tear open). With a reference, the reference
-  // tells the side wherever it decides: a facing layer then only marks where a twist line may
-  // run (two right parts of the surface also face each other across a gap narrower than the
-  // radius: a tail over a back, a leg along a body), and counts for the core only where the side
-  // judge abstains between the walls of a wall thinner than the faces.
-  auto core_evidence = [&](FaceHandle f) {
-    const auto it = flagged.find(f.idx());
-    if (it == flagged.end()) return false;
-    if (it->second.kind == EvidenceKind::Reference) return true;
-    if (it->second.kind != EvidenceKind::FacingLayer) return false;
-    return !options.reference || (options.reference_side_weight > 0 && det.vote(f) == 0);
-  };
   auto orientation_evidence = [&](const TwistRegion& r) {
     if (!options.require_orientation_evidence) return true;
     for (const Evidence& e : r.evidence) {
-      if (!core_evidence(e.face)) continue;
-      bool core = true;
-      for (HalfedgeHandle h : mesh.fh_range(e.face)) {
-        const FaceHandle g = mesh.opposite_face_handle(h);
-        core = core && (!g.is_valid() || core_evidence(g));
-      }
-      if (core) return true;
+      if (is_core(e.face)) return true;
     }
     return false;
   };
