@@ -147,7 +147,6 @@ TEST(TwistDetect, WithReferenceNormalsAHairpinGapIsNoTwist) {
   o.reference = &ref;
   const auto result = twist::detect_regions(m, o);
   EXPECT_TRUE(result.regions.empty());
-  EXPECT_GT(result.stats.flagged_faces, 0u) << "the facing layers are still seen (they may mark a twist line)";
 }
 
 TEST(TwistDetect, FacesFlippedOverInACreaseAreNoTwist) {

@@ -290,7 +290,9 @@ class Detector {
     if (nf.sqrnorm() == 0) return false;  // degenerate: no orientation to judge
     ev = Evidence{EvidenceKind::Reference, f, FaceHandle()};
     if (o_.reference && vote(f) < 0) return true;
-    const FaceHandle layer = far_layer(f, 1.0);
+    // (The quick pass looks for no layer in front of a face the reference confirms: see
+    // `detect_regions`.)
+    const FaceHandle layer = quick_ && o_.reference && vote(f) > 0 ? FaceHandle() : far_layer(f, 1.0);
     if (layer.is_valid()) {
       // Two layers facing each other: a wall turned inside out. Two layers pointing the same
       // way: f points into the other's back, unless f itself sits back to back with a layer of
@@ -471,6 +473,11 @@ class Detector {
 
  private:
   bool scan_intersections_ = false;
+
+ public:
+  bool quick_ = false;  ///< see `test`
+
+ private:
   bool collect_behind_ = false;
   std::vector<FaceHandle> behind_;
   std::unordered_map<int, int> si_partner_;
@@ -555,7 +562,11 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
   return c < options.reference_cos ? -1 : (c >= -options.reference_cos ? 1 : 0);
 }
 
-DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
+namespace {
+
+/// One detection. `quick`: no layer is looked for in front of faces the reference confirms, and
+/// the pass ends after the evidence, setting `has_core` (see `detect_regions`).
+DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool quick, bool& has_core) {
   if (options.face_grid && options.restrict_to) {
     // Incremental: no pass over the mesh; the candidates' vertices are checked.
     if (mesh.n_faces() == 0) throw InvalidInput("twist::detect: the mesh has no faces");
@@ -573,6 +584,7 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   }
   validate_options(mesh, options);
   Detector det(mesh, options);
+  det.quick_ = quick;
   DetectResult result;
 
   // 1. Evidence on the candidate faces.
@@ -659,7 +671,8 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     return true;
   };
   // No core anywhere: no region can be kept, so none is grown (most calls of a refinement loop).
-  if (options.require_orientation_evidence && std::none_of(order.begin(), order.end(), is_core)) return result;
+  has_core = std::any_of(order.begin(), order.end(), is_core);
+  if (quick || (options.require_orientation_evidence && !has_core)) return result;
 
   // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
   std::vector<VertexHandle> sources;
@@ -805,6 +818,29 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
     return a.faces.size() > b.faces.size();
   });
   return result;
+}
+
+}  // namespace
+
+DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
+  bool has_core = false;
+  if (options.reference && options.reference_side_weight == 0 && options.require_orientation_evidence) {
+    // With a reference judging by the nearest normal, a core needs reference evidence, which does
+    // not depend on layers: a first pass that looks for no layer in front of the faces the
+    // reference confirms (two right parts of a surface facing each other across a narrow gap
+    // cost a bounded distance front per test, every time they are tested) tells whether any
+    // region can be kept; only then the full pass runs. (In incremental mode the quick pass grows
+    // the tested set only from the faces it flags, so a core reached only through facing layers
+    // waits for a later call or the final full pass.)
+    DetectResult quick = detect_pass(mesh, options, true, has_core);
+    if (!has_core) return quick;
+    DetectResult full = detect_pass(mesh, options, false, has_core);
+    // faces_tested counts faces: the quick pass tested the same candidates, with less evidence.
+    full.stats.distance_queries += quick.stats.distance_queries;
+    full.stats.vertices_settled += quick.stats.vertices_settled;
+    return full;
+  }
+  return detect_pass(mesh, options, false, has_core);
 }
 
 std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh& mesh, const DetectOptions& options) {
