@@ -43,11 +43,12 @@ struct TwistOperationOptions {
   /// run close and opposite (orientation-compatible) and whole loop pairs, with the loop's border
   /// operations (strips must lie on the input points and agree with the faces on both sides):
   /// pieces a repair separated grow back together where their orientations now agree.
-  /// Off by default: on the vault shells it leaves fewer pieces (t/R 0.1 seeds 1-2: 3 and 6
-  /// components instead of 4 and 9), but on CGAL's kitten scan, where the detector flags dozens
-  /// of small regions although nothing is twisted, the joins it adds are flagged and cut again and
-  /// the closed genus 1 result is lost (5K vertices, seeds 1-4: closed genus 1 in 1 run with it,
-  /// 2 without; bench/results/twist-vaults.md). `gcs-reconstruct --rejoin-borders` turns it on.
+  /// Off by default: on the vault shells it leaves fewer pieces and more surface, but lower
+  /// orientation consistency (session 6, seeds 1-3: t/R 0.05 seed 2 0.9870 with it, 0.9928
+  /// without; t/R 0.02 0.938-0.977 against 0.981-0.991); on CGAL's kitten scan (5K vertices,
+  /// seeds 1-16) closed genus 1 in 7 runs either way, since the detector no longer flags regions
+  /// there but in a few runs (bench/results/twist-vaults.md, Session 6).
+  /// `gcs-reconstruct --rejoin-borders` turns it on.
   bool rejoin_borders = false;
 };
 
