@@ -46,8 +46,9 @@ struct TwistOperationOptions {
   /// Off by default: on the vault shells it leaves fewer pieces and more surface, but lower
   /// orientation consistency (session 6, seeds 1-3: t/R 0.05 seed 2 0.9870 with it, 0.9928
   /// without; t/R 0.02 0.938-0.977 against 0.981-0.991); on CGAL's kitten scan (5K vertices,
-  /// seeds 1-16) closed genus 1 in 7 runs either way, since the detector no longer flags regions
-  /// there but in a few runs (bench/results/twist-vaults.md, Session 6).
+  /// seeds 1-16, before main a89ca06) closed genus 1 in the same 7 runs either way, since the
+  /// detector no longer flags regions there but in a few runs (bench/results/twist-vaults.md,
+  /// Session 6).
   /// `gcs-reconstruct --rejoin-borders` turns it on.
   bool rejoin_borders = false;
 };
