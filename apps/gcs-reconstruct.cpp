@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   bool rejoin = false;
   app.add_flag("--rejoin-borders", rejoin,
                "after a twist repair, zip border chains that run close and orientation-compatible back together "
-               "(fewer pieces on thin shells; off by default: it can cost a closed scan its genus)");
+               "(fewer pieces on thin shells; off by default: on the thinnest shells it lowers the consistently "
+               "oriented share a little)");
   bool no_orient = false;
   app.add_flag("--no-orient-winners", no_orient,
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
