@@ -188,8 +188,9 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
 /// Per-face geometry and the evidence tests.
 class Detector {
  public:
-  Detector(const Mesh& mesh, const DetectOptions& o)
-      : collect_behind_(o.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
+  /// `quick`: no layer is looked for in front of a face the reference confirms (see `test`).
+  Detector(const Mesh& mesh, const DetectOptions& o, bool quick)
+      : quick_(quick), collect_behind_(o.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
     if (!grid_) {
       // Full mode (or no incremental index given): a k-d tree over every live face's centroid.
       geo_.resize(mesh.n_faces());
@@ -473,11 +474,7 @@ class Detector {
 
  private:
   bool scan_intersections_ = false;
-
- public:
-  bool quick_ = false;  ///< see `test`
-
- private:
+  bool quick_ = false;
   bool collect_behind_ = false;
   std::vector<FaceHandle> behind_;
   std::unordered_map<int, int> si_partner_;
@@ -583,8 +580,7 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
     detail::check_mesh(mesh, "twist::detect");
   }
   validate_options(mesh, options);
-  Detector det(mesh, options);
-  det.quick_ = quick;
+  Detector det(mesh, options, quick);
   DetectResult result;
 
   // 1. Evidence on the candidate faces.
@@ -846,7 +842,7 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
 std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh& mesh, const DetectOptions& options) {
   detail::check_mesh(mesh, "twist::same_orientation_pairs");
   validate_options(mesh, options);
-  Detector det(mesh, options);
+  Detector det(mesh, options, false);
   std::vector<std::pair<FaceHandle, FaceHandle>> out;
   for (FaceHandle f : mesh.faces()) {
     if (det.normal(f).sqrnorm() == 0) continue;
