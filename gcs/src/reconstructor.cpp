@@ -936,17 +936,16 @@ struct Reconstructor::Impl {
       mp.max_support_distance = bridge;
       mp.max_trim_rings = trim_rings;
       tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
-      if (opt.zip_slits) {
+      // zip_slits zips within and across loops; otherwise torn-off pieces of an open sheet are
+      // joined back (join_components: only across components).
+      const bool join = !opt.zip_slits && opt.join_components && !encloses &&
+                        edgefront::connected_components(mesh).count > 1;
+      if (opt.zip_slits || join) {
         detail::ZipParams zp;
         zp.mean_edge_length = ell;
         zp.max_support_distance = bridge;
-        tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
-      } else if (opt.join_components && !encloses && edgefront::connected_components(mesh).count > 1) {
-        detail::ZipParams zp;
-        zp.mean_edge_length = ell;
-        zp.max_support_distance = bridge;
-        zp.across_loops = true;
-        zp.only_across_components = true;
+        zp.across_loops = join;
+        zp.only_across_components = join;
         tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
       }
     }
