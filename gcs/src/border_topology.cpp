@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -371,6 +372,32 @@ size_t loop_with_most(const std::vector<Loop>& loops, const std::vector<char>& m
   return best;
 }
 
+// A copy of the mesh with `rings` rings of faces removed along each rim (vertex lists; the rims
+// are trimmed ring by ring in turn) and its non-manifold vertices repaired, with its border loops
+// and, per rim, the loop holding most of that rim's new border (loops.size() when none). Empty
+// when the trimming changed the number of components (`components`: the mesh's).
+struct Trimmed {
+  Mesh mesh;
+  std::vector<Loop> loops;
+  std::vector<size_t> rim_loop;
+};
+std::optional<Trimmed> trimmed_copy(const Mesh& mesh, std::vector<std::vector<VertexHandle>> rims, size_t rings,
+                                    size_t components) {
+  Trimmed t{mesh, {}, {}};
+  for (size_t r = 0; r < rings; ++r) {
+    for (auto& rim : rims) rim = trim_ring(t.mesh, rim);
+  }
+  fix_nonmanifold_vertices(t.mesh);
+  if (edgefront::connected_components(t.mesh).count != components) return std::nullopt;
+  t.loops = border_loops(t.mesh);
+  for (const auto& rim : rims) {
+    std::vector<char> marked(t.mesh.n_vertices(), 0);
+    for (auto v : rim) marked[static_cast<size_t>(v.idx())] = 1;
+    t.rim_loop.push_back(loop_with_most(t.loops, marked));
+  }
+  return t;
+}
+
 // A candidate pair whose strip was refused: on a copy of the mesh, removes `rings` rings of faces
 // along both loops (curled or overlapping rims: the two borders slid past each other, or bent
 // away from the gap) and tries the strip between the new borders (the gap limit grows by two mean
@@ -379,23 +406,13 @@ size_t loop_with_most(const std::vector<Loop>& loops, const std::vector<char>& m
 bool trim_and_merge(Mesh& mesh, const CloudQuery& cloud, const Loop& A, const Loop& B, const MergeParams& params) {
   const size_t components = edgefront::connected_components(mesh).count;
   for (size_t rings = 1; rings <= params.max_trim_rings; ++rings) {
-    Mesh trial = mesh;
-    std::vector<VertexHandle> front_a = A.vertices, front_b = B.vertices;
-    for (size_t r = 0; r < rings; ++r) {
-      front_a = trim_ring(trial, front_a);
-      front_b = trim_ring(trial, front_b);
-    }
-    fix_nonmanifold_vertices(trial);
-    if (edgefront::connected_components(trial).count != components) continue;
-    const std::vector<Loop> loops = border_loops(trial);
-    std::vector<char> in_a(trial.n_vertices(), 0), in_b(trial.n_vertices(), 0);
-    for (auto v : front_a) in_a[static_cast<size_t>(v.idx())] = 1;
-    for (auto v : front_b) in_b[static_cast<size_t>(v.idx())] = 1;
-    const size_t la = loop_with_most(loops, in_a), lb = loop_with_most(loops, in_b);
-    if (la == loops.size() || lb == loops.size() || la == lb) continue;
+    std::optional<Trimmed> t = trimmed_copy(mesh, {A.vertices, B.vertices}, rings, components);
+    if (!t) continue;
+    const size_t la = t->rim_loop[0], lb = t->rim_loop[1];
+    if (la == t->loops.size() || lb == t->loops.size() || la == lb) continue;
     const double extra_gap = 2.0 * static_cast<double>(rings) * params.mean_edge_length;
-    if (merge_pair(trial, cloud, loops[la], loops[lb], params, extra_gap) == PairMerge::merged) {
-      mesh = std::move(trial);
+    if (merge_pair(t->mesh, cloud, t->loops[la], t->loops[lb], params, extra_gap) == PairMerge::merged) {
+      mesh = std::move(t->mesh);
       return true;
     }
   }
@@ -471,18 +488,10 @@ bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max
 bool trim_and_close(Mesh& mesh, const Loop& loop, size_t rings, const std::function<bool(Mesh&, const Loop&)>& close) {
   const size_t components = edgefront::connected_components(mesh).count;
   for (size_t r = 1; r <= rings; ++r) {
-    Mesh trial = mesh;
-    std::vector<VertexHandle> front = loop.vertices;
-    for (size_t k = 0; k < r; ++k) front = trim_ring(trial, front);
-    fix_nonmanifold_vertices(trial);
-    if (edgefront::connected_components(trial).count != components) continue;
-    const std::vector<Loop> loops = border_loops(trial);
-    std::vector<char> marked(trial.n_vertices(), 0);
-    for (auto v : front) marked[static_cast<size_t>(v.idx())] = 1;
-    const size_t l = loop_with_most(loops, marked);
-    if (l == loops.size()) continue;
-    if (close(trial, loops[l])) {
-      mesh = std::move(trial);
+    std::optional<Trimmed> t = trimmed_copy(mesh, {loop.vertices}, r, components);
+    if (!t || t->rim_loop[0] == t->loops.size()) continue;
+    if (close(t->mesh, t->loops[t->rim_loop[0]])) {
+      mesh = std::move(t->mesh);
       return true;
     }
   }
