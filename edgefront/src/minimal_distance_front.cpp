@@ -88,14 +88,15 @@ struct LitSet {
   std::array<Window, kLitPerEdge> w;
 };
 
-// The part of w's interval where it is shorter than u (its hull: a window stays one interval).
-// sigma + |s p| of the two cross at most twice along the edge (a hyperbola branch and a line).
-// False: nothing is left.
 // A window is kept only where it is shorter by this (relative) than the windows carried across
 // the same halfedge before and than the path through an end of the edge: a window that would
 // only shave off less goes (MMP/ICH keep every one; this bounds their number, about 1/3 fewer on
 // the scanned models, for an error of about 1e-5 relative).
 constexpr double kWindowGain = 1e-5;
+
+// The part of w's interval where it is shorter than u (its hull: a window stays one interval).
+// sigma + |s p| of the two cross at most twice along the edge (a hyperbola branch and a line).
+// False: nothing is left.
 bool trim_against(Window& w, const Window& u) {
   const double lo = std::max(w.b0, u.b0), hi = std::min(w.b1, u.b1);
   if (!(hi > lo)) return true;
