@@ -35,8 +35,13 @@ int oriented_nearest(const Mesh& mesh, VertexGrid& grid, const Vec3& sample, con
                      int max_candidates, double max_extra_distance) {
   const int first = grid.nearest(sample);
   if (first < 0) return first;
+  if ((vertex_normal_sum(mesh, VertexHandle(first)) | normal) > 0) return first;
+  return oriented_nearest_after(mesh, grid, sample, normal, first, max_candidates, max_extra_distance);
+}
+
+int oriented_nearest_after(const Mesh& mesh, VertexGrid& grid, const Vec3& sample, const Vec3& normal, int first,
+                           int max_candidates, double max_extra_distance) {
   const auto agrees = [&](int id) { return (vertex_normal_sum(mesh, VertexHandle(id)) | normal) > 0; };
-  if (agrees(first)) return first;
   const double limit = (grid.position(first) - sample).norm() + max_extra_distance;
   // Take disagreeing candidates out of the grid until an agreeing one is nearest, then put them
   // back at their stored positions (the grid's answers do not depend on insertion order).

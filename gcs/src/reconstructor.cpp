@@ -13,6 +13,7 @@
 #include "detail/border_topology.h"
 #include "detail/counter_heap.h"
 #include "detail/double_layer.h"
+#include "detail/neighbor_cache.h"
 #include "detail/sample_projection.h"
 #include "detail/spatial_order.h"
 #include "detail/vertex_grid.h"
@@ -283,6 +284,7 @@ struct Reconstructor::Impl {
       last_win.resize(nv, steps);
       vstamp.resize(nv, clock);
       grid.resize(nv);
+      neighbors.resize(nv);
     }
     if (fstamp.size() < nf) fstamp.resize(nf, clock);
   }
@@ -391,17 +393,26 @@ struct Reconstructor::Impl {
     __builtin_prefetch(&cloud.points[next_sample]);
     if (oriented) __builtin_prefetch(&oriented_normal(next_sample));
     const Vec3& s = cloud.points[si];
-    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h).
-    const int wi = oriented && live >= opt.topology_min_vertices
-                       ? detail::oriented_nearest(mesh, grid, s, oriented_normal(si), 8, 2 * grid.cell_size())
-                       : grid.nearest(s);
+    int wi = grid.nearest(s);
     EF_CHECK(wi >= 0, "the mesh has no vertex");
+    const bool smooth = opt.neighbor_rate > 0 && opt.smoothing_iterations > 0;
+    // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h): the nearest
+    // vertex wins when its normal agrees with the sample's (the normal summed over the ring just
+    // gathered, as detail::vertex_normal_sum would), otherwise detail::oriented_nearest_after picks.
+    const bool facing = oriented && live >= opt.topology_min_vertices;
+    if (smooth || facing) gather_ring(VertexHandle(wi));
+    if (facing && !((ring_normal_sum(wi) | oriented_normal(si)) > 0)) {
+      const int other = detail::oriented_nearest_after(mesh, grid, s, oriented_normal(si), wi, 8, 2 * grid.cell_size());
+      if (other != wi) {
+        wi = other;
+        gather_ring(VertexHandle(wi));
+      }
+    }
     const VertexHandle w(wi);
     mesh.point(w) += opt.winner_rate * (s - mesh.point(w));
     grid.move(wi, mesh.point(w));
     stamp(w);
-    if (opt.neighbor_rate > 0 && opt.smoothing_iterations > 0) {
-      gather_ring(w);
+    if (smooth) {
       // The passes update the mesh positions in place (member by member, as in the paper's loop).
       Vec3* const pos = &mesh.point(VertexHandle(0));
       for (int it = 0; it < opt.smoothing_iterations; ++it) {
@@ -426,13 +437,14 @@ struct Reconstructor::Impl {
 
   // The winner's 1-ring (the members) with the ring of each member, gathered once per basic step
   // as vertex ids, so that the smoothing passes run over two small arrays instead of re-walking
-  // the halfedge structure.
+  // the halfedge structure. The rings are read from the neighbour cache (one line per vertex).
   struct RingCache {
     struct Member {
       int vid;               // the member's vertex id
       int begin, end;        // its neighbours: entries [begin, end)
       int border_a = -1;     // border members: the two border neighbours (vertex ids)
       int border_b = -1;
+      bool winner_face = false;  // the winner's outgoing halfedge to this member has a face
       double inv_k = 0;      // 1 / (end - begin)
       double n0 = 0, n1 = 0, n2 = 0;  // its normal for this basic step (smooth_member_first)
       double inv_nn = 0;              // 1 / |n|^2, 0 without a usable normal
@@ -444,46 +456,78 @@ struct Reconstructor::Impl {
     std::vector<Member> members;
     std::vector<Entry> entries;
   } ring;
+  detail::NeighborCache neighbors;
+  // Rings longer than the cache holds, walked (neighbour ids and face flags in voh order).
+  struct WalkedRing {
+    std::vector<int> nb;
+    std::vector<char> face;
+  } walked_winner, walked_member;
+
+  // v's neighbours in the order of mesh.voh_range(v) and whether each outgoing halfedge has a
+  // face: from the neighbour cache, or walked into `scratch` for rings it does not hold.
+  template <class F>
+  void with_ring(VertexHandle v, WalkedRing& scratch, F&& f) {
+    if (const detail::NeighborCache::Line* l = neighbors.get(mesh, v)) {
+      f(static_cast<int>(l->count), l->nb, [l](int e) { return l->has_face(e); });
+      return;
+    }
+    scratch.nb.clear();
+    scratch.face.clear();
+    for (auto h : mesh.voh_range(v)) {
+      scratch.nb.push_back(mesh.to_vertex_handle(h).idx());
+      scratch.face.push_back(mesh.face_handle(h).is_valid() ? 1 : 0);
+    }
+    const char* face = scratch.face.data();
+    f(static_cast<int>(scratch.nb.size()), scratch.nb.data(), [face](int e) { return face[e] != 0; });
+  }
 
   void gather_ring(VertexHandle w) {
     ring.members.clear();
-    // Outgoing halfedges in the order of mesh.voh_range (clockwise: next(opposite(h))).
-    const HalfedgeHandle w0 = mesh.halfedge_handle(w);
-    if (!w0.is_valid()) return;
-    int n = 0;  // entries used
-    HalfedgeHandle h = w0;
-    do {
-      const VertexHandle v = mesh.to_vertex_handle(h);
-      RingCache::Member m{v.idx(), n, 0};
-      // Around v, the face of outgoing halfedge e (v, a_e, b_e) is the face on the far side of
-      // halfedge e - 1 in this clockwise order, so b_e = a_(e-1) (cyclically: the first entry's
-      // is the last neighbour). At a border halfedge (no face) b_e = -1, and the border
-      // neighbours are a_e and a_(e-1) (the end of the incoming border halfedge).
-      int border_e = -1;
-      int prev_a = -1;
-      bool first_has_face = false;
-      const HalfedgeHandle v0 = mesh.halfedge_handle(v);
-      HalfedgeHandle g = v0;
-      do {
-        if (static_cast<size_t>(n) == ring.entries.size()) ring.entries.resize(2 * ring.entries.size() + 64);
-        const int a = mesh.to_vertex_handle(g).idx();
-        const bool has_face = mesh.face_handle(g).is_valid();
-        if (n == m.begin) first_has_face = has_face;
-        if (!has_face) border_e = n;
-        ring.entries[static_cast<size_t>(n++)] = {a, has_face ? prev_a : -1};
-        prev_a = a;
-        g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
-      } while (g != v0);
-      m.end = n;
-      m.inv_k = 1.0 / static_cast<double>(m.end - m.begin);
-      if (first_has_face) ring.entries[static_cast<size_t>(m.begin)].b = prev_a;
-      if (border_e >= 0) {
-        m.border_a = ring.entries[static_cast<size_t>(border_e)].a;
-        m.border_b = border_e == m.begin ? prev_a : ring.entries[static_cast<size_t>(border_e - 1)].a;
+    with_ring(w, walked_winner, [&](int count, const int* wnb, auto winner_face) {
+      int n = 0;  // entries used
+      for (int i = 0; i < count; ++i) {
+        RingCache::Member m{wnb[i], n, 0};
+        m.winner_face = winner_face(i);
+        // Around v, the face of outgoing halfedge e (v, a_e, b_e) is the face on the far side of
+        // halfedge e - 1 in this clockwise order, so b_e = a_(e-1) (cyclically: the first entry's
+        // is the last neighbour). At a border halfedge (no face) b_e = -1, and the border
+        // neighbours are a_e and a_(e-1) (the end of the incoming border halfedge); with several
+        // border halfedges, the last one counts.
+        with_ring(VertexHandle(m.vid), walked_member, [&](int k, const int* nb, auto has_face) {
+          if (static_cast<size_t>(n + k) > ring.entries.size()) ring.entries.resize(2 * ring.entries.size() + static_cast<size_t>(k) + 64);
+          RingCache::Entry* const out = ring.entries.data() + n;
+          int border_e = -1;
+          for (int e = 0; e < k; ++e) {
+            const bool f = has_face(e);
+            if (!f) border_e = e;
+            out[e] = {nb[e], f ? nb[e == 0 ? k - 1 : e - 1] : -1};
+          }
+          n += k;
+          m.end = n;
+          if (k > 0) m.inv_k = 1.0 / static_cast<double>(k);
+          if (border_e >= 0) {
+            m.border_a = nb[border_e];
+            m.border_b = nb[border_e == 0 ? k - 1 : border_e - 1];
+          }
+        });
+        ring.members.push_back(m);
       }
-      ring.members.push_back(m);
-      h = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h));
-    } while (h != w0);
+    });
+  }
+
+  // The winner's area-weighted normal (detail::vertex_normal_sum: the same sum in the same order)
+  // from the ring gathered for it, at the current positions.
+  Vec3 ring_normal_sum(int wi) const {
+    Vec3 n(0, 0, 0);
+    const Vec3& x = mesh.point(VertexHandle(wi));
+    const size_t k = ring.members.size();
+    for (size_t i = 0; i < k; ++i) {
+      if (!ring.members[i].winner_face) continue;
+      const Vec3& a = mesh.point(VertexHandle(ring.members[i].vid));
+      const Vec3& b = mesh.point(VertexHandle(ring.members[i == 0 ? k - 1 : i - 1].vid));
+      n += (a - x) % (b - x);
+    }
+    return n;
   }
 
   // The tangential Laplacian update of ring member m (border vertices: along the border only):
@@ -576,7 +620,10 @@ struct Reconstructor::Impl {
     const VertexHandle r = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, 0)));
     const VertexHandle s = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, 1)));
     mesh.flip(e);
-    for (const VertexHandle x : {a, b, r, s}) stamp(x);
+    for (const VertexHandle x : {a, b, r, s}) {
+      stamp(x);
+      neighbors.invalidate(x.idx());
+    }
     return true;
   }
 
@@ -639,6 +686,8 @@ struct Reconstructor::Impl {
     const Vec3 mid = (mesh.point(v) + mesh.point(u)) * 0.5;
     const VertexHandle m = mesh.split(mesh.edge_handle(longest), mid);
     ensure_sizes();
+    neighbors.invalidate(m.idx());  // and its ring: v, u and the two opposite corners
+    for (auto x : mesh.vv_range(m)) neighbors.invalidate(x.idx());
     // Walk equally both ways from the split edge: each flip moves one neighbour of v to m.
     bool left_ok = true, right_ok = true;
     for (bool left = true; (left_ok || right_ok) && mesh.valence(v) > mesh.valence(m) + 1; left = !left) {
@@ -703,6 +752,8 @@ struct Reconstructor::Impl {
     vstamp = std::move(new_vstamp);
     fstamp = std::move(new_fstamp);
     face_snapshot = std::move(new_snapshot);
+    neighbors.invalidate_all();
+    neighbors.resize(nv);
     order.clear();
     grid.reset(grid.cell_size());
     grid.resize(nv);
@@ -768,6 +819,8 @@ struct Reconstructor::Impl {
     if (!best.is_valid()) return false;
     const VertexHandle u = mesh.to_vertex_handle(best);
     const double t = true_tau(v.idx());
+    for (auto x : mesh.vv_range(v)) neighbors.invalidate(x.idx());  // u and v's other neighbours
+    neighbors.invalidate(v.idx());
     mesh.collapse(best);
     drop_tau(v.idx());
     grid.remove(v.idx());
@@ -833,18 +886,25 @@ struct Reconstructor::Impl {
       const bool was = i < face_snapshot.size() && face_snapshot[i][0] >= 0;
       if (mesh.status(f).deleted()) {
         if (was)
-          for (int k : face_snapshot[i])
+          for (int k : face_snapshot[i]) {
+            neighbors.invalidate(k);
             if (!mesh.status(VertexHandle(k)).deleted()) vstamp[k] = clock;
+          }
         continue;
       }
       auto it = mesh.cfv_iter(f);
       const std::array<int, 3> now = {it->idx(), (++it)->idx(), (++it)->idx()};
       if (!was || now != face_snapshot[i]) {
         fstamp[i] = clock;
-        for (int k : now) vstamp[k] = clock;
+        for (int k : now) {
+          vstamp[k] = clock;
+          neighbors.invalidate(k);
+        }
         if (was)
-          for (int k : face_snapshot[i])
+          for (int k : face_snapshot[i]) {
+            neighbors.invalidate(k);
             if (!mesh.status(VertexHandle(k)).deleted()) vstamp[k] = clock;
+          }
       }
     }
     live = n_live;
@@ -853,6 +913,7 @@ struct Reconstructor::Impl {
   }
 
   void full_rebuild() {
+    neighbors.invalidate_all();
     tau.assign(mesh.n_vertices(), -1.0);
     order.clear();
     scale = 1.0;
@@ -1115,6 +1176,11 @@ struct Reconstructor::Impl {
       std::sort(nb.begin(), nb.end());
       if (std::adjacent_find(nb.begin(), nb.end()) != nb.end())
         fail("vertex " + std::to_string(i) + " has two edges to the same neighbour");
+    }
+    try {
+      neighbors.check(mesh);
+    } catch (const std::exception& e) {
+      fail(e.what());
     }
     if (n_live != live) fail("live vertex count " + std::to_string(live) + " != mesh " + std::to_string(n_live));
     if (grid.size() != n_live) fail("spatial grid holds " + std::to_string(grid.size()) + " vertices, mesh has " + std::to_string(n_live));

@@ -35,6 +35,12 @@ edgefront::Vec3 vertex_normal_sum(const edgefront::Mesh& mesh, edgefront::Vertex
 int oriented_nearest(const edgefront::Mesh& mesh, VertexGrid& grid, const edgefront::Vec3& sample,
                      const edgefront::Vec3& normal, int max_candidates, double max_extra_distance);
 
+/// The rest of oriented_nearest for a caller that found the nearest vertex `first` itself
+/// (grid.nearest(sample)) and saw that its normal does not agree: the same answer as
+/// oriented_nearest (the basic step computes the winner's normal from its cached ring).
+int oriented_nearest_after(const edgefront::Mesh& mesh, VertexGrid& grid, const edgefront::Vec3& sample,
+                           const edgefront::Vec3& normal, int first, int max_candidates, double max_extra_distance);
+
 struct OpposedParams {
   double max_distance = 0;  ///< only faces whose centroid is this close to the cloud are judged
   double min_cos = 0.3;     ///< removed when cos(face normal, sample normal) < -min_cos
