@@ -596,6 +596,17 @@ struct Reconstructor::Impl {
   }
 
   // ---------------------------------------------------------------- vertex split
+  // mesh.valence(x) and mesh.is_boundary(x) (whether x's outgoing halfedge has no face) from the
+  // neighbour cache.
+  unsigned valence_of(VertexHandle x) {
+    const detail::NeighborCache::Line* l = neighbors.get(mesh, x);
+    return l ? l->count : static_cast<unsigned>(mesh.valence(x));
+  }
+  bool border_of(VertexHandle x) {
+    const detail::NeighborCache::Line* l = neighbors.get(mesh, x);
+    return l ? !(l->count > 0 && l->has_face(0)) : mesh.is_boundary(x);
+  }
+
   bool flip_geometry_ok(EdgeHandle e) const {
     const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const Vec3& p = mesh.point(mesh.from_vertex_handle(h0));
@@ -614,7 +625,7 @@ struct Reconstructor::Impl {
     const VertexHandle a = mesh.from_vertex_handle(h) , b = mesh.to_vertex_handle(h);
     // Neither end may drop below valence 3 (interior) / 2 (border).
     for (const VertexHandle x : {a, b}) {
-      if (mesh.valence(x) <= (mesh.is_boundary(x) ? 2u : 3u)) return false;
+      if (valence_of(x) <= (border_of(x) ? 2u : 3u)) return false;
     }
     if (!flip_geometry_ok(e)) return false;
     const VertexHandle r = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.halfedge_handle(e, 0)));
@@ -633,8 +644,8 @@ struct Reconstructor::Impl {
   // (6 inside, 4 on a border), the two triangles are nearly coplanar and none folds.
   void improve_valences(VertexHandle v, VertexHandle m) {
     const auto dev = [&](VertexHandle x, int delta) {
-      const int ideal = mesh.is_boundary(x) ? 4 : 6;
-      const int d = static_cast<int>(mesh.valence(x)) + delta - ideal;
+      const int ideal = border_of(x) ? 4 : 6;
+      const int d = static_cast<int>(valence_of(x)) + delta - ideal;
       return d * d;
     };
     std::vector<EdgeHandle> edges;
@@ -690,7 +701,7 @@ struct Reconstructor::Impl {
     for (auto x : mesh.vv_range(m)) neighbors.invalidate(x.idx());
     // Walk equally both ways from the split edge: each flip moves one neighbour of v to m.
     bool left_ok = true, right_ok = true;
-    for (bool left = true; (left_ok || right_ok) && mesh.valence(v) > mesh.valence(m) + 1; left = !left) {
+    for (bool left = true; (left_ok || right_ok) && valence_of(v) > valence_of(m) + 1; left = !left) {
       if (left && left_ok) {
         const HalfedgeHandle h = mesh.find_halfedge(v, m);
         left_ok = mesh.face_handle(h).is_valid() &&
@@ -766,12 +777,12 @@ struct Reconstructor::Impl {
   }
 
   // ---------------------------------------------------------------- collapses
-  double collapse_cost(HalfedgeHandle h) const {
-    const double a = mesh.valence(mesh.from_vertex_handle(h)), b = mesh.valence(mesh.to_vertex_handle(h));
+  double collapse_cost(HalfedgeHandle h) {
+    const double a = valence_of(mesh.from_vertex_handle(h)), b = valence_of(mesh.to_vertex_handle(h));
     double sum = (a + b - 10) * (a + b - 10);
     for (const HalfedgeHandle g : std::array<HalfedgeHandle, 2>{h, mesh.opposite_halfedge_handle(h)}) {
       if (!mesh.face_handle(g).is_valid()) continue;
-      const double c = mesh.valence(mesh.to_vertex_handle(mesh.next_halfedge_handle(g)));
+      const double c = valence_of(mesh.to_vertex_handle(mesh.next_halfedge_handle(g)));
       sum += (c - 7) * (c - 7);
     }
     return std::sqrt(sum) / 3.0;
@@ -802,12 +813,12 @@ struct Reconstructor::Impl {
     for (auto h : mesh.voh_range(v)) {
       if (border && !mesh.is_boundary(mesh.edge_handle(h))) continue;
       const VertexHandle u = mesh.to_vertex_handle(h);
-      if (mesh.valence(v) + mesh.valence(u) < 7) continue;  // would leave a valence-2 vertex
+      if (valence_of(v) + valence_of(u) < 7) continue;  // would leave a valence-2 vertex
       bool opp_ok = true;
       for (const HalfedgeHandle g : std::array<HalfedgeHandle, 2>{h, mesh.opposite_halfedge_handle(h)}) {
         if (!mesh.face_handle(g).is_valid()) continue;
         const VertexHandle c = mesh.to_vertex_handle(mesh.next_halfedge_handle(g));
-        if (mesh.valence(c) <= (mesh.is_boundary(c) ? 2u : 3u)) opp_ok = false;
+        if (valence_of(c) <= (border_of(c) ? 2u : 3u)) opp_ok = false;
       }
       if (!opp_ok) continue;
       const double cost = collapse_cost(h);
