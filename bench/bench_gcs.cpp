@@ -1,7 +1,7 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
 //   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K]
-//             [--seeds N] [--step-factor F]
+//             [--seeds N] [--step-factor F] [--points P]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
 //    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
@@ -14,7 +14,9 @@
 // 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
 //    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
 //    F = --step-factor, default 100).
-// --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case. Single thread.
+// --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case; --points P
+// replaces the 1M-point cloud of cases 3 and 5 by a P-point one. Single thread. Case 3 also prints
+// the CPU time of the set-up (Reconstructor constructor: sorting, kd-tree) apart.
 
 #include <algorithm>
 #include <chrono>
@@ -121,6 +123,7 @@ int main(int argc, char** argv) {
   size_t vertices = 0;
   size_t seeds = 0;
   size_t step_factor = 100;
+  size_t big_points = 1'000'000;
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
@@ -130,8 +133,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--smoothing") && i + 1 < argc) g_smoothing = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--step-factor") && i + 1 < argc) step_factor = std::stoul(argv[++i]);
+    else if (!std::strcmp(argv[i], "--points") && i + 1 < argc) big_points = std::stoul(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P]\n");
       return 2;
     }
   }
@@ -178,7 +182,7 @@ int main(int argc, char** argv) {
     }
     if (!want("fixed") && !want("big") && !want("step")) return 0;
     edgefront::shapes::SampleOptions so;
-    so.points = 1'000'000;
+    so.points = want("fixed") ? 1'000'000 : big_points;
     const edgefront::PointCloud big = edgefront::shapes::sample("bumpy-sphere", so);
     if (want("fixed")) {
       so.points = 100'000;
@@ -192,10 +196,29 @@ int main(int argc, char** argv) {
                   "ratio 1M/100K %.3f (CPU %.3f), load average %.1f\n",
                   fixed, a.seconds_total, cpu_a, b.seconds_total, cpu_b, b.seconds_total / a.seconds_total,
                   cpu_b / cpu_a, load_average());
+      // Where the difference goes: the set-up alone (Reconstructor constructor) and the topology passes.
+      double setup[2];
+      for (int k = 0; k < 2; ++k) {
+        gcs::ReconstructOptions o;
+        o.target_vertices = fixed;
+        const double c0 = cpu_seconds();
+        gcs::Reconstructor r(k == 0 ? small_cloud : big, o);
+        setup[k] = cpu_seconds() - c0;
+      }
+      std::printf("  set-up CPU: 100K %.2f s, 1M %.2f s; topology wall: 100K %.2f s, 1M %.2f s\n", setup[0], setup[1],
+                  a.seconds_topology, b.seconds_topology);
     }
     if (want("big")) {
       const size_t n = vertices ? vertices : 100000 / div;
-      print_mesh(("bumpy-sphere 1M points at the " + std::to_string(n) + " target").c_str(), run(big, n));
+      {  // the set-up alone (the run below includes it)
+        gcs::ReconstructOptions o;
+        o.target_vertices = n;
+        const double c0 = cpu_seconds();
+        gcs::Reconstructor setup(big, o);
+        std::printf("set-up (%zu points): %.2f s CPU\n", big.size(), cpu_seconds() - c0);
+      }
+      print_mesh(("bumpy-sphere " + std::to_string(big.size()) + " points at the " + std::to_string(n) + " target").c_str(),
+                 run(big, n));
     }
     if (only == "step") {
       const size_t n = vertices ? vertices : 10000;
@@ -210,9 +233,9 @@ int main(int argc, char** argv) {
       rec.run_basic_steps(steps);
       const double cpu = cpu_seconds() - c0;
       const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("basic step at %zu vertices (1M-point cloud): %.3f us CPU, %.3f us wall (%llu steps, load "
+      std::printf("basic step at %zu vertices (%zu-point cloud): %.3f us CPU, %.3f us wall (%llu steps, load "
                   "average %.1f)\n",
-                  n, 1e6 * cpu / static_cast<double>(steps), 1e6 * dt / static_cast<double>(steps),
+                  n, big.size(), 1e6 * cpu / static_cast<double>(steps), 1e6 * dt / static_cast<double>(steps),
                   static_cast<unsigned long long>(steps), load_average());
     }
   } catch (const std::exception& e) {
