@@ -546,6 +546,11 @@ struct Reconstructor::Impl {
   void gather_ring(VertexHandle w) {
     ring.members.clear();
     with_ring(w, walked_winner, [&](int count, const int* wnb, auto winner_face) {
+      // The members' lines and positions are fetched together (independent misses overlap).
+      for (int i = 0; i < count; ++i) {
+        neighbors.prefetch(wnb[i]);
+        __builtin_prefetch(&mesh.point(VertexHandle(wnb[i])));
+      }
       int n = 0;  // entries used
       for (int i = 0; i < count; ++i) {
         RingCache::Member m{wnb[i], n, 0};
@@ -560,6 +565,7 @@ struct Reconstructor::Impl {
           RingCache::Entry* const out = ring.entries.data() + n;
           int border_e = -1;
           for (int e = 0; e < k; ++e) {
+            __builtin_prefetch(&mesh.point(VertexHandle(nb[e])));
             const bool f = has_face(e);
             if (!f) border_e = e;
             out[e] = {nb[e], f ? nb[e == 0 ? k - 1 : e - 1] : -1};

@@ -39,6 +39,10 @@ class NeighborCache {
   void resize(std::size_t n) {
     if (n > lines_.size()) lines_.resize(n);
   }
+  /// Asks the memory system for v's line ahead of a get().
+  void prefetch(int v) const {
+    if (static_cast<std::size_t>(v) < lines_.size()) __builtin_prefetch(&lines_[static_cast<std::size_t>(v)]);
+  }
   void invalidate(int v) {
     if (static_cast<std::size_t>(v) < lines_.size()) lines_[static_cast<std::size_t>(v)].epoch = 0;
   }
