@@ -2,7 +2,7 @@
 /// without the repair operation, and the standalone repair on the deterministic twisted meshes.
 ///
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
-///               [--thickness t] [--side-weight W] [--margin M] [--max-retwists K] [--regrow]
+///               [--thickness t] [--side-weight W] [--thin-wall E] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
 ///               [--no-rejoin] [--peel N] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
@@ -33,6 +33,8 @@
 /// "coverage" is the share of the exact samples with a vertex, edge midpoint or face centroid of
 /// the result within 2% of the bounding-box diagonal: consistency alone does not show a result
 /// that lost most of its surface (a repair that shreds the shell lets the loop delete the pieces).
+/// `--thin-wall E` sets `DetectOptions::thin_wall` (0 = off: the nearest normal decides on walls
+/// thinner than the faces too).
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
 /// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`).
@@ -349,6 +351,7 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
+  double thin_wall = twist::DetectOptions{}.thin_wall;
   int explain = 0;
   bool only_repair = false, trace = false, rejoin = gcs::TwistOperationOptions{}.rejoin_borders;
   int peel = -1;
@@ -373,6 +376,7 @@ int main(int argc, char** argv) {
     else if (a == "--max-retwists") max_retwists = std::stoul(next());
     else if (a == "--regrow") regrow = true;
     else if (a == "--margin") margin = std::stod(next());
+    else if (a == "--thin-wall") thin_wall = std::stod(next());
     else if (a == "--min-flagged") min_flagged = std::stoul(next());
     else if (a == "--global-index") local = false;
     else if (a == "--border-ratio") border_ratio = std::stod(next());
@@ -393,7 +397,7 @@ int main(int argc, char** argv) {
     }
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
-                   " [--side-weight W] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
+                   " [--side-weight W] [--thin-wall E] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
                    " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
       return 2;
     }
@@ -420,9 +424,9 @@ int main(int argc, char** argv) {
     cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.thickness != only_thickness; }),
                 cases.end());
   }
-  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, max re-twists %zu, %s, border ratio %g%s%s",
+  std::printf("GCS from the box start, %zu vertices, %zu points%s, seeds %zu-%zu, side weight %g, margin %g, thin wall %g, max re-twists %zu, %s, border ratio %g%s%s",
               vertices, points, normals ? " with exact normals" : " without normals", first_seed, first_seed + seeds - 1,
-              side_weight, margin, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio,
+              side_weight, margin, thin_wall, max_retwists, regrow ? "cut-outs re-grown" : "cut-outs left as holes", border_ratio,
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
@@ -466,6 +470,7 @@ int main(int argc, char** argv) {
           gcs::TwistOperationOptions to;
           to.repair.detect.reference_side_weight = side_weight;
           to.repair.detect.reference_margin = margin;
+          to.repair.detect.thin_wall = thin_wall;
           if (min_flagged > 0) to.repair.detect.min_flagged_faces = min_flagged;
           to.local = local;
           to.repair.max_border_ratio = border_ratio;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -217,6 +218,77 @@ TEST(TwistDetect, ReferenceNormalsDecideTheSide) {
   EXPECT_EQ(covered, twisted);
   EXPECT_EQ(right_faces_in(s, regions[0]), 0u);
   EXPECT_LT(twist::orientation_consistency(s.mesh, ref), 0.95);
+}
+
+TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {
+  // A pillbox plate 0.004 thick (edges about 0.115: the two walls are closer than a twentieth of
+  // an edge) with a disk turned over. Which wall's reference point is nearest a face there is
+  // chance (a GCS mesh on such a wall has its two layers cross everywhere), so by default
+  // (thin_wall = 0.35 mean edges) a rejection by the nearest normal is no evidence there: every
+  // turned-over face is undecided; with the rule off each is rejected and the detector finds the
+  // disk. On the default plate (0.1 thick, about one edge) the rule changes nothing.
+  auto votes = [](const twist::TwistedShape& s, const twist::ReferenceNormals& ref, double thin_wall) {
+    twist::DetectOptions o;
+    o.thin_wall = thin_wall;
+    double mean_edge = 0;
+    for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e);
+    mean_edge /= static_cast<double>(s.mesh.n_edges());
+    std::array<size_t, 3> count{0, 0, 0};  // rejected, undecided, confirmed
+    for (FaceHandle f : s.mesh.faces()) {
+      const Vec3 c = s.mesh.calc_face_centroid(f), n = s.mesh.calc_face_normal(f);
+      const auto t = s.truth(c);
+      if (!t || OpenMesh::dot(n, *t) > 0) continue;  // only the turned-over faces
+      ++count[static_cast<size_t>(twist::reference_vote(ref, o, c, n, mean_edge) + 1)];
+    }
+    return count;
+  };
+  // Reference points spaced closer than the reach (a quarter edge: 15 points per face with a
+  // truth, as a scan samples a surface), so that both walls are found within it.
+  auto dense_truth = [](const twist::TwistedShape& s) {
+    edgefront::PointCloud cloud;
+    for (FaceHandle f : s.mesh.faces()) {
+      const auto t = s.truth(s.mesh.calc_face_centroid(f));
+      if (!t) continue;
+      std::array<Vec3, 3> p;
+      size_t i = 0;
+      for (auto v : s.mesh.fv_range(f)) p[i++] = s.mesh.point(v);
+      for (int a = 0; a <= 4; ++a) {
+        for (int b = 0; a + b <= 4; ++b) {
+          cloud.points.push_back((a * p[0] + b * p[1] + (4 - a - b) * p[2]) / 4.0);
+          cloud.normals.push_back(*t);
+        }
+      }
+    }
+    return cloud;
+  };
+  twist::FlippedDiskOptions thin_options;
+  thin_options.thickness = 0.004;
+  thin_options.fold_height = 0.001;  // the fold band stays between the walls (as the disk lies in the top one)
+  const twist::TwistedShape thin = twist::flipped_disk_plate(thin_options);
+  const twist::ReferenceNormals thin_ref(dense_truth(thin));
+  const auto thin_votes = votes(thin, thin_ref, 0.35);
+  EXPECT_GT(thin_votes[1], 0u);
+  EXPECT_EQ(thin_votes[0], 0u);
+  EXPECT_EQ(thin_votes[2], 0u);
+  const auto off = votes(thin, thin_ref, 0);
+  EXPECT_EQ(off[0], thin_votes[1]);
+  twist::DetectOptions o;
+  o.reference = &thin_ref;
+  o.thin_wall = 0;
+  const auto regions = twist::detect(thin.mesh, o);
+  ASSERT_EQ(regions.size(), 1u);
+  const auto [twisted, covered] = twisted_covered(thin, regions[0]);
+  EXPECT_EQ(covered, twisted);
+  const twist::TwistedShape thick = twist::flipped_disk_plate();
+  const twist::ReferenceNormals thick_ref(dense_truth(thick));
+  EXPECT_EQ(votes(thick, thick_ref, 0.35), votes(thick, thick_ref, 0));
+  EXPECT_EQ(votes(thick, thick_ref, 0.35)[1], 0u);
+  EXPECT_GT(votes(thick, thick_ref, 0.35)[0], 0u);
+  const Vec3 c(0, 0, 0);
+  EXPECT_THROW(thin_ref.opposed_within(c, -1.0), InvalidInput);
+  EXPECT_THROW(thin_ref.opposed_within(c, 1.0, 0), InvalidInput);
+  o.thin_wall = 5;
+  EXPECT_THROW(twist::detect(thin.mesh, o), InvalidInput);
 }
 
 TEST(TwistDetect, ReversedSeamOfACutMobiusStripIsFound) {

@@ -175,6 +175,7 @@ void validate_options(const Mesh& mesh, const DetectOptions& o) {
               "reference_side_weight must be 0 or lie in [1, 100]");
   check_range(std::isfinite(o.mean_edge_length) && o.mean_edge_length >= 0, "mean_edge_length must be finite and >= 0");
   check_range(o.reference_margin >= 1 && o.reference_margin <= 100, "reference_margin must lie in [1, 100]");
+  check_range(o.thin_wall >= 0 && o.thin_wall <= 4, "thin_wall must lie in [0, 4]");
   if (o.restrict_to) {
     for (FaceHandle f : *o.restrict_to) {
       if (!edgefront::is_live(mesh, f)) {
@@ -224,7 +225,7 @@ class Detector {
     const auto it = votes_.find(f.idx());
     if (it != votes_.end()) return it->second;
     const FaceGeometry& g = geo(f);
-    return votes_.emplace(f.idx(), reference_vote(*o_.reference, o_, g.centre, g.normal)).first->second;
+    return votes_.emplace(f.idx(), reference_vote(*o_.reference, o_, g.centre, g.normal, mean_edge_)).first->second;
   }
   /// Geometry of a face: the face grid's (kept current by the caller) or computed on first use.
   const FaceGeometry& geo(FaceHandle f) {
@@ -551,12 +552,17 @@ std::pair<std::vector<std::vector<HalfedgeHandle>>, std::vector<bool>> border_lo
 
 }  // namespace
 
-int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal) {
+int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal,
+                   double mean_edge_length) {
   if (options.reference_side_weight > 0) {
     return reference.judge(centre, normal, 16, options.reference_side_weight, options.reference_margin);
   }
   const double c = OpenMesh::dot(normal, reference.nearest_normal(centre));
-  return c < options.reference_cos ? -1 : (c >= -options.reference_cos ? 1 : 0);
+  if (c < options.reference_cos) {
+    const double reach = options.thin_wall * mean_edge_length;
+    return reach > 0 && reference.opposed_within(centre, reach) ? 0 : -1;
+  }
+  return c >= -options.reference_cos ? 1 : 0;
 }
 
 namespace {

@@ -79,6 +79,20 @@ int ReferenceNormals::judge(const Vec3& centre, const Vec3& normal, size_t candi
   return 0;
 }
 
+bool ReferenceNormals::opposed_within(const Vec3& p, double reach, size_t candidates) const {
+  if (candidates == 0) throw InvalidInput("reference normals: opposed_within needs at least one candidate");
+  if (!(reach >= 0) || !std::isfinite(reach)) throw InvalidInput("reference normals: opposed_within's reach must be finite and >= 0");
+  thread_local std::vector<edgefront::PointIndex::Neighbor> near;
+  impl_->index.k_nearest(p, candidates, near);
+  if (near.empty() || near.front().distance2 > reach * reach) return false;
+  const Vec3& n0 = impl_->cloud.normals[near.front().index];
+  for (const auto& nb : near) {
+    if (nb.distance2 > reach * reach) break;
+    if (OpenMesh::dot(impl_->cloud.normals[nb.index], n0) < -0.5) return true;
+  }
+  return false;
+}
+
 double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {
   double total = 0;
   double agree = 0;

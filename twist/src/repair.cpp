@@ -349,8 +349,16 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
 /// Removes border flaps (see `RepairOptions::peel_flaps`): faces with a vertex on the border
 /// that have a same-orientation partner (`same_orientation_pairs`), in up to `peel_flaps`
 /// rounds, and the tiny pieces that leaves. Returns the number of faces removed.
-size_t peel_flaps(Mesh& mesh, const RepairOptions& o) {
+size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   size_t removed = 0;
+  // With `peel_from_cuts`, only flaps the cuts left: the first round peels faces at a vertex of a cut, each further
+  // round faces at a vertex of a face peeled before (a flap of the loop's own border operations
+  // is not the repair's business: a run without any cut keeps its mesh as it is).
+  std::unordered_set<int> reach;
+  for (const auto& [copy, original] : o.peel_from_cuts ? dups : DupList{}) {
+    reach.insert(copy.idx());
+    reach.insert(original.idx());
+  }
   DetectOptions d = o.detect;
   d.restrict_to.reset();
   d.face_grid = nullptr;
@@ -359,10 +367,12 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o) {
     if (mesh.faces().begin() == mesh.faces().end()) break;  // nothing left to judge
     std::vector<FaceHandle> flaps;
     auto on_border = [&](FaceHandle f) {
+      bool border = false, reached = false;
       for (VertexHandle v : mesh.fv_range(f)) {
-        if (mesh.is_boundary(v)) return true;
+        border = border || mesh.is_boundary(v);
+        reached = reached || !o.peel_from_cuts || reach.count(v.idx()) > 0;
       }
-      return false;
+      return border && reached;
     };
     for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
       if (on_border(f)) flaps.push_back(f);
@@ -371,6 +381,9 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o) {
     std::sort(flaps.begin(), flaps.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
     flaps.erase(std::unique(flaps.begin(), flaps.end()), flaps.end());
     if (flaps.empty()) break;
+    for (FaceHandle f : flaps) {
+      for (VertexHandle v : mesh.fv_range(f)) reach.insert(v.idx());
+    }
     removed += remove_faces(mesh, flaps, o.min_component_faces);
   }
   return removed;
@@ -559,7 +572,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (grid) grid->update_new(mesh);
   if (!incremental && o.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
   if (!incremental && o.peel_flaps > 0) {
-    const size_t peeled = peel_flaps(mesh, o);
+    const size_t peeled = peel_flaps(mesh, o, dups);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
   }

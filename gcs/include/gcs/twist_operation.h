@@ -31,6 +31,7 @@ struct TwistOperationOptions {
     twist::RepairOptions o;
     o.max_border_ratio = 0;
     o.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
+    o.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
     return o;
   }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out

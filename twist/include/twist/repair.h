@@ -49,6 +49,11 @@ struct RepairOptions {
   /// again, the faces of a twist line cut through but not moved count as flaps; the GCS hook
   /// turns it on, see `gcs::TwistOperationOptions`).
   int peel_flaps = 0;
+  /// Peel only flaps the cuts left: the first round only faces at a vertex of a cut (of this call,
+  /// or for `TwistRepairer::finish` of the whole run), each further round faces at a vertex of a
+  /// face peeled before. A run that cut nothing then keeps its mesh as it is (the GCS hook turns
+  /// it on: the loop's own border flaps are the loop's business).
+  bool peel_from_cuts = false;
   /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
   /// hole; falls back to a hole when a loop is not simple.
