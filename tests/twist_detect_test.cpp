@@ -284,9 +284,12 @@ TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {
   EXPECT_EQ(votes(thick, thick_ref, 0.35), votes(thick, thick_ref, 0));
   EXPECT_EQ(votes(thick, thick_ref, 0.35)[1], 0u);
   EXPECT_GT(votes(thick, thick_ref, 0.35)[0], 0u);
-  const Vec3 c(0, 0, 0);
-  EXPECT_THROW(thin_ref.opposed_within(c, -1.0), InvalidInput);
-  EXPECT_THROW(thin_ref.opposed_within(c, 1.0, 0), InvalidInput);
+  const Vec3 c(0.6, 0.1, 0.001);
+  EXPECT_NEAR(thin_ref.wall_thickness(c), 0.004, 1e-9);
+  // Just under the top of the thick plate the 16 nearest points all lie on the top wall.
+  EXPECT_EQ(thick_ref.wall_thickness(Vec3(0.6, 0.1, 0.045)), std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(thick_ref.wall_thickness(Vec3(0.6, 0.1, 0.045), 100000), 0.1, 1e-9);
+  EXPECT_THROW(thin_ref.wall_thickness(c, 0), InvalidInput);
   o.thin_wall = 5;
   EXPECT_THROW(twist::detect(thin.mesh, o), InvalidInput);
 }

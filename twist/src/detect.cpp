@@ -559,8 +559,8 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
   }
   const double c = OpenMesh::dot(normal, reference.nearest_normal(centre));
   if (c < options.reference_cos) {
-    const double reach = options.thin_wall * mean_edge_length;
-    return reach > 0 && reference.opposed_within(centre, reach) ? 0 : -1;
+    const double thin = options.thin_wall * mean_edge_length;
+    return thin > 0 && reference.wall_thickness(centre) < thin ? 0 : -1;
   }
   return c >= -options.reference_cos ? 1 : 0;
 }

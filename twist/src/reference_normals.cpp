@@ -79,18 +79,17 @@ int ReferenceNormals::judge(const Vec3& centre, const Vec3& normal, size_t candi
   return 0;
 }
 
-bool ReferenceNormals::opposed_within(const Vec3& p, double reach, size_t candidates) const {
-  if (candidates == 0) throw InvalidInput("reference normals: opposed_within needs at least one candidate");
-  if (!(reach >= 0) || !std::isfinite(reach)) throw InvalidInput("reference normals: opposed_within's reach must be finite and >= 0");
+double ReferenceNormals::wall_thickness(const Vec3& p, size_t candidates) const {
+  if (candidates == 0) throw InvalidInput("reference normals: wall_thickness needs at least one candidate");
   thread_local std::vector<edgefront::PointIndex::Neighbor> near;
   impl_->index.k_nearest(p, candidates, near);
-  if (near.empty() || near.front().distance2 > reach * reach) return false;
+  if (near.empty()) return std::numeric_limits<double>::infinity();
+  const Vec3& p0 = impl_->cloud.points[near.front().index];
   const Vec3& n0 = impl_->cloud.normals[near.front().index];
-  for (const auto& nb : near) {
-    if (nb.distance2 > reach * reach) break;
-    if (OpenMesh::dot(impl_->cloud.normals[nb.index], n0) < -0.5) return true;
+  for (const auto& nb : near) {  // nearest first
+    if (OpenMesh::dot(impl_->cloud.normals[nb.index], n0) < -0.5) return std::abs(OpenMesh::dot(impl_->cloud.points[nb.index] - p0, n0));
   }
-  return false;
+  return std::numeric_limits<double>::infinity();
 }
 
 double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {

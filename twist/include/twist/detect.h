@@ -176,11 +176,11 @@ struct DetectOptions {
   double reference_side_weight = 0.0;
   double reference_margin = 1.5;  ///< see `reference_side_weight`; in [1, 100]
   /// Nearest-point mode (`reference_side_weight` = 0) only: a face the nearest reference normal
-  /// rejects is left undecided instead when reference points with opposed normals lie within
-  /// this many mean edge lengths of its centroid (`ReferenceNormals::opposed_within`): a wall
-  /// thinner than that is not resolved by the mesh (its two layers are closer than a fraction
-  /// of an edge and cross each other), so which wall is nearest a face, and the verdict, is
-  /// noise; repairing it shreds the wall (vault shell t/R 0.02 at 1500 vertices). Agreeing
+  /// rejects is left undecided instead when it lies on a wall thinner than this many mean edge
+  /// lengths (`ReferenceNormals::wall_thickness` at its centroid): the mesh does not resolve
+  /// such a wall (its two layers are closer than a fraction of an edge and cross each other), so
+  /// which side is nearest a face, and the verdict, is noise, and repairing it shreds the wall
+  /// (vault shell t/R 0.02 at 1500 vertices, bench/results/twist-vaults.md Session 7). Agreeing
   /// verdicts are kept (they start no repair). 0 = off; in [0, 4].
   double thin_wall = 0.35;
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from

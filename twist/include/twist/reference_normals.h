@@ -38,11 +38,12 @@ class ReferenceNormals {
   /// `margin` < 1 (or not finite).
   int judge(const edgefront::Vec3& centre, const edgefront::Vec3& normal, size_t candidates = 16,
             double normal_weight = 4.0, double margin = 1.5) const;
-  /// True when the reference point nearest to `p` and a point whose normal opposes its normal
-  /// (n.n0 < -0.5) both lie within `reach` of `p`, among the `candidates` nearest points: `p` lies
-  /// on or between the two sides of a wall thinner than about `reach`. \throws
-  /// edgefront::InvalidInput when `candidates` is 0 or `reach` is negative or not finite.
-  bool opposed_within(const edgefront::Vec3& p, double reach, size_t candidates = 16) const;
+  /// The thickness of the wall at `p`: the offset, along the normal n0 of the reference point
+  /// nearest to `p`, between that point and the nearest of the `candidates` nearest points whose
+  /// normal opposes n0 (n.n0 < -0.5), i.e. the distance between the two sides of a thin wall
+  /// that `p` lies on or between; infinity when no candidate opposes (a wall thicker than the
+  /// candidates reach). \throws edgefront::InvalidInput when `candidates` is 0.
+  double wall_thickness(const edgefront::Vec3& p, size_t candidates = 16) const;
   const edgefront::PointCloud& cloud() const;
 
  private:
