@@ -86,7 +86,10 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   // --no-orient-winners --thickness 0.2, seeds 1-6: coverage 0.05-0.27 with repair; consistency
   // 0.949-0.988 before twist4, 0.948-1.000 after, this seed 0.990 then 0.954; with twist5's core
   // rule on main a89ca06: 0.901/0.952/0.944/0.991/0.969/0.987, this seed 0.944 from 0.805 without
-  // repair). The 0.99 bar is checked on the 1500-vertex table
+  // repair; session 7 (twist6, flaps peeled only from the cuts): bench consistency
+  // 0.949/0.949/0.895/0.895/0.935/0.935 from 0.61-0.72 without repair, coverage 0.05-0.15 against
+  // 0.44-0.53: the cut pieces shrink in the loop, see twist-vaults.md Session 7; the bar cannot go
+  // back to 0.95). The 0.99 bar is checked on the 1500-vertex table
   // (bench/results/twist-vaults.md); here: the repair matters.
   EXPECT_GE(with, 0.94);
   EXPECT_GE(with, without + 0.12);
