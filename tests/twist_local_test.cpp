@@ -207,6 +207,11 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;
+  // Reference points with opposed normals side by side read as a wall of thickness 0: by default
+  // (DetectOptions::thin_wall) such rejections are no evidence, and nothing is found at all.
+  Mesh untouched = sphere;
+  EXPECT_EQ(twist::repair(untouched, o).regions_found, 0u);
+  o.detect.thin_wall = 0;  // the border-ratio guard is what is tested below
   Mesh kept = sphere;
   const twist::RepairReport r = twist::repair(kept, o);
   EXPECT_GE(r.regions_scattered, 1u);
