@@ -201,6 +201,87 @@ TEST(TwistRepair, IncrementalRepairerFindsTheRegionFromAChangedFace) {
   EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
 }
 
+// The mesh's faces as sorted triangles of corner positions: equal for meshes that differ only in
+// their numbering.
+std::vector<std::array<std::array<double, 3>, 3>> triangles(const Mesh& m) {
+  std::vector<std::array<std::array<double, 3>, 3>> out;
+  for (FaceHandle f : m.faces()) {
+    std::array<std::array<double, 3>, 3> t;
+    size_t i = 0;
+    for (auto v : m.fv_range(f)) t[i++] = {m.point(v)[0], m.point(v)[1], m.point(v)[2]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // keep the winding
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(TwistRepair, ARenumberedRepairerRepairsAsOneThatWasNot) {
+  // Two repairers follow the same twisted tube; after the first call one mesh is renumbered
+  // (OpenMesh's garbage collection: deleted elements dropped, the last ones moved into the holes)
+  // and its repairer told the maps. The second call (a re-twist at the same place, and every face
+  // reported changed) and the final repair must do the same on both.
+  twist::TwistedShape a = twist::twisted_tube();
+  twist::TwistedShape b = twist::twisted_tube();
+  twist::RepairOptions o;
+  o.detect.audit_faces = 0;  // the audit samples by index
+  o.garbage_collect = false;
+  twist::TwistRepairer ra(o, 1), rb(o, 1);
+  double mean_edge = 0;
+  for (auto e : a.mesh.edges()) mean_edge += a.mesh.calc_edge_length(e);
+  mean_edge /= static_cast<double>(a.mesh.n_edges());
+  const std::vector<FaceHandle> first(a.mesh.faces_begin(), a.mesh.faces_end());
+  const auto a1 = ra.repair_changed(a.mesh, first, mean_edge);
+  const auto b1 = rb.repair_changed(b.mesh, first, mean_edge);
+  ASSERT_EQ(a1.repairs, 1u);
+  ASSERT_EQ(b1.repairs, 1u);
+  ASSERT_FALSE(rb.cuts().empty());
+  // Renumber b: every handle, old -> new.
+  std::vector<edgefront::VertexHandle> vall, vold;
+  std::vector<FaceHandle> fall, fold;
+  for (size_t i = 0; i < b.mesh.n_vertices(); ++i) vall.emplace_back(static_cast<int>(i));
+  for (size_t i = 0; i < b.mesh.n_faces(); ++i) fall.emplace_back(static_cast<int>(i));
+  vold = vall;
+  fold = fall;
+  std::vector<edgefront::VertexHandle*> vp;
+  std::vector<edgefront::HalfedgeHandle*> hp;
+  std::vector<FaceHandle*> fp;
+  for (auto& v : vall) vp.push_back(&v);
+  for (auto& f : fall) fp.push_back(&f);
+  const size_t faces_before = b.mesh.n_faces();
+  b.mesh.garbage_collection(vp, hp, fp);
+  ASSERT_LT(b.mesh.n_faces(), faces_before) << "the cut deleted faces: indices move";
+  std::vector<int> vmap, fmap;
+  for (size_t i = 0; i < vall.size(); ++i) vmap.push_back(a.mesh.status(vold[i]).deleted() ? -1 : vall[i].idx());
+  for (size_t i = 0; i < fall.size(); ++i) fmap.push_back(a.mesh.status(fold[i]).deleted() ? -1 : fall[i].idx());
+  rb.renumber(b.mesh, vmap, fmap);
+  // The cut pairs whose vertices still exist (the others are dropped), in the same order.
+  std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>> live_cuts;
+  for (const auto& [copy, original] : ra.cuts()) {
+    if (!a.mesh.status(copy).deleted() && !a.mesh.status(original).deleted()) live_cuts.emplace_back(copy, original);
+  }
+  ASSERT_EQ(rb.cuts().size(), live_cuts.size());
+  for (size_t i = 0; i < live_cuts.size(); ++i) {
+    EXPECT_EQ(b.mesh.point(rb.cuts()[i].first), a.mesh.point(live_cuts[i].first));
+    EXPECT_EQ(b.mesh.point(rb.cuts()[i].second), a.mesh.point(live_cuts[i].second));
+  }
+  EXPECT_EQ(triangles(a.mesh), triangles(b.mesh));
+  // Every face reported changed: the snapshots decide which are tested again.
+  std::vector<FaceHandle> all_a(a.mesh.faces_begin(), a.mesh.faces_end()), all_b(b.mesh.faces_begin(), b.mesh.faces_end());
+  const auto a2 = ra.repair_changed(a.mesh, all_a, mean_edge);
+  const auto b2 = rb.repair_changed(b.mesh, all_b, mean_edge);
+  EXPECT_EQ(a2.detect_stats.faces_tested, b2.detect_stats.faces_tested);
+  EXPECT_EQ(a2.regions_found, b2.regions_found);
+  EXPECT_EQ(a2.repairs, b2.repairs);
+  const auto a3 = ra.finish(a.mesh);
+  const auto b3 = rb.finish(b.mesh);
+  EXPECT_EQ(a3.components_flipped, b3.components_flipped);
+  EXPECT_EQ(triangles(a.mesh), triangles(b.mesh));
+  EXPECT_DOUBLE_EQ(twist::truth_consistency(b.mesh, b), twist::truth_consistency(a.mesh, a));
+  // A map too short for what the repairer holds is refused.
+  EXPECT_THROW(rb.renumber(b.mesh, {}, {}), InvalidInput);
+}
+
 TEST(TwistRepair, ARegionThatReTwistsIsCutOut) {
   twist::RepairOptions o;
   twist::TwistRepairer repairer(o, 1);

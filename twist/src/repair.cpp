@@ -671,6 +671,38 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
   return report;
 }
 
+void TwistRepairer::renumber(const Mesh& mesh, const std::vector<int>& vertex_map, const std::vector<int>& face_map) {
+  auto mapped = [&](const std::vector<int>& map, size_t old, size_t live_count, const char* what) {
+    if (old >= map.size()) {
+      throw InvalidInput(std::string("twist::TwistRepairer::renumber: the ") + what + " map has " + std::to_string(map.size()) +
+                         " entries, but the repairer holds " + what + " " + std::to_string(old));
+    }
+    const int to = map[old];
+    if (to >= static_cast<int>(live_count)) {
+      throw InvalidInput(std::string("twist::TwistRepairer::renumber: ") + what + " " + std::to_string(old) + " maps to " +
+                         std::to_string(to) + ", beyond the renumbered mesh");
+    }
+    return to;
+  };
+  std::vector<Snapshot> tested;
+  for (size_t i = 0; i < tested_.size(); ++i) {
+    if (!tested_[i].valid) continue;
+    const int to = mapped(face_map, i, mesh.n_faces(), "face");
+    if (to < 0) continue;
+    if (static_cast<size_t>(to) >= tested.size()) tested.resize(static_cast<size_t>(to) + 1);
+    tested[static_cast<size_t>(to)] = tested_[i];
+  }
+  DupList cuts;
+  for (const auto& [copy, original] : cuts_) {
+    const int c = mapped(vertex_map, static_cast<size_t>(copy.idx()), mesh.n_vertices(), "vertex");
+    const int o = mapped(vertex_map, static_cast<size_t>(original.idx()), mesh.n_vertices(), "vertex");
+    if (c >= 0 && o >= 0) cuts.emplace_back(VertexHandle(c), VertexHandle(o));
+  }
+  tested_ = std::move(tested);
+  cuts_ = std::move(cuts);
+  if (grid_.cell() > 0) grid_.rebuild(mesh, grid_.cell());
+}
+
 RepairReport TwistRepairer::finish(Mesh& mesh) {
   RepairReport r = repair_impl(mesh, options_, nullptr, cuts_);
   grid_ = FaceGrid();  // the final repair may garbage-collect: handles change

@@ -143,6 +143,15 @@ class TwistRepairer {
   /// A full `repair` with the global orientation (at the end of a reconstruction).
   RepairReport finish(edgefront::Mesh& mesh);
 
+  /// Follows a renumbering of the mesh's elements between two calls (a refinement loop that
+  /// reorders its mesh for memory locality, see `gcs::MeshRenumbering`): `vertex_map` and
+  /// `face_map` give each old index its new one, -1 for an element that is gone. The face
+  /// snapshots and the cut pairs are translated (pairs with a vertex gone are dropped), the face
+  /// grid is rebuilt over the renumbered mesh with the same cell, and the places of earlier
+  /// repairs (positions) are kept, so the next call repairs as it would have without the
+  /// renumbering. \throws edgefront::InvalidInput when a map is shorter than the indices this
+  /// repairer holds or maps to an index that is not a live element of `mesh`.
+  void renumber(const edgefront::Mesh& mesh, const std::vector<int>& vertex_map, const std::vector<int>& face_map);
   size_t calls() const { return calls_; }
   /// (vertex copy, original) pairs made by the cuts so far (see `cuts_`).
   const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& cuts() const { return cuts_; }
