@@ -20,9 +20,11 @@ const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& 
   return repairer_ ? repairer_->cuts() : none;
 }
 
-// Renumbering (operation.h): twist::TwistRepairer keeps state by handle index (retwist places,
-// cut pairs, face snapshots, face grid) and cannot translate it. Until a region was found, that
-// state is only caches, which a new repairer rebuilds on the next call: follow then, not after.
+// Renumbering (operation.h): twist::TwistRepairer keeps state by handle index (cut pairs, face
+// snapshots, face grid). Until a region was found, that state is only caches, which a new
+// repairer rebuilds on the next call: follow then, not after. (twist::TwistRepairer::renumber
+// can translate it now; following always is left to a change agreed with the owner of
+// GcsOperationRenumber.TwistOperationFollowsUntilItFoundARegion, which asserts this policy.)
 bool TwistOperation::can_follow_renumbering() const { return stats_.regions_found == 0; }
 void TwistOperation::on_renumbered(const edgefront::Mesh&, const MeshRenumbering&) { repairer_.reset(); }
 
