@@ -88,6 +88,11 @@ struct LitSet {
   std::array<Window, kLitPerEdge> w;
 };
 
+// Round-off allowance (radians) on each side of a pseudo source's shadow (emit_vertex_windows); a
+// face whose part of the shadow is no wider than kShadowSliver (three allowances) gets no window.
+constexpr double kSlack = 1e-7;
+constexpr double kShadowSliver = 3 * kSlack;
+
 // A window is kept only where it is shorter by this (relative) than the windows carried across
 // the same halfedge before and than the path through an end of the edge: a window that would
 // only shave off less goes (MMP/ICH keep every one; this bounds their number, about 1/3 fewer on
@@ -502,7 +507,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
           nrm /= nl;
           const double phi = ang[static_cast<size_t>(jf)] +
                              std::atan2(OpenMesh::dot(nrm, OpenMesh::cross(u0, w)), OpenMesh::dot(u0, w));
-          constexpr double kPi = kTwoPi / 2, kSlack = 1e-7;
+          constexpr double kPi = kTwoPi / 2;
           lo = phi + kPi - kSlack;
           hi = ring_closed ? phi + full - kPi + kSlack : full + kSlack;
           if (!ring_closed) hi2 = phi - kPi + kSlack;
@@ -514,17 +519,36 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     for (int i = 0; i < m; ++i) {
       const Ray& r = ring[i];
       if (r.face_after < 0) continue;
-      if (shadow_only) {
-        const double a0 = ang[static_cast<size_t>(i)], a1 = ang[static_cast<size_t>(i) + 1];
-        bool meets = !ring_closed && hi2 >= 0 && a0 <= hi2;
-        for (int k = -2; k <= 2 && !meets; ++k) {
-          if (!ring_closed && k != 0) continue;
-          meets = a1 + k * full >= lo && a0 + k * full <= hi;
-        }
-        if (!meets) continue;
-      }
       const int g = mesh.next_halfedge_handle(HalfedgeHandle(r.he)).idx() ^ 1;  // z -> y, across the face x, y, z
-      push_window(g, 0, edge_length(g), in_frame(g, px), sigma);
+      const double len = edge_length(g);
+      if (!shadow_only) {
+        push_window(g, 0, len, in_frame(g, px), sigma);
+        continue;
+      }
+      // The part of the face's corner [a0, a1] in the shadow (at most one piece: the lit
+      // directions between the shadow's pieces span more than a half turn, a corner less).
+      const double a0 = ang[static_cast<size_t>(i)], a1 = ang[static_cast<size_t>(i) + 1];
+      double t0 = kInf, t1 = -kInf;
+      if (!ring_closed && hi2 >= 0 && a0 <= hi2) {
+        t0 = a0;
+        t1 = std::min(a1, hi2);
+      }
+      for (int k = -2; k <= 2 && !(t1 >= t0); ++k) {
+        if (!ring_closed && k != 0) continue;
+        if (a1 + k * full >= lo && a0 + k * full <= hi) {
+          t0 = std::max(a0, lo - k * full);
+          t1 = std::min(a1, hi - k * full);
+        }
+      }
+      // A face the shadow meets only within the slack (a border vertex whose source lies on the
+      // border's line: the shadow is empty but for round-off) gets no window. Such a window gives
+      // nothing the straight windows do not, but it came within trim_against's 1e-5 gain of them
+      // and, met first on an edge, dropped them: 3e-6 relative error on a 1:100 planar grid.
+      if (!(t1 - t0 > kShadowSliver)) continue;
+      // The whole far edge (trimmed in push_window), not only the shadow's part of it: the wider
+      // windows also trim later ones on the same edges (shadow-only intervals cost 24% more
+      // windows on the armadillo).
+      push_window(g, 0, len, in_frame(g, px), sigma);
     }
   }
 
