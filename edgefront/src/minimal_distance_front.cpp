@@ -458,7 +458,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   void push_window(int h, double b0, double b1, P2 s, double sigma) {
     if (!(b1 > b0) || !has_face(h)) return;
-    if (!trim(b0, b1, s, sigma, known_d(fromv(h)), known_d(tov(h)), edge_length(h))) return;
+    push_window(h, b0, b1, s, sigma, known_d(fromv(h)), known_d(tov(h)), edge_length(h));
+  }
+
+  // The same with the distances known at the edge's ends and its length (has_face(h) checked).
+  void push_window(int h, double b0, double b1, P2 s, double sigma, double d_from, double d_to, double len) {
+    if (!(b1 > b0) || !trim(b0, b1, s, sigma, d_from, d_to, len)) return;
     Window nw{h, b0, b1, s, sigma};
     if (!trim_against_lit(nw)) return;
     b0 = nw.b0;
@@ -602,7 +607,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (!(l > 0) || !(la > 0) || !(lb > 0)) return;
     const P2 s = w.s;
     // The ends' distances may have dropped since the window was made.
-    if (!trim(w.b0, w.b1, s, w.sigma, known_d(a), known_d(b), l)) return;
+    const double da = known_d(a), db = known_d(b);
+    if (!trim(w.b0, w.b1, s, w.sigma, da, db, l)) return;
     if (!trim_against_lit(w)) return;
     remember(w);
     const double cx = (l * l + la * la - lb * lb) / (2 * l);
@@ -616,8 +622,9 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       // The source lies on the edge (a source point on it): it sees the whole face.
       if (s.x < w.b0 - tol || s.x > w.b1 + tol) return;
       offer_window_vertex(c, w.sigma + norm2(cx - s.x, cy), s, w.sigma, h, l, c2);
-      push_child(g_ac, P2{0, 0}, c2, la, 0, 1, s, w.sigma);
-      push_child(g_cb, c2, P2{l, 0}, lb, 0, 1, s, w.sigma);
+      const double dc = known_d(c);
+      push_child(g_ac, P2{0, 0}, c2, la, 0, 1, s, w.sigma, da, dc);
+      push_child(g_cb, c2, P2{l, 0}, lb, 0, 1, s, w.sigma, dc, db);
       return;
     }
     // Where the line from the source through c crosses the edge.
@@ -632,26 +639,28 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (den == 0) return t <= tc ? 0.0 : 1.0;
       return std::clamp(cross2(d, P2{s.x - p.x, s.y - p.y}) / den, 0.0, 1.0);
     };
+    const double dc = known_d(c);  // after c's offer
     if (w.b0 < tc) {
       const double t1 = std::min(w.b1, tc);
       push_child(g_ac, P2{0, 0}, c2, la, meet(w.b0, P2{0, 0}, c2), t1 >= tc ? 1.0 : meet(t1, P2{0, 0}, c2), s,
-                 w.sigma);
+                 w.sigma, da, dc);
     }
     if (w.b1 > tc) {
       const double t0 = std::max(w.b0, tc);
       push_child(g_cb, c2, P2{l, 0}, lb, t0 <= tc ? 0.0 : meet(t0, c2, P2{l, 0}), meet(w.b1, c2, P2{l, 0}), s,
-                 w.sigma);
+                 w.sigma, dc, db);
     }
   }
 
   // The window on halfedge g whose edge runs from p to q (length len) in the parent's frame, lit
-  // over [u0, u1] (fractions from p), with the parent's source s.
-  void push_child(int g, P2 p, P2 q, double len, double u0, double u1, P2 s, double sigma) {
-    if (!(u1 > u0)) return;
+  // over [u0, u1] (fractions from p), with the parent's source s; dp, dq: the distances known at p
+  // and q (the parent already looked them up).
+  void push_child(int g, P2 p, P2 q, double len, double u0, double u1, P2 s, double sigma, double dp, double dq) {
+    if (!(u1 > u0) || !has_face(g)) return;
     const P2 ex{(q.x - p.x) / len, (q.y - p.y) / len};
     const P2 ey{-ex.y, ex.x};
     const P2 w{s.x - p.x, s.y - p.y};
-    push_window(g, u0 * len, u1 * len, P2{dot2(w, ex), std::min(dot2(w, ey), 0.0)}, sigma);
+    push_window(g, u0 * len, u1 * len, P2{dot2(w, ex), std::min(dot2(w, ey), 0.0)}, sigma, dp, dq, len);
   }
 
   // The face-vertex c of halfedge h's face takes distance d from the window's source s (in h's
