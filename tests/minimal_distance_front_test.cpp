@@ -510,6 +510,26 @@ TEST(MdfWindows, StronglyAnisotropicPlanarGridIsExact) {
   }
 }
 
+// The window mode's working memory follows the front, not the settled area: a full field along a
+// cylinder 4x as long (the same front: a ring around it) needs about the same memory. Settled
+// vertices are forgotten once the front is past them (they used to stay in a hash map), and the
+// windows of the source that reach an edge around different vertices merge (they used to grow in
+// number with the distance: 813K windows for the 4812 vertices, now 15K).
+TEST(MdfWindows, FullFieldMemoryFollowsTheFront) {
+  std::array<size_t, 2> bytes{}, front{};
+  for (int k = 0; k < 2; ++k) {
+    const int along = k == 0 ? 100 : 400;
+    const Mesh mesh = shapes::open_cylinder(12, along, 1.0, 0.25 * along);
+    const VertexHandle s = nearest_vertex(mesh, Vec3(1, 0, 0));
+    const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s), kWindows);
+    ASSERT_EQ(f.stop, DistanceStop::Exhausted);
+    bytes[k] = f.peak_working_memory_bytes;
+    front[k] = f.peak_front;
+  }
+  EXPECT_EQ(front[1], front[0]);
+  EXPECT_LT(bytes[1], bytes[0] * 5 / 4);
+}
+
 TEST(MdfWindows, OpenCylinderUnrollsExactly) { EXPECT_LT(cylinder_mean_error(kWindows), 1e-12); }
 
 // The vertex behind a long edge settles first, at its own (Euclidean) distance, before the front

@@ -175,13 +175,43 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   std::function<void(VertexHandle, double, const Vec3&)> on_settled;
 
   // Window mode (DistanceOptions::windows): the windows waiting in the heap (index -1 - w), their
-  // free slots, and the distances of settled vertices whose records were dropped (a window may
-  // still reach their faces; they must not be reached again).
+  // free slots, and the settled vertices whose records were dropped (a window may still reach their
+  // faces; they must not be reached again), in three stages (see forget_passed):
+  //   gone: the distance, while a window on one of its edges may still be shorter somewhere;
+  //   passed: no longer (the front is farther than the distance plus the longest edge at the
+  //     vertex): any window on its edges is dominated, the vertex kills it; the count of its
+  //     neighbours not passed yet;
+  //   forgotten: every neighbour passed too (a ring of passed vertices stops every window before
+  //     its faces): nothing is kept.
+  // So the window mode's memory follows the front, not the settled area.
   bool windowed = false;
   std::vector<Window> win;
   std::vector<int> free_win;
   detail::FlatMap<double> gone;
+  detail::FlatMap<int> passed;
+  detail::MinHeap4<double> horizon;  // gone vertices by the distance beyond which they pass
+  size_t peak_horizon = 0;
   detail::FlatMap<LitSet> lit_edges;  // per halfedge, the windows carried across its face lately
+  // Per halfedge, the windows waiting in the heap (the first kPendingPerEdge; see push_window).
+  static constexpr int kPendingPerEdge = 4;
+  struct Pending {
+    int n = 0;
+    std::array<int, kPendingPerEdge> id;
+  };
+  detail::FlatMap<Pending> pending;
+  size_t n_merged = 0;  // windows merged into a waiting one (statistics)
+
+  void unlist_pending(int h, int id) {
+    Pending* pe = pending.find(static_cast<uint32_t>(h));
+    if (!pe) return;
+    for (int k = 0; k < pe->n; ++k) {
+      if (pe->id[static_cast<size_t>(k)] == id) {
+        pe->id[static_cast<size_t>(k)] = pe->id[static_cast<size_t>(--pe->n)];
+        break;
+      }
+    }
+    if (pe->n == 0) pending.erase(static_cast<uint32_t>(h));
+  }
   size_t n_windows = 0;  // windows propagated (statistics)
 
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
@@ -228,7 +258,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     win.clear();
     free_win.clear();
     gone.clear();
+    passed.clear();
+    horizon.clear();
+    peak_horizon = 0;
     lit_edges.clear();
+    pending.clear();
+    n_merged = 0;
     n_windows = 0;
   }
 
@@ -393,11 +428,36 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return P2{x, -std::sqrt(std::max(w.sqrnorm() - x * x, 0.0))};
   }
 
-  // The best distance known for v: its record's, or a dropped settled record's; +inf if none.
+  // The best distance known for v: its record's, or a dropped settled record's; +inf if none;
+  // -inf for a passed vertex (trim then drops every window on its edges, as its distance would).
   double known_d(int v) const {
     if (const DRec* r = dt.find(static_cast<uint32_t>(v))) return r->d;
     if (const double* g = gone.find(static_cast<uint32_t>(v))) return *g;
+    if (passed.find(static_cast<uint32_t>(v))) return -kInf;
     return kInf;
+  }
+
+  // Moves the gone vertices whose horizon lies below d (the distance settling now; every window
+  // popped or made from now on is at least d everywhere on its interval) to `passed`, and forgets
+  // the passed vertices whose neighbours have all passed. Exact: a window on an edge at a passed
+  // vertex v is longer everywhere than d(v) plus the edge (trim with v's distance would drop it
+  // whole), and a window reaches a forgotten vertex's faces only across an edge with a passed end.
+  [[gnu::noinline]] void forget_passed(double d) {
+    while (!horizon.empty() && horizon.top().first < d) {
+      const int v = horizon.top().second;
+      horizon.pop();
+      gone.erase(static_cast<uint32_t>(v));
+      int open = 0;  // neighbours not passed (none is forgotten: that needs v passed first)
+      for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
+        int* n = passed.find(static_cast<uint32_t>(y.idx()));
+        if (!n) {
+          ++open;
+        } else if (--*n <= 0) {
+          passed.erase(static_cast<uint32_t>(y.idx()));
+        }
+      }
+      if (open > 0) passed.insert(static_cast<uint32_t>(v), open);
+    }
   }
 
   // A window across a long edge can light a vertex more closely than any of its neighbours: it
@@ -421,11 +481,17 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // Drops the record of a settled vertex whose neighbours are all settled.
   void drop(int v) {
     if (windowed) {
-      if (const DRec* r = dt.find(static_cast<uint32_t>(v))) gone.insert(static_cast<uint32_t>(v), r->d);
       // The windows remembered on v's edges: the front has passed them.
+      double longest = 0;
       for (HalfedgeHandle h : mesh.voh_range(VertexHandle(v))) {
         lit_edges.erase(static_cast<uint32_t>(h.idx()));
         lit_edges.erase(static_cast<uint32_t>(h.idx() ^ 1));
+        longest = std::max(longest, edge_length(h.idx()));
+      }
+      if (const DRec* r = dt.find(static_cast<uint32_t>(v))) {
+        gone.insert(static_cast<uint32_t>(v), r->d);
+        horizon.push((r->d + longest) * (1 + 1e-9), v);
+        peak_horizon = std::max(peak_horizon, horizon.size());
       }
     }
     dt.erase(static_cast<uint32_t>(v));
@@ -468,6 +534,32 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (!trim_against_lit(nw)) return;
     b0 = nw.b0;
     b1 = nw.b1;
+    // A window waiting on the same halfedge from the same source (another way round the vertices
+    // in between, unfolded to the same place) whose interval meets this one: one window for both.
+    Pending& pe = *pending.insert(static_cast<uint32_t>(h), Pending{}).first;
+    const double tol = kSameSourceTol * (len + std::abs(s.x) - s.y + sigma);
+    for (int k = 0; k < pe.n; ++k) {
+      Window& o = win[static_cast<size_t>(pe.id[k])];
+      if (std::abs(o.sigma - sigma) > tol || std::abs(o.s.x - s.x) > tol || std::abs(o.s.y - s.y) > tol) continue;
+      if (o.b0 > b1 + tol || b0 > o.b1 + tol) continue;
+      const double old_min = o.sigma + norm2(o.s.x - std::clamp(o.s.x, o.b0, o.b1), o.s.y);
+      const double u0 = std::min(o.b0, b0), u1 = std::max(o.b1, b1);
+      const double new_min = o.sigma + norm2(o.s.x - std::clamp(o.s.x, u0, u1), o.s.y);
+      ++n_merged;
+      if (!(new_min < old_min)) {  // its heap entry stays right
+        o.b0 = u0;
+        o.b1 = u1;
+        return;
+      }
+      // It comes out sooner: a new entry; the old one is skipped when it comes up.
+      b0 = u0;
+      b1 = u1;
+      s = o.s;
+      sigma = o.sigma;
+      o.he = -1;
+      pe.id[k] = pe.id[--pe.n];
+      break;
+    }
     const double foot = std::clamp(s.x, b0, b1);
     const double dmin = sigma + norm2(s.x - foot, s.y);
     int id;
@@ -479,6 +571,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       win.emplace_back();
     }
     win[id] = Window{h, b0, b1, s, sigma};
+    if (pe.n < kPendingPerEdge) pe.id[pe.n++] = id;
     heap.push(dmin, -1 - id);
     peak_heap = std::max(peak_heap, heap.size());
   }
@@ -666,7 +759,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // The face-vertex c of halfedge h's face takes distance d from the window's source s (in h's
   // frame; c at c2, the edge of length l).
   void offer_window_vertex(int c, double d, P2 s, double sigma, int h, double l, P2 c2) {
-    if (gone.find(static_cast<uint32_t>(c))) return;
+    if (gone.find(static_cast<uint32_t>(c)) || passed.find(static_cast<uint32_t>(c))) return;
     if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && (rc->settled || !(d < rc->d))) return;
     // The source in 3D, in the plane of h's face (for the direction at c).
     const Vec3& pa = mesh.point(VertexHandle(fromv(h)));
@@ -1252,6 +1345,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         heap.pop();
         const Window w = win[static_cast<size_t>(-1 - v)];
         free_win.push_back(-1 - v);
+        if (w.he < 0) continue;  // merged into another window
+        unlist_pending(w.he, -1 - v);
         propagate_window(w);
         continue;
       }
@@ -1265,6 +1360,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         return false;
       }
       heap.pop();
+      if (windowed) {
+        forget_passed(d);
+        r = dt.find(static_cast<uint32_t>(v));
+      }
       r->settled = true;
       ++n_settled;
       // The ring walk first: its cache misses overlap the caller's callback.
@@ -1294,7 +1393,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   size_t total_bytes() const {
     return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
-           gone.memory_bytes() + lit_edges.memory_bytes();
+           gone.memory_bytes() + lit_edges.memory_bytes() + passed.memory_bytes() + peak_horizon * sizeof(Entry) +
+           pending.memory_bytes();
   }
 };
 
@@ -1330,7 +1430,9 @@ size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes;
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
   return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
-         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes();
+         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes() +
+         impl_->pending.memory_bytes() +
+         impl_->passed.memory_bytes() + impl_->peak_horizon * sizeof(Impl::Entry);
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 
