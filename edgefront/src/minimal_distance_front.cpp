@@ -79,13 +79,17 @@ struct Window {
   double sigma;
 };
 
-// The last windows carried across a halfedge's face (MMP's windows of an edge, bounded): a later
-// window on the same halfedge keeps only the part where it is shorter than all of them.
+// Per halfedge: the last windows carried across its face (MMP's windows of an edge, bounded: a
+// later window on the same halfedge keeps only the part where it is shorter than all of them), and
+// the windows waiting in the heap on it (the first kPendingPerEdge; see push_window).
 constexpr int kLitPerEdge = 4;
+constexpr int kPendingPerEdge = 4;
 struct LitSet {
   int n = 0;     // windows held (at most kLitPerEdge)
   int next = 0;  // the slot the next one replaces when full
+  int np = 0;    // waiting windows listed
   std::array<Window, kLitPerEdge> w;
+  std::array<int, kPendingPerEdge> pending;
 };
 
 // Round-off allowance (radians) on each side of a pseudo source's shadow (emit_vertex_windows); a
@@ -177,9 +181,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // Window mode (DistanceOptions::windows): the windows waiting in the heap (index -1 - w), their
   // free slots, and the settled vertices whose records were dropped (a window may still reach their
   // faces; they must not be reached again), in three stages (see forget_passed):
-  //   gone: the distance, while a window on one of its edges may still be shorter somewhere;
-  //   passed: no longer (the front is farther than the distance plus the longest edge at the
-  //     vertex): any window on its edges is dominated, the vertex kills it; the count of its
+  //   gone (open = -1): the distance, while a window on one of its edges may still be shorter
+  //     somewhere;
+  //   passed (open >= 0): no longer (the front is farther than the distance plus the longest edge
+  //     at the vertex): any window on its edges is dominated, the vertex kills it; open: its
   //     neighbours not passed yet;
   //   forgotten: every neighbour passed too (a ring of passed vertices stops every window before
   //     its faces): nothing is kept.
@@ -187,31 +192,15 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   bool windowed = false;
   std::vector<Window> win;
   std::vector<int> free_win;
-  detail::FlatMap<double> gone;
-  detail::FlatMap<int> passed;
+  struct Gone {
+    double d;
+    int open;
+  };
+  detail::FlatMap<Gone> gone;
   detail::MinHeap4<double> horizon;  // gone vertices by the distance beyond which they pass
   size_t peak_horizon = 0;
   detail::FlatMap<LitSet> lit_edges;  // per halfedge, the windows carried across its face lately
-  // Per halfedge, the windows waiting in the heap (the first kPendingPerEdge; see push_window).
-  static constexpr int kPendingPerEdge = 4;
-  struct Pending {
-    int n = 0;
-    std::array<int, kPendingPerEdge> id;
-  };
-  detail::FlatMap<Pending> pending;
   size_t n_merged = 0;  // windows merged into a waiting one (statistics)
-
-  void unlist_pending(int h, int id) {
-    Pending* pe = pending.find(static_cast<uint32_t>(h));
-    if (!pe) return;
-    for (int k = 0; k < pe->n; ++k) {
-      if (pe->id[static_cast<size_t>(k)] == id) {
-        pe->id[static_cast<size_t>(k)] = pe->id[static_cast<size_t>(--pe->n)];
-        break;
-      }
-    }
-    if (pe->n == 0) pending.erase(static_cast<uint32_t>(h));
-  }
   size_t n_windows = 0;  // windows propagated (statistics)
 
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
@@ -258,11 +247,9 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     win.clear();
     free_win.clear();
     gone.clear();
-    passed.clear();
     horizon.clear();
     peak_horizon = 0;
     lit_edges.clear();
-    pending.clear();
     n_merged = 0;
     n_windows = 0;
   }
@@ -432,8 +419,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // -inf for a passed vertex (trim then drops every window on its edges, as its distance would).
   double known_d(int v) const {
     if (const DRec* r = dt.find(static_cast<uint32_t>(v))) return r->d;
-    if (const double* g = gone.find(static_cast<uint32_t>(v))) return *g;
-    if (passed.find(static_cast<uint32_t>(v))) return -kInf;
+    if (const Gone* g = gone.find(static_cast<uint32_t>(v))) return g->open < 0 ? g->d : -kInf;
     return kInf;
   }
 
@@ -446,17 +432,20 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     while (!horizon.empty() && horizon.top().first < d) {
       const int v = horizon.top().second;
       horizon.pop();
-      gone.erase(static_cast<uint32_t>(v));
       int open = 0;  // neighbours not passed (none is forgotten: that needs v passed first)
       for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
-        int* n = passed.find(static_cast<uint32_t>(y.idx()));
-        if (!n) {
+        Gone* g = gone.find(static_cast<uint32_t>(y.idx()));
+        if (!g || g->open < 0) {
           ++open;
-        } else if (--*n <= 0) {
-          passed.erase(static_cast<uint32_t>(y.idx()));
+        } else if (--g->open <= 0) {
+          gone.erase(static_cast<uint32_t>(y.idx()));
         }
       }
-      if (open > 0) passed.insert(static_cast<uint32_t>(v), open);
+      if (open > 0) {
+        gone.find(static_cast<uint32_t>(v))->open = open;
+      } else {
+        gone.erase(static_cast<uint32_t>(v));
+      }
     }
   }
 
@@ -489,7 +478,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         longest = std::max(longest, edge_length(h.idx()));
       }
       if (const DRec* r = dt.find(static_cast<uint32_t>(v))) {
-        gone.insert(static_cast<uint32_t>(v), r->d);
+        gone.insert(static_cast<uint32_t>(v), Gone{r->d, -1});
         horizon.push((r->d + longest) * (1 + 1e-9), v);
         peak_horizon = std::max(peak_horizon, horizon.size());
       }
@@ -531,15 +520,16 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   void push_window(int h, double b0, double b1, P2 s, double sigma, double d_from, double d_to, double len) {
     if (!(b1 > b0) || !trim(b0, b1, s, sigma, d_from, d_to, len)) return;
     Window nw{h, b0, b1, s, sigma};
-    if (!trim_against_lit(nw)) return;
+    LitSet* found = lit_edges.find(static_cast<uint32_t>(h));
+    if (found && !trim_against_lit(nw, *found)) return;
     b0 = nw.b0;
     b1 = nw.b1;
     // A window waiting on the same halfedge from the same source (another way round the vertices
     // in between, unfolded to the same place) whose interval meets this one: one window for both.
-    Pending& pe = *pending.insert(static_cast<uint32_t>(h), Pending{}).first;
+    LitSet& pe = found ? *found : *lit_edges.insert(static_cast<uint32_t>(h), LitSet{}).first;
     const double tol = kSameSourceTol * (len + std::abs(s.x) - s.y + sigma);
-    for (int k = 0; k < pe.n; ++k) {
-      Window& o = win[static_cast<size_t>(pe.id[k])];
+    for (int k = 0; k < pe.np; ++k) {
+      Window& o = win[static_cast<size_t>(pe.pending[static_cast<size_t>(k)])];
       if (std::abs(o.sigma - sigma) > tol || std::abs(o.s.x - s.x) > tol || std::abs(o.s.y - s.y) > tol) continue;
       if (o.b0 > b1 + tol || b0 > o.b1 + tol) continue;
       const double old_min = o.sigma + norm2(o.s.x - std::clamp(o.s.x, o.b0, o.b1), o.s.y);
@@ -557,7 +547,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       s = o.s;
       sigma = o.sigma;
       o.he = -1;
-      pe.id[k] = pe.id[--pe.n];
+      pe.pending[static_cast<size_t>(k)] = pe.pending[static_cast<size_t>(--pe.np)];
       break;
     }
     const double foot = std::clamp(s.x, b0, b1);
@@ -571,7 +561,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       win.emplace_back();
     }
     win[id] = Window{h, b0, b1, s, sigma};
-    if (pe.n < kPendingPerEdge) pe.id[pe.n++] = id;
+    if (pe.np < kPendingPerEdge) pe.pending[static_cast<size_t>(pe.np++)] = id;
     heap.push(dmin, -1 - id);
     peak_heap = std::max(peak_heap, heap.size());
   }
@@ -670,27 +660,28 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return !(re > 0 && im >= 0 && im <= kFlatDefect);  // more than a full turn, beyond round-off
   }
 
-  bool trim_against_lit(Window& w) const {
-    const LitSet* ls = lit_edges.find(static_cast<uint32_t>(w.he));
-    if (!ls) return true;
-    for (int i = 0; i < ls->n; ++i) {
-      if (!trim_against(w, ls->w[static_cast<size_t>(i)])) return false;
+  static bool trim_against_lit(Window& w, const LitSet& ls) {
+    for (int i = 0; i < ls.n; ++i) {
+      if (!trim_against(w, ls.w[static_cast<size_t>(i)])) return false;
     }
     return true;
   }
 
-  void remember(const Window& w) {
-    LitSet& ls = *lit_edges.insert(static_cast<uint32_t>(w.he), LitSet{}).first;
-    ls.w[static_cast<size_t>(ls.next)] = w;
-    ls.next = (ls.next + 1) % kLitPerEdge;
-    ls.n = std::min(ls.n + 1, kLitPerEdge);
-  }
-
   // Carries window w across its face (see above).
   // (Not inlined: the window code stays out of the default mode's hot loop.)
-  [[gnu::noinline]] void propagate_window(Window w) {
+  // id: its slot, to take off its halfedge's list of waiting windows.
+  [[gnu::noinline]] void propagate_window(Window w, int id) {
     ++n_windows;
     const int h = w.he;
+    LitSet* ls = lit_edges.find(static_cast<uint32_t>(h));
+    if (ls) {
+      for (int k = 0; k < ls->np; ++k) {
+        if (ls->pending[static_cast<size_t>(k)] == id) {
+          ls->pending[static_cast<size_t>(k)] = ls->pending[static_cast<size_t>(--ls->np)];
+          break;
+        }
+      }
+    }
     const int hn = nexth(h);
     const int a = fromv(h), b = tov(h), c = tov(hn);
     const Vec3& pa = mesh.point(VertexHandle(a));
@@ -702,8 +693,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // The ends' distances may have dropped since the window was made.
     const double da = known_d(a), db = known_d(b);
     if (!trim(w.b0, w.b1, s, w.sigma, da, db, l)) return;
-    if (!trim_against_lit(w)) return;
-    remember(w);
+    if (ls && !trim_against_lit(w, *ls)) return;
+    // Remembered for the later windows on h.
+    if (!ls) ls = lit_edges.insert(static_cast<uint32_t>(h), LitSet{}).first;
+    ls->w[static_cast<size_t>(ls->next)] = w;
+    ls->next = (ls->next + 1) % kLitPerEdge;
+    ls->n = std::min(ls->n + 1, kLitPerEdge);
     const double cx = (l * l + la * la - lb * lb) / (2 * l);
     const double cy = std::sqrt(std::max(la * la - cx * cx, 0.0));
     if (!(cy > 0)) return;
@@ -759,7 +754,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // The face-vertex c of halfedge h's face takes distance d from the window's source s (in h's
   // frame; c at c2, the edge of length l).
   void offer_window_vertex(int c, double d, P2 s, double sigma, int h, double l, P2 c2) {
-    if (gone.find(static_cast<uint32_t>(c)) || passed.find(static_cast<uint32_t>(c))) return;
+    if (gone.find(static_cast<uint32_t>(c))) return;
     if (const DRec* rc = dt.find(static_cast<uint32_t>(c)); rc && (rc->settled || !(d < rc->d))) return;
     // The source in 3D, in the plane of h's face (for the direction at c).
     const Vec3& pa = mesh.point(VertexHandle(fromv(h)));
@@ -1346,8 +1341,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         const Window w = win[static_cast<size_t>(-1 - v)];
         free_win.push_back(-1 - v);
         if (w.he < 0) continue;  // merged into another window
-        unlist_pending(w.he, -1 - v);
-        propagate_window(w);
+        propagate_window(w, -1 - v);
         continue;
       }
       DRec* r = dt.find(static_cast<uint32_t>(v));
@@ -1393,8 +1387,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   size_t total_bytes() const {
     return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
-           gone.memory_bytes() + lit_edges.memory_bytes() + passed.memory_bytes() + peak_horizon * sizeof(Entry) +
-           pending.memory_bytes();
+           gone.memory_bytes() + lit_edges.memory_bytes() + peak_horizon * sizeof(Entry);
   }
 };
 
@@ -1431,8 +1424,7 @@ size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
   return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
          impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes() +
-         impl_->pending.memory_bytes() +
-         impl_->passed.memory_bytes() + impl_->peak_horizon * sizeof(Impl::Entry);
+         impl_->peak_horizon * sizeof(Impl::Entry);
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 
