@@ -62,11 +62,11 @@ struct DistanceOptions {
   /// are carried on face by face in the same distance order as the vertices; saddle and border
   /// vertices become pseudo sources for the directions they shadow. Windows that shorten the
   /// distance by less than 1e-5 (relative) are dropped. Planar and developable meshes come out
-  /// exact to round-off (up to ~1e-5 on strongly anisotropic or folded ones); on CGAL's scanned
-  /// models the mean error is below 5e-4% (bench/results/geodesic-windows.md). It costs about
-  /// 3-4x the default (CPU), and the working memory also holds the windows waiting in the queue, the
-  /// last windows per crossed edge, and the distances of settled vertices (12 bytes + hash
-  /// overhead each; O(settled), not O(front)). Off: one virtual source per vertex.
+  /// exact to round-off (up to ~1e-5 on folded ones); on CGAL's scanned models the mean error is
+  /// below 5e-4% (bench/results/geodesic-windows.md). It costs about 3-4x the default (CPU); the
+  /// working memory also holds the windows waiting in the queue and the last windows per crossed
+  /// edge, and the settled vertices near the front (each is forgotten once the front is past its
+  /// distance plus its longest edge): O(front), like the default's. Off: one virtual source per vertex.
   /// Vertex and surface-point sources only; a loop source ignores it.
   bool windows = false;
 };
