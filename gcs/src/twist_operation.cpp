@@ -21,12 +21,11 @@ const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& 
 }
 
 // Renumbering (operation.h): twist::TwistRepairer keeps state by handle index (cut pairs, face
-// snapshots, face grid). Until a region was found, that state is only caches, which a new
-// repairer rebuilds on the next call: follow then, not after. (twist::TwistRepairer::renumber
-// can translate it now; following always is left to a change agreed with the owner of
-// GcsOperationRenumber.TwistOperationFollowsUntilItFoundARegion, which asserts this policy.)
-bool TwistOperation::can_follow_renumbering() const { return stats_.regions_found == 0; }
-void TwistOperation::on_renumbered(const edgefront::Mesh&, const MeshRenumbering&) { repairer_.reset(); }
+// snapshots, face grid); it translates that state itself, so the loop may always renumber.
+bool TwistOperation::can_follow_renumbering() const { return true; }
+void TwistOperation::on_renumbered(const edgefront::Mesh& mesh, const MeshRenumbering& map) {
+  if (repairer_) repairer_->renumber(mesh, map.vertex, map.face);
+}
 
 OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) {
   const std::clock_t cpu0 = std::clock();

@@ -456,6 +456,25 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
   }
 }
 
+/// True when the faces connected to `region` number at most twice the region's: cutting it out
+/// would take at least half of that surface (a repair costs at most half), so it is repaired by
+/// flipping instead. Stops counting at that bound: O(region).
+bool region_is_most_of_its_component(const Mesh& mesh, const TwistRegion& region) {
+  const size_t limit = 2 * region.faces.size();
+  std::unordered_set<int> seen{region.faces.front().idx()};
+  std::vector<FaceHandle> stack{region.faces.front()};
+  while (!stack.empty()) {
+    const FaceHandle f = stack.back();
+    stack.pop_back();
+    for (FaceHandle g : mesh.ff_range(f)) {
+      if (!seen.insert(g.idx()).second) continue;
+      if (seen.size() > limit) return false;
+      stack.push_back(g);
+    }
+  }
+  return true;
+}
+
 RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups,
                          FaceGrid* grid = nullptr) {
   // Incremental (a face grid and a restricted candidate set): nothing here passes over the mesh.
@@ -529,7 +548,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
           continue;
         }
       }
-      if (cut_out && cut_out(mesh, region)) {
+      if (cut_out && !region_is_most_of_its_component(mesh, region) && cut_out(mesh, region)) {
         if (o.regrow_cut_outs) {
           regrow_region(mesh, region, o.min_component_faces);
         } else {

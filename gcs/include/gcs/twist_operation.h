@@ -76,7 +76,7 @@ class TwistOperation : public Operation {
   ~TwistOperation() override;
   std::string name() const override { return "twist-repair"; }
   OperationResult apply(edgefront::Mesh& mesh, const ChangeSet& changed, const OperationContext& context) override;
-  /// Follows the loop's renumbering only until a region was found (see twist_operation.cpp).
+  /// Always follows the loop's renumbering: the repairer translates its index-keyed state.
   bool can_follow_renumbering() const override;
   void on_renumbered(const edgefront::Mesh& mesh, const MeshRenumbering& map) override;
   const TwistOperationStats& stats() const { return stats_; }
