@@ -9,6 +9,7 @@
 #include <new>
 #include <type_traits>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <utility>
 
@@ -24,6 +25,7 @@
 #include "detail/neighbor_cache.h"
 #include "detail/sample_projection.h"
 #include "detail/spatial_order.h"
+#include "detail/surface_fit.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
@@ -134,6 +136,8 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
   if (o.film_samples > 64) fail("film_samples must be at most 64");
   if (o.border_trim_rings > 8) fail("border_trim_rings must be at most 8");
+  if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
+  if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
 }
 
 }  // namespace
@@ -1142,6 +1146,16 @@ struct Reconstructor::Impl {
     // Post-processing of the copy only (the loop's own mesh stays as it is).
     if (opt.project_to_samples) {
       detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * mean_edge_length());
+    }
+    if (opt.fit_surface) {
+      detail::SurfaceFitParams fp;
+      fp.rounds = opt.fit_rounds;
+      fp.smoothness = opt.fit_smoothness;
+      fp.max_move = 0.5 * mean_edge_length();
+      fp.max_sample_distance = mean_edge_length();
+      fp.min_face_cos = std::cos(45.0 * std::numbers::pi / 180.0);
+      fp.max_samples = 8 * r.mesh.n_vertices();
+      detail::fit_to_samples(r.mesh, cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();

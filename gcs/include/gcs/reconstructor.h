@@ -122,6 +122,19 @@ struct ReconstructOptions {
   /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
   /// The loop's own mesh (Reconstructor::mesh()) is not moved.
   bool project_to_samples = true;
+  /// Post-processing of the returned mesh, after project_to_samples: a least-squares fit that moves
+  /// every vertex along its normal so that the samples lie on the triangles closest to them (the
+  /// chord error between vertices on a curved surface included), with a smoothness term between
+  /// neighbours; samples farther than a mean edge length from the mesh are ignored. Guards: a
+  /// vertex moves at most half a mean edge length, no face turns by more than 45 degrees, and the
+  /// fit is scaled back (then dropped) if the mesh would get more self-intersecting face pairs.
+  /// Tangential positions (angles, valences) do not change. The loop's own mesh is not moved.
+  bool fit_surface = true;
+  /// Rounds of the fit (closest points recomputed each round). In [1, 20].
+  int fit_rounds = 3;
+  /// Weight of the squared difference of two neighbours' moves, per edge, relative to one sample's
+  /// squared residual. Finite, >= 0; larger is smoother and fits less.
+  double fit_smoothness = 0.1;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
