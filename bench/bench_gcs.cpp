@@ -85,9 +85,9 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
   std::printf("%s: %zu vertices, %zu faces, %zu component(s), %zu border loop(s), non-manifold %zu, stop: %s\n", label,
               s.vertices, s.faces, s.components, s.border_loops, s.nonmanifold_vertices,
               gcs::to_string(r.stop_reason).c_str());
-  std::printf("  time %.2f s wall, %.2f s CPU (load average %.1f) (topology %.2f s wall), %llu basic steps (%.2f us/step wall), %zu splits, %zu collapses, "
+  std::printf("  time %.2f s wall, %.2f s CPU (load average %.1f) (topology %.2f s wall, surface fit %.2f s wall), %llu basic steps (%.2f us/step wall), %zu splits, %zu collapses, "
               "%zu faces removed, %zu loops merged, %zu slits zipped, %zu holes filled\n",
-              r.seconds_total, g_last_cpu, load_average(), r.seconds_topology, static_cast<unsigned long long>(r.basic_steps),
+              r.seconds_total, g_last_cpu, load_average(), r.seconds_topology, r.seconds_fit, static_cast<unsigned long long>(r.basic_steps),
               1e6 * r.seconds_total / std::max<double>(1, static_cast<double>(r.basic_steps)), r.splits, r.collapses,
               r.faces_removed, r.loops_merged, r.slits_zipped, r.holes_filled);
   for (size_t c = 0; c < s.per_component.size() && c < 4; ++c)
