@@ -11,8 +11,10 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "detail/self_intersection.h"
 #include "detail/triangle_closest.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
@@ -543,7 +545,9 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
   return false;
 }
 
-std::size_t count_self_intersections_of(const TriangleBvh& bvh) {
+// Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
+// in leaf order).
+std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr) {
   const std::vector<Triangle>& tris = bvh.triangles();
   std::size_t count = 0;
   // Each pair once: triangle k (leaf order) against the overlapping ones after it.
@@ -552,7 +556,10 @@ std::size_t count_self_intersections_of(const TriangleBvh& bvh) {
     if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
     bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
       const Triangle& b = tris[static_cast<std::size_t>(j)];
-      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) ++count;
+      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
+        ++count;
+        if (pairs) pairs->emplace_back(bvh.in_order(k), j);
+      }
     });
   }
   return count;
@@ -590,6 +597,26 @@ std::size_t count_self_intersections(const Mesh& mesh) {
   if (tris.empty()) return 0;
   return count_self_intersections_of(TriangleBvh(std::move(tris)));
 }
+
+namespace detail {
+
+std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Mesh& mesh) {
+  check_mesh_coordinates(mesh, "the mesh");
+  std::vector<int> face_of;
+  std::vector<Triangle> tris = mesh_triangles(mesh, &face_of);
+  std::vector<std::pair<int, int>> pairs;
+  if (tris.empty()) return pairs;
+  count_self_intersections_of(TriangleBvh(std::move(tris)), &pairs);
+  for (auto& [a, b] : pairs) {
+    a = face_of[static_cast<std::size_t>(a)];
+    b = face_of[static_cast<std::size_t>(b)];
+    if (a > b) std::swap(a, b);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace detail
 
 namespace {
 

@@ -4,14 +4,15 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Sparse>
 
+#include "detail/self_intersection.h"
 #include "detail/triangle_closest.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
-#include "gcs/evaluation.h"
 
 namespace gcs::detail {
 
@@ -168,7 +169,7 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
   for (VertexHandle v : mesh.vertices()) start[v.idx()] = pos[v.idx()] = mesh.point(v);
   std::vector<Vec3> start_normal(mesh.n_faces(), Vec3(0, 0, 0));
   for (FaceHandle f : mesh.faces()) start_normal[f.idx()] = unit_face_normal(mesh, f, start);
-  const std::size_t intersections_before = count_self_intersections(mesh);
+  const std::vector<std::pair<int, int>> pairs_before = self_intersecting_face_pairs(mesh);
 
   std::vector<Vec3> offset(nv, Vec3(0, 0, 0));  // pos - start
   std::vector<std::size_t> used;       // the samples of the first round
@@ -185,7 +186,7 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
       if (!normals.empty()) {
         const Vec3& sn = normals[i];
         const double len = sn.norm();
-        if (!(len > 0) || std::abs(sn | foot.unit_normal) < 0.3 * len) continue;
+        if (len > 0 && std::isfinite(len) && std::abs(sn | foot.unit_normal) < 0.3 * len) continue;
       }
       if (round == 0) {
         used.push_back(i);
@@ -252,29 +253,31 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
     for (std::size_t v = 0; v < nv; ++v) offset[v] += step[v];
     for (VertexHandle v : mesh.vertices()) mesh.point(v) = start[v.idx()] + offset[v.idx()];
   }
-  // The last pass of the face check zeroed moves without checking again: put back the vertices of
-  // any face that still turns too far, until none does (at worst every vertex is back).
+  // The last pass of the face check zeroed moves without checking again, and new self-
+  // intersections may have appeared: put back (to where the fit started) the vertices of every
+  // face that turns too far and of both faces of every intersecting pair that was not there
+  // before, until nothing changes (each pass only puts vertices back: at worst all of them).
   for (bool again = true; again;) {
     again = false;
-    for (VertexHandle v : mesh.vertices()) pos[v.idx()] = mesh.point(v);
-    for (FaceHandle f : mesh.faces()) {
-      const Vec3 n = unit_face_normal(mesh, f, pos);
-      if (n.sqrnorm() > 0 && (n | start_normal[f.idx()]) >= params.min_face_cos) continue;
+    const auto put_back = [&](FaceHandle f) {
       for (VertexHandle u : mesh.fv_range(f)) {
         again = again || mesh.point(u) != start[u.idx()];
         mesh.point(u) = start[u.idx()];
       }
+    };
+    for (VertexHandle v : mesh.vertices()) pos[v.idx()] = mesh.point(v);
+    for (FaceHandle f : mesh.faces()) {
+      const Vec3 n = unit_face_normal(mesh, f, pos);
+      if (!(n.sqrnorm() > 0 && (n | start_normal[f.idx()]) >= params.min_face_cos)) put_back(f);
     }
-  }
-  // No new self-intersections: halve all moves, then give up.
-  for (int attempt = 0;; ++attempt) {
-    if (count_self_intersections(mesh) <= intersections_before) break;
-    if (attempt == 3) {
-      for (VertexHandle v : mesh.vertices()) mesh.point(v) = start[v.idx()];
-      report.reverted = true;
-      break;
+    if (again) continue;
+    const std::vector<std::pair<int, int>> now = self_intersecting_face_pairs(mesh);
+    for (const auto& pair : now) {
+      if (std::binary_search(pairs_before.begin(), pairs_before.end(), pair)) continue;
+      put_back(FaceHandle(pair.first));
+      put_back(FaceHandle(pair.second));
+      ++report.intersections_undone;
     }
-    for (VertexHandle v : mesh.vertices()) mesh.point(v) = start[v.idx()] + 0.5 * (mesh.point(v) - start[v.idx()]);
   }
   for (VertexHandle v : mesh.vertices()) report.vertices_moved += mesh.point(v) != start[v.idx()] ? 1 : 0;
   mesh.update_face_normals();

@@ -125,9 +125,10 @@ struct ReconstructOptions {
   /// Post-processing of the returned mesh, after project_to_samples: a least-squares fit that moves
   /// every vertex along its normal so that the samples lie on the triangles closest to them (the
   /// chord error between vertices on a curved surface included), with a smoothness term between
-  /// neighbours; samples farther than a mean edge length from the mesh are ignored. Guards: a
+  /// neighbours; samples farther than a mean edge length from the mesh are ignored, and of more
+  /// than 2 samples per vertex an even stride of 2 per vertex is used (cost). Guards: a
   /// vertex moves at most half a mean edge length, no face turns by more than 45 degrees, and the
-  /// fit is scaled back (then dropped) if the mesh would get more self-intersecting face pairs.
+  /// vertices of both faces of every self-intersecting pair the fit would create stay where they were.
   /// Tangential positions (angles, valences) do not change. The loop's own mesh is not moved.
   bool fit_surface = true;
   /// Rounds of the fit (closest points recomputed each round). In [1, 20].

@@ -13,8 +13,8 @@
 // recomputed. Tangential positions do not change (angles and valences stay as the loop made them).
 // Guards: a vertex moves at most max_move in total; a face whose normal would turn by more than
 // acos(min_face_cos) from where the fit started has its vertices' moves halved (up to 8 times,
-// then dropped); when the moved mesh has more self-intersecting face pairs than before, all moves
-// are halved (up to 3 times), then the mesh is left as it was.
+// then dropped); both faces of every self-intersecting pair that the moves created have their
+// vertices put back where they were (repeated until no face turns too far and no pair is new).
 
 #include <cstddef>
 #include <vector>
@@ -37,12 +37,12 @@ struct SurfaceFitReport {
   std::size_t vertices_moved = 0;
   double mean_distance_before = 0;  ///< mean distance of those samples to the mesh, before
   double mean_distance_after = 0;   ///< ... and after the fit (closest points recomputed)
-  bool reverted = false;  ///< self-intersections appeared even with halved moves: mesh unchanged
+  std::size_t intersections_undone = 0;  ///< new self-intersecting pairs whose faces were put back
 };
 
 /// Fits the live vertices of `mesh` to `samples` (see the file comment). `normals` is empty or
 /// one (unoriented) normal per sample: a sample whose normal makes |cos| < 0.3 with its closest
-/// face (a sample of another layer) is ignored. Face normals are updated on return.
+/// face (a sample of another layer) is ignored; a sample whose normal is zero or not finite is used. Face normals are updated on return.
 /// \throw edgefront::InvalidInput for parameters out of range or a normals count other than the
 ///        samples' (the caller checks the samples: finite).
 SurfaceFitReport fit_to_samples(edgefront::Mesh& mesh, const std::vector<edgefront::Vec3>& samples,
