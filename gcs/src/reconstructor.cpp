@@ -1156,7 +1156,9 @@ struct Reconstructor::Impl {
       fp.max_sample_distance = mean_edge_length();
       fp.min_face_cos = std::cos(45.0 * std::numbers::pi / 180.0);
       fp.max_samples = 2 * r.mesh.n_vertices();  // cost: the big clouds (1M points) use an even stride
-      // The samples' normals (input, or fitted and oriented) when the loop uses them.
+      // The samples' normals (input, or fitted and oriented) when the loop uses them: a sample is
+      // fitted only by a face that faces its way (not by the other layer of a thin shell).
+      fp.oriented_normals = true;
       const std::vector<Vec3> none;
       detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
       r.seconds_fit = seconds_since(t_fit);

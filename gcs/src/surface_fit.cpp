@@ -186,7 +186,8 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
       if (!normals.empty()) {
         const Vec3& sn = normals[i];
         const double len = sn.norm();
-        if (len > 0 && std::isfinite(len) && std::abs(sn | foot.unit_normal) < 0.3 * len) continue;
+        const double c = sn | foot.unit_normal;
+        if (len > 0 && std::isfinite(len) && (params.oriented_normals ? c : std::abs(c)) < 0.3 * len) continue;
       }
       if (round == 0) {
         used.push_back(i);

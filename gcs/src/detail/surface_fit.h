@@ -30,6 +30,9 @@ struct SurfaceFitParams {
   double max_sample_distance = 0;  ///< samples farther than this from the mesh are ignored, > 0
   double min_face_cos = 0.7;  ///< faces may turn by at most acos(this) from the start of the fit
   std::size_t max_samples = 0;  ///< use at most this many samples (an even stride); 0 = all
+  /// The normals passed to fit_to_samples are oriented like the mesh: a sample is then also
+  /// ignored when its normal points against its closest face's (the other side of a thin shell).
+  bool oriented_normals = false;
 };
 
 struct SurfaceFitReport {
@@ -42,7 +45,8 @@ struct SurfaceFitReport {
 
 /// Fits the live vertices of `mesh` to `samples` (see the file comment). `normals` is empty or
 /// one (unoriented) normal per sample: a sample whose normal makes |cos| < 0.3 with its closest
-/// face (a sample of another layer) is ignored; a sample whose normal is zero or not finite is used. Face normals are updated on return.
+/// face (a sample of another layer; with oriented_normals, cos < 0.3) is ignored; a sample whose
+/// normal is zero or not finite is used. Face normals are updated on return.
 /// \throw edgefront::InvalidInput for parameters out of range or a normals count other than the
 ///        samples' (the caller checks the samples: finite).
 SurfaceFitReport fit_to_samples(edgefront::Mesh& mesh, const std::vector<edgefront::Vec3>& samples,
