@@ -1159,6 +1159,7 @@ struct Reconstructor::Impl {
       // The samples' normals (input, or fitted and oriented) when the loop uses them: a sample is
       // fitted only by a face that faces its way (not by the other layer of a thin shell).
       fp.oriented_normals = true;
+      fp.measure_after = false;
       const std::vector<Vec3> none;
       detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
       r.seconds_fit = seconds_since(t_fit);

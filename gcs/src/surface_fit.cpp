@@ -282,6 +282,7 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
   }
   for (VertexHandle v : mesh.vertices()) report.vertices_moved += mesh.point(v) != start[v.idx()] ? 1 : 0;
   mesh.update_face_normals();
+  if (!params.measure_after) return report;
   std::vector<Vec3> used_samples;
   used_samples.reserve(used.size());
   for (std::size_t i : used) used_samples.push_back(samples[i]);

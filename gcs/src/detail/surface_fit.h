@@ -33,13 +33,14 @@ struct SurfaceFitParams {
   /// The normals passed to fit_to_samples are oriented like the mesh: a sample is then also
   /// ignored when its normal points against its closest face's (the other side of a thin shell).
   bool oriented_normals = false;
+  bool measure_after = true;  ///< fill SurfaceFitReport::mean_distance_after (one more search pass)
 };
 
 struct SurfaceFitReport {
   std::size_t samples_used = 0;   ///< samples within max_sample_distance in the first round
   std::size_t vertices_moved = 0;
   double mean_distance_before = 0;  ///< mean distance of those samples to the mesh, before
-  double mean_distance_after = 0;   ///< ... and after the fit (closest points recomputed)
+  double mean_distance_after = 0;   ///< ... and after the fit (closest points recomputed; 0 without measure_after)
   std::size_t intersections_undone = 0;  ///< new self-intersecting pairs whose faces were put back
 };
 
