@@ -1,7 +1,7 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
-///                   [--rejoin-borders]
+///                   [--rejoin-borders] [--no-fit] [--fit-rounds R] [--fit-smoothness W]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
@@ -62,6 +62,15 @@ int main(int argc, char** argv) {
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
                "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
                "ending as a torn double layer)");
+  bool no_fit = false;
+  app.add_flag("--no-fit", no_fit,
+               "do not fit the result to the samples (on by default: each vertex is moved along its normal so "
+               "that the samples lie on the mesh's triangles, without turning faces or adding self-intersections)");
+  app.add_option("--fit-rounds", options.fit_rounds, "rounds of the surface fit, 1-20 (default 3)")
+      ->check(CLI::Range(1, 20));
+  app.add_option("--fit-smoothness", options.fit_smoothness,
+                 "smoothness weight of the surface fit, >= 0 (default 0.1; larger fits less)")
+      ->check(CLI::Range(0.0, 1e9));
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
@@ -79,6 +88,7 @@ int main(int argc, char** argv) {
     options.progress_interval = 50;
     options.create_borders = options.merge_borders = !no_borders;
     options.orient_winners = !no_orient;
+    options.fit_surface = !no_fit;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");

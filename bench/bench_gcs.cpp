@@ -1,7 +1,7 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K]
-//             [--seeds N] [--step-factor F] [--points P]
+//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
+//             [--seeds N] [--step-factor F] [--points P] [--reference DIR]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
 //    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
@@ -14,6 +14,10 @@
 // 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
 //    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
 //    F = --step-factor, default 100).
+// 7. (--case fit only) kitten.xyz at 5K vertices, seeds 1..N (default 8), the result with and
+//    without the surface fit (ReconstructOptions::fit_surface), judged by gcs::evaluate against the
+//    5,210 points (as gcs-eval: exact distances, 100K samples, seed 1); with --reference DIR also
+//    DIR/kitten-advancing-front.off and DIR/kitten-poisson.off (bench/cgal_reconstruct_reference).
 // --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case; --points P
 // replaces the 1M-point cloud of cases 3 and 5 by a P-point one. Single thread. Case 3 also prints
 // the CPU time of the set-up (Reconstructor constructor: sorting, kd-tree) apart.
@@ -29,9 +33,11 @@
 
 #include <time.h>
 
+#include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
 #include "edgefront/shapes.h"
+#include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 
 namespace {
@@ -79,9 +85,9 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
   std::printf("%s: %zu vertices, %zu faces, %zu component(s), %zu border loop(s), non-manifold %zu, stop: %s\n", label,
               s.vertices, s.faces, s.components, s.border_loops, s.nonmanifold_vertices,
               gcs::to_string(r.stop_reason).c_str());
-  std::printf("  time %.2f s wall, %.2f s CPU (load average %.1f) (topology %.2f s wall), %llu basic steps (%.2f us/step wall), %zu splits, %zu collapses, "
+  std::printf("  time %.2f s wall, %.2f s CPU (load average %.1f) (topology %.2f s wall, surface fit %.2f s wall), %llu basic steps (%.2f us/step wall), %zu splits, %zu collapses, "
               "%zu faces removed, %zu loops merged, %zu slits zipped, %zu holes filled\n",
-              r.seconds_total, g_last_cpu, load_average(), r.seconds_topology, static_cast<unsigned long long>(r.basic_steps),
+              r.seconds_total, g_last_cpu, load_average(), r.seconds_topology, r.seconds_fit, static_cast<unsigned long long>(r.basic_steps),
               1e6 * r.seconds_total / std::max<double>(1, static_cast<double>(r.basic_steps)), r.splits, r.collapses,
               r.faces_removed, r.loops_merged, r.slits_zipped, r.holes_filled);
   for (size_t c = 0; c < s.per_component.size() && c < 4; ++c)
@@ -103,8 +109,11 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
   std::fflush(stdout);
 }
 
+bool g_fit = true;  // ReconstructOptions::fit_surface
+
 gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
+  o.fit_surface = g_fit;
   o.target_vertices = target;
   if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
   o.seed = g_seed;
@@ -114,6 +123,20 @@ gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   return r;
 }
 
+// One line of the fit case: the figures gcs-eval prints, in % of the bounding-box diagonal.
+void print_evaluation(const std::string& label, const Mesh& mesh, const gcs::GroundTruth& gt, double cpu) {
+  const gcs::Evaluation e = gcs::evaluate(mesh, gt);
+  const gcs::MeshValidity& v = e.validity;
+  std::printf("  %-24s chamfer %.4f%% (gt->result %.4f%%, result->gt %.4f%%), H95 %.4f%%, normal cons. %.4f, %s, "
+              "genus %g, %zu self-intersecting pairs, median min angle %.1f deg, %.2f%% < 30 deg",
+              label.c_str(), e.scale(e.chamfer_l1), e.scale(e.gt_to_result.mean), e.scale(e.result_to_gt.mean),
+              e.scale(e.hausdorff_p95), e.normal_consistency.value_or(-1),
+              v.closed && v.components == 1 && v.edge_manifold && v.vertex_manifold ? "closed manifold" : "NOT closed/manifold",
+              v.genus, v.self_intersecting_pairs.value_or(0), v.median_min_angle_deg, 100 * v.faces_min_angle_below_30);
+  if (cpu >= 0) std::printf(", %.2f s CPU", cpu);
+  std::printf("\n");
+  std::fflush(stdout);
+}
 
 }  // namespace
 
@@ -124,6 +147,7 @@ int main(int argc, char** argv) {
   size_t seeds = 0;
   size_t step_factor = 100;
   size_t big_points = 1'000'000;
+  std::filesystem::path reference;
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
@@ -134,8 +158,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc) seeds = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--step-factor") && i + 1 < argc) step_factor = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--points") && i + 1 < argc) big_points = std::stoul(argv[++i]);
+    else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) reference = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
       return 2;
     }
   }
@@ -162,6 +187,26 @@ int main(int argc, char** argv) {
       if (seeds) std::printf("  closed, manifold, genus 1 on %zu of %zu seeds\n", closed_genus1, seeds);
     } else {
       std::printf("kitten.xyz: missing (run data/fetch-models.sh)\n");
+    }
+    if (only == "fit") {
+      const edgefront::PointCloud kitten = edgefront::read_points(models / "kitten.xyz");
+      const gcs::GroundTruth gt = gcs::GroundTruth::from_points(kitten);
+      std::printf("kitten.xyz at 5K vertices, surface fit off / on (load average %.1f):\n", load_average());
+      for (const char* name : {"advancing-front", "poisson"}) {
+        const auto path = reference / ("kitten-" + std::string(name) + ".off");
+        if (!reference.empty() && std::filesystem::exists(path))
+          print_evaluation(std::string("CGAL ") + name, edgefront::load_mesh(path.string()), gt, -1);
+      }
+      for (size_t seed = 1; seed <= (seeds ? seeds : 8); ++seed) {
+        g_seed = seed;
+        for (const bool fit : {false, true}) {
+          g_fit = fit;
+          const gcs::ReconstructResult r = run(kitten, 5000);
+          print_evaluation("seed " + std::to_string(seed) + (fit ? " fit" : " no fit"), r.mesh, gt, g_last_cpu);
+        }
+      }
+      g_seed = 1;
+      g_fit = true;
     }
     if (only == "nested") {
       edgefront::shapes::SampleOptions so;

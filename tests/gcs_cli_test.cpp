@@ -152,3 +152,26 @@ TEST_F(GcsCli, ErrorsAndUsage) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(GcsCli, FitOptionsAreCheckedAndNoFitKeepsTheConnectivity) {
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 150 --seed 2 --no-twist --quiet";
+  ASSERT_EQ(run(q(vault()) + " -o " + q(a) + common).exit_code, 0);
+  const eftest::CommandResult rb = run(q(vault()) + " -o " + q(b) + common + " --no-fit");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  const edgefront::Mesh ma = edgefront::load_mesh(a), mb = edgefront::load_mesh(b);
+  ASSERT_EQ(ma.n_vertices(), mb.n_vertices());
+  ASSERT_EQ(ma.n_faces(), mb.n_faces());
+  EXPECT_NE(eftest::slurp(a), eftest::slurp(b));  // the fit moved vertices
+  for (const char* bad : {" --fit-rounds 0", " --fit-rounds 21", " --fit-smoothness -1", " --fit-rounds x"}) {
+    const fs::path c = dir_ / "c.off";
+    const eftest::CommandResult r = run(q(vault()) + " -o " + q(c) + " --vertices 100" + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("--fit-"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(c)) << bad;
+  }
+}
+
+}  // namespace

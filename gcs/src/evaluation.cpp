@@ -11,9 +11,11 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
-
+#include "detail/self_intersection.h"
+#include "detail/triangle_closest.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
@@ -123,41 +125,7 @@ struct Triangle {
   const Vec3& unit_normal() const { return n; }
 };
 
-Vec3 closest_on_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.sqrnorm();
-  if (!(len2 > 0.0)) return a;
-  const double t = std::clamp(((x - a) | ab) / len2, 0.0, 1.0);
-  return a + t * ab;
-}
-
-// Closest point of triangle abc to x, by the Voronoi regions of its vertices and edges.
-Vec3 closest_on_triangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ax = x - a;
-  const double d1 = ab | ax, d2 = ac | ax;
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bx = x - b;
-  const double d3 = ab | bx, d4 = ac | bx;
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cx = x - c;
-  const double d5 = ab | cx, d6 = ac | cx;
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double sum = va + vb + vc;
-  if (!(sum > 0.0)) {  // degenerate (collinear) triangle: nearest of its three sides
-    const std::array<Vec3, 3> q = {closest_on_segment(x, a, b), closest_on_segment(x, b, c),
-                                   closest_on_segment(x, c, a)};
-    return *std::min_element(q.begin(), q.end(), [&](const Vec3& u, const Vec3& w) {
-      return (u - x).sqrnorm() < (w - x).sqrnorm();
-    });
-  }
-  return a + (vb / sum) * ab + (vc / sum) * ac;
-}
+using detail::closest_on_triangle;
 
 // ---------------------------------------------------------------------------------------------
 // Bounding-volume hierarchy over triangles: nearest-triangle queries and box-overlap queries.
@@ -577,7 +545,9 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
   return false;
 }
 
-std::size_t count_self_intersections_of(const TriangleBvh& bvh) {
+// Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
+// in leaf order).
+std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr) {
   const std::vector<Triangle>& tris = bvh.triangles();
   std::size_t count = 0;
   // Each pair once: triangle k (leaf order) against the overlapping ones after it.
@@ -586,7 +556,10 @@ std::size_t count_self_intersections_of(const TriangleBvh& bvh) {
     if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
     bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
       const Triangle& b = tris[static_cast<std::size_t>(j)];
-      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) ++count;
+      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
+        ++count;
+        if (pairs) pairs->emplace_back(bvh.in_order(k), j);
+      }
     });
   }
   return count;
@@ -624,6 +597,26 @@ std::size_t count_self_intersections(const Mesh& mesh) {
   if (tris.empty()) return 0;
   return count_self_intersections_of(TriangleBvh(std::move(tris)));
 }
+
+namespace detail {
+
+std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Mesh& mesh) {
+  check_mesh_coordinates(mesh, "the mesh");
+  std::vector<int> face_of;
+  std::vector<Triangle> tris = mesh_triangles(mesh, &face_of);
+  std::vector<std::pair<int, int>> pairs;
+  if (tris.empty()) return pairs;
+  count_self_intersections_of(TriangleBvh(std::move(tris)), &pairs);
+  for (auto& [a, b] : pairs) {
+    a = face_of[static_cast<std::size_t>(a)];
+    b = face_of[static_cast<std::size_t>(b)];
+    if (a > b) std::swap(a, b);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace detail
 
 namespace {
 

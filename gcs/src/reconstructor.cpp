@@ -9,6 +9,7 @@
 #include <new>
 #include <type_traits>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <utility>
 
@@ -24,6 +25,7 @@
 #include "detail/neighbor_cache.h"
 #include "detail/sample_projection.h"
 #include "detail/spatial_order.h"
+#include "detail/surface_fit.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
@@ -134,6 +136,8 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
   if (o.film_samples > 64) fail("film_samples must be at most 64");
   if (o.border_trim_rings > 8) fail("border_trim_rings must be at most 8");
+  if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
+  if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
 }
 
 }  // namespace
@@ -1143,6 +1147,23 @@ struct Reconstructor::Impl {
     if (opt.project_to_samples) {
       detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * mean_edge_length());
     }
+    if (opt.fit_surface) {
+      const auto t_fit = Clock::now();
+      detail::SurfaceFitParams fp;
+      fp.rounds = opt.fit_rounds;
+      fp.smoothness = opt.fit_smoothness;
+      fp.max_move = 0.5 * mean_edge_length();
+      fp.max_sample_distance = mean_edge_length();
+      fp.min_face_cos = std::cos(45.0 * std::numbers::pi / 180.0);
+      fp.max_samples = 2 * r.mesh.n_vertices();  // cost: the big clouds (1M points) use an even stride
+      // The samples' normals (input, or fitted and oriented) when the loop uses them: a sample is
+      // fitted only by a face that faces its way (not by the other layer of a thin shell).
+      fp.oriented_normals = true;
+      fp.measure_after = false;
+      const std::vector<Vec3> none;
+      detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
+      r.seconds_fit = seconds_since(t_fit);
+    }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();
     r.stop_reason = finished_reason;
@@ -1154,7 +1175,7 @@ struct Reconstructor::Impl {
     r.slits_zipped = slits_zipped;
     r.holes_filled = holes_filled;
     r.batches = batches;
-    r.seconds_total = seconds;
+    r.seconds_total = seconds + r.seconds_fit;  // the fit runs after the loop's clock stopped
     r.seconds_operations = seconds_ops;
     r.seconds_topology = seconds_topology;
     for (const Registered& reg : ops) r.operations.push_back(reg.report);

@@ -122,6 +122,20 @@ struct ReconstructOptions {
   /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
   /// The loop's own mesh (Reconstructor::mesh()) is not moved.
   bool project_to_samples = true;
+  /// Post-processing of the returned mesh, after project_to_samples: a least-squares fit that moves
+  /// every vertex along its normal so that the samples lie on the triangles closest to them (the
+  /// chord error between vertices on a curved surface included), with a smoothness term between
+  /// neighbours; samples farther than a mean edge length from the mesh are ignored, and of more
+  /// than 2 samples per vertex an even stride of 2 per vertex is used (cost). Guards: a
+  /// vertex moves at most half a mean edge length, no face turns by more than 45 degrees, and the
+  /// vertices of both faces of every self-intersecting pair the fit would create stay where they were.
+  /// Tangential positions (angles, valences) do not change. The loop's own mesh is not moved.
+  bool fit_surface = true;
+  /// Rounds of the fit (closest points recomputed each round). In [1, 20].
+  int fit_rounds = 3;
+  /// Weight of the squared difference of two neighbours' moves, per edge, relative to one sample's
+  /// squared residual. Finite, >= 0; larger is smoother and fits less.
+  double fit_smoothness = 0.1;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
@@ -183,6 +197,7 @@ struct ReconstructResult {
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
+  double seconds_fit = 0;         ///< of it: in the surface fit of the returned mesh (fit_surface)
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
 };
 
