@@ -192,6 +192,27 @@ TEST(GcsOperationRenumber, MapsSendKeptHandlesToTheSameElementsAndTheLoopStaysVa
   EXPECT_EQ(a.mesh.n_faces(), b.mesh.n_faces());
 }
 
+// Registering an operation that changes nothing (and follows renumbering) leaves the run as it
+// is without operations, byte for byte: the loop's own state does not depend on the hook.
+TEST(GcsOperationRenumber, AnOperationThatChangesNothingLeavesTheRunAsItIs) {
+  edgefront::shapes::SampleOptions so;
+  so.points = 5000;
+  so.shape.thickness = 0.02;
+  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", so);
+  gcs::ReconstructOptions o = options();
+  o.target_vertices = 600;
+  o.steps_per_split = 50;  // with these settings the grid was once checked only with operations registered
+  gcs::Reconstructor plain(cloud, o);
+  const gcs::ReconstructResult a = plain.run();
+  gcs::Reconstructor hooked(cloud, o);
+  auto op = std::make_shared<RecordingOperation>(true);
+  hooked.add_operation(op);
+  const gcs::ReconstructResult b = hooked.run();
+  EXPECT_GT(op->calls, 5u);
+  EXPECT_GT(a.faces_removed, 0u) << "the topology pass removed faces (the case this guards)";
+  EXPECT_EQ(positions(a.mesh), positions(b.mesh));
+}
+
 TEST(GcsOperationRenumber, AnOperationThatDoesNotOptInKeepsTheNumbering) {
   const edgefront::PointCloud cloud = torus_cloud();
   // Median index distance between the two ends of an edge: small after a spatial renumbering.

@@ -1109,6 +1109,14 @@ struct Reconstructor::Impl {
     rebuild_grid_if_needed();
     snapshot_faces();
     topology_pass(final_call);
+    run_operations(final_call);
+    // The topology pass and the operations may change the mean edge length: with or without
+    // operations registered, the grid is checked at the same point (an operation that changes
+    // nothing leaves the run as it is without it).
+    rebuild_grid_if_needed();
+  }
+
+  void run_operations(bool final_call) {
     if (ops.empty()) return;
     OperationContext ctx{cloud};
     ctx.mean_edge_length = mean_edge_length();
@@ -1136,7 +1144,6 @@ struct Reconstructor::Impl {
       r.last = clock;
       ++clock;
     }
-    rebuild_grid_if_needed();
   }
 
   ReconstructResult make_result(double seconds) {
