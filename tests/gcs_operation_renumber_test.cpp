@@ -159,6 +159,13 @@ edgefront::PointCloud torus_cloud() {
   return edgefront::shapes::sample("torus", so);
 }
 
+edgefront::PointCloud vault_shell_cloud(size_t points, double thickness) {
+  edgefront::shapes::SampleOptions so;
+  so.points = points;
+  so.shape.thickness = thickness;
+  return edgefront::shapes::sample("vault-shell", so);
+}
+
 std::vector<Vec3> positions(const Mesh& mesh) {
   std::vector<Vec3> out;
   for (auto v : mesh.vertices()) out.push_back(mesh.point(v));
@@ -195,10 +202,7 @@ TEST(GcsOperationRenumber, MapsSendKeptHandlesToTheSameElementsAndTheLoopStaysVa
 // Registering an operation that changes nothing (and follows renumbering) leaves the run as it
 // is without operations, byte for byte: the loop's own state does not depend on the hook.
 TEST(GcsOperationRenumber, AnOperationThatChangesNothingLeavesTheRunAsItIs) {
-  edgefront::shapes::SampleOptions so;
-  so.points = 5000;
-  so.shape.thickness = 0.02;
-  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", so);
+  const edgefront::PointCloud cloud = vault_shell_cloud(5000, 0.02);
   gcs::ReconstructOptions o = options();
   o.target_vertices = 600;
   o.steps_per_split = 50;  // with these settings the grid was once checked only with operations registered
@@ -332,12 +336,10 @@ TEST(GcsOperationRenumber, ReconstructionWithTheTwistOperationRenumbersAndStaysV
 
 // A vault shell from a box with plain winners twists early (see twist_operation_test.cpp): the
 // repair finds regions before the loop reaches the size where it renumbers; the loop still
-// renumbers, stays valid, and the result is deterministic.
+// renumbers and stays valid, and the repairs never empty the mesh (a re-twist guard once cut out
+// a region that was nearly all of it).
 TEST(GcsOperationRenumber, ReconstructionRenumbersAfterTwistRepairs) {
-  edgefront::shapes::SampleOptions so;
-  so.points = 3000;
-  so.shape.thickness = 0.2;
-  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", so);
+  const edgefront::PointCloud cloud = vault_shell_cloud(3000, 0.2);
   gcs::ReconstructOptions o = options();
   o.orient_winners = false;
   o.steps_per_split = 5;
