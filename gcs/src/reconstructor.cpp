@@ -63,10 +63,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 Vec3 face_normal_of(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
 
-// Index in [0, n) from one 64-bit draw (portable, unlike std::uniform_int_distribution; the
-// modulo bias is below n / 2^64).
-size_t draw_index(std::mt19937_64& rng, size_t n) { return static_cast<size_t>(rng() % n); }
-
+// Sample indices are drawn as one 64-bit draw modulo n (portable, unlike
+// std::uniform_int_distribution; the modulo bias is below n / 2^64).
 // x % n for a fixed n without a 64-bit division (tens of cycles, on the basic step's critical
 // path): q = floor(x * floor((2^64 - 1) / n) / 2^64) is at most 2 below floor(x / n), so the
 // remainder x - q n is corrected by at most two subtractions. Exactly x % n.
@@ -453,9 +451,9 @@ struct Reconstructor::Impl {
     // The samples are drawn one step ahead (the same sequence) so that the next one's point and
     // normal can be fetched from memory while this step runs (a large cloud is far bigger than
     // the caches).
-    if (next_sample == kNoSample) next_sample = draw_index(rng, cloud.size());
+    if (next_sample == kNoSample) next_sample = static_cast<size_t>(draw_mod(rng()));
     const size_t si = next_sample;
-    next_sample = static_cast<size_t>(draw_mod(rng()));  // draw_index(rng, cloud.size()), faster
+    next_sample = static_cast<size_t>(draw_mod(rng()));
     __builtin_prefetch(&draw[next_sample]);
     __builtin_prefetch(reinterpret_cast<const char*>(&draw[next_sample]) + sizeof(DrawSample) - 1);
     const Vec3& s = draw[si].point;
@@ -1151,16 +1149,17 @@ struct Reconstructor::Impl {
     r.mesh = mesh;
     r.mesh.garbage_collection();
     // Post-processing of the copy only (the loop's own mesh stays as it is).
+    const double ell = mean_edge_length();
     if (opt.project_to_samples) {
-      detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * mean_edge_length());
+      detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * ell);
     }
     if (opt.fit_surface) {
       const auto t_fit = Clock::now();
       detail::SurfaceFitParams fp;
       fp.rounds = opt.fit_rounds;
       fp.smoothness = opt.fit_smoothness;
-      fp.max_move = 0.5 * mean_edge_length();
-      fp.max_sample_distance = mean_edge_length();
+      fp.max_move = 0.5 * ell;
+      fp.max_sample_distance = ell;
       fp.min_face_cos = std::cos(45.0 * std::numbers::pi / 180.0);
       fp.max_samples = 2 * r.mesh.n_vertices();  // cost: the big clouds (1M points) use an even stride
       // The samples' normals (input, or fitted and oriented) when the loop uses them: a sample is
