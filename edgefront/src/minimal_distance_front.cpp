@@ -221,8 +221,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     int he;  // the outgoing halfedge x -> v
   };
   std::vector<Ray> ring;
-  std::vector<double> ang;  // the ring's cumulative corner angles (see ring_angles)
-  bool ang_known = false;   // ang is that of the current ring
+  std::vector<double> ang;  // scratch: the ring's cumulative corner angles
   bool ring_closed = false;
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
@@ -584,14 +583,23 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     double lo = 0, hi = -1, hi2 = -1, full = 0;
     bool known = false;
     if (shadow_only) {
-      ring_angles();
-      const int jf = ray_of_face(shadow_only->face);
+      ang.assign(static_cast<size_t>(m) + 1, 0.0);
+      int jf = -1;
+      for (int i = 0; i < m; ++i) {
+        const P2 c = corner_after(i);
+        ang[static_cast<size_t>(i) + 1] = ang[static_cast<size_t>(i)] + (ring[i].face_after >= 0 ? std::atan2(c.y, c.x) : 0.0);
+        if (ring[i].face_after == shadow_only->face) jf = i;
+      }
       full = ang[static_cast<size_t>(m)];
       const Vec3 w = shadow_only->source - px;
       if (jf >= 0 && w.sqrnorm() > 0) {
-        const double in_face = angle_in_face(ring[jf].u, ring[next_ray(jf)].u, w);
-        if (!std::isnan(in_face)) {
-          const double phi = ang[static_cast<size_t>(jf)] + in_face;
+        const Vec3& u0 = ring[jf].u;
+        Vec3 nrm = OpenMesh::cross(u0, ring[(jf + 1) % m].u);
+        const double nl = nrm.norm();
+        if (nl > 0) {
+          nrm /= nl;
+          const double phi = ang[static_cast<size_t>(jf)] +
+                             std::atan2(OpenMesh::dot(nrm, OpenMesh::cross(u0, w)), OpenMesh::dot(u0, w));
           constexpr double kPi = kTwoPi / 2;
           lo = phi + kPi - kSlack;
           hi = ring_closed ? phi + full - kPi + kSlack : full + kSlack;
@@ -795,73 +803,9 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     double worth = kInf;  // c's distance so far: a bent path is of use only below it
   };
 
-  // One virtual source of the vertex being settled (its own or its second), as seen from the
-  // ring: what every neighbour's layout needs of it, worked out once per settled vertex.
-  struct SourceView {
-    DRec rec;      // the source's fields (face, source, offset, origin) and x's distance
-    int jf = -1;   // the ray whose face_after is rec.face
-    // The source's angle in rec.face's plane, from the face's edge at x that a walk coming from
-    // after (side 0) or before (side 1) the face crosses: see lay_out. Computed on first use.
-    bool side_known[2] = {false, false};
-    bool side_ok[2] = {false, false};
-    P2 psi[2] = {{1, 0}, {1, 0}};
-    double psi_angle[2] = {0, 0};  // psi in radians (for may_lay_out)
-    double rs = 0;  // |source - x|
-  };
-
-  // x's face (the plane of sv's source): its edge at x that a walk from the side `after` crosses
-  // (near) and its other edge (far). The source's angle psi from the near edge toward the far one,
-  // as (cos, sin), and its distance from x. False: the source lies on the near side (the line does
-  // not come that way) or at x. The same for every neighbour: computed once per side.
-  bool source_in_face(SourceView& sv, int x, bool after, int near, int far) const {
-    const int k = after ? 0 : 1;
-    if (sv.side_known[k]) return sv.side_ok[k];
-    sv.side_known[k] = true;
-    const Vec3& u_near = ring[near].u;
-    const Vec3& u_far = ring[far].u;
-    const Vec3 w = sv.rec.source - mesh.point(VertexHandle(x));
-    const double rs = w.norm();
-    sv.rs = rs;
-    if (!(rs > 0)) return sv.side_ok[k] = false;
-    const Vec3 cw = OpenMesh::cross(u_near, w);
-    const double sin_psi = (OpenMesh::dot(cw, OpenMesh::cross(u_near, u_far)) >= 0 ? 1 : -1) * cw.norm() / rs;
-    if (sin_psi < -1e-9) return sv.side_ok[k] = false;
-    sv.psi[k] = P2{OpenMesh::dot(u_near, w) / rs, std::max(sin_psi, 0.0)};
-    sv.psi_angle[k] = std::atan2(sv.psi[k].y, sv.psi[k].x);
-    return sv.side_ok[k] = true;
-  }
-
-  // Whether the walk of lay_out from c (ray ic) around x toward the source can succeed. It fails
-  // where the source lies on the near side of its face (source_in_face), and where the angle from
-  // c to the source (the corners in between plus the source's angle psi in its face) is more than
-  // a half turn: a half turn or more on the way, or the line passing x on the other side. That
-  // angle is checked in radians from the ring's angles, with a margin far above their round-off
-  // and only below a full turn, so a walk is skipped only where it would fail: the results are
-  // the same. About half the walks of a full field went the wrong way round.
-  bool may_lay_out(SourceView& sv, int x, int ic, bool after) {
-    constexpr double kMargin = 1e-7;  // radians
-    constexpr double kHalfTurn = kTwoPi / 2;
-    const int m = static_cast<int>(ring.size());
-    const int jf = sv.jf;
-    // The crossed edge of the source's face and its other one (as the walk finds them).
-    const int near = after ? jf : next_ray(jf), far = after ? next_ray(jf) : jf;
-    if (!source_in_face(sv, x, after, near, far)) return false;
-    // The rays at the ends of the walk: from ic to jf (after), or from ic back to jf + 1 (before).
-    const int from = after ? ic : jf + 1, to = after ? jf : ic;
-    if (!ring_closed && (from > to || to >= m)) return true;  // a border gap on the way: the walk finds it
-    ring_angles();
-    double between = ang[static_cast<size_t>(to)] - ang[static_cast<size_t>(from)];
-    if (ring_closed && between < 0) between += ang[static_cast<size_t>(m)];
-    const double total = between + sv.psi_angle[after ? 0 : 1];
-    auto beyond_half_turn = [&](double a) { return a > kHalfTurn + kMargin && a < kTwoPi - kMargin; };
-    return !beyond_half_turn(between) && !beyond_half_turn(total);
-  }
-
   // Lays out rx's source for the edge x-c (c = ring[ic].v) in the face after (after = true) or
-  // before the edge; sv.jf is the ray whose face_after is rx.face.
-  bool lay_out(SourceView& sv, int x, int ic, bool after, Layout& L) {
-    const DRec& rx = sv.rec;
-    const int jf = sv.jf;
+  // before the edge; jf is the ray whose face_after is rx.face.
+  bool lay_out(const DRec& rx, int x, int ic, int jf, bool after, Layout& L) {
     L.bend_ray = -1;
     const int m = static_cast<int>(ring.size());
     const int c = ring[ic].v;
@@ -901,7 +845,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       return true;
     }
 
-    if (!may_lay_out(sv, x, ic, after)) return false;
     // Walk from t0 away from c around x to x's face, collecting the crossed edges.
     // Angles are unit 2D vectors (cos, sin); adding angles multiplies them as complex numbers.
     auto turn = [](P2 a, P2 b) { return P2{a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x}; };
@@ -931,10 +874,18 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       near_ray += dir;
       face_ray += dir;
     }
-    // x's face: a point of its plane at angle psi from the crossed edge goes to angle beta + psi.
-    if (!source_in_face(sv, x, after, wrap(near_ray), wrap(near_ray + dir))) return false;  // known: may_lay_out
-    const double rs = sv.rs;
-    const P2 theta = turn(beta, sv.psi[after ? 0 : 1]);
+    // x's face: its edge at x that was crossed (near) and its other edge (far). A point of its
+    // plane at angle psi from the near edge (toward the far one) goes to angle beta + psi.
+    const Vec3& u_near = ring[wrap(near_ray)].u;
+    const Vec3& u_far = ring[wrap(near_ray + dir)].u;
+    const Vec3 w = rx.source - px;
+    const double rs = w.norm();
+    if (!(rs > 0)) return false;
+    const Vec3 cw = OpenMesh::cross(u_near, w);
+    const double sin_psi = (OpenMesh::dot(cw, OpenMesh::cross(u_near, u_far)) >= 0 ? 1 : -1) * cw.norm() / rs;
+    if (sin_psi < -1e-9) return false;  // the source lies on the near side: the line does not come that way
+    const P2 psi{OpenMesh::dot(u_near, w) / rs, std::max(sin_psi, 0.0)};
+    const P2 theta = turn(beta, psi);
     if (theta.y < 1e-12 && (theta.y < 0 || theta.x < 0)) return false;  // it would pass x on the other side
     L.s = {rs * theta.x, rs * theta.y};
     bool leaves_fan = false, enters_xy = true;
@@ -1122,8 +1073,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   // The candidate distances of `c` from its settled neighbour `x` (record `rx`), offered to `c`.
   // `hxc` is the halfedge x -> c.
-  // `ic`: c's ray in x's ring; views: x's sources (set by settle_neighbours).
-  void propagate(int x, const DRec& rx, int c, HalfedgeHandle hxc, int ic) {
+  void propagate(int x, const DRec& rx, int c, HalfedgeHandle hxc) {
     const Vec3& px = mesh.point(VertexHandle(x));
 
     // (1) Through x as a vertex: the Dijkstra bound; x becomes the pseudo source.
@@ -1143,37 +1093,22 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     if (rc && rc->d <= rx.d) return;
     const double dc = rc ? rc->d : kInf;
     bool found = false;
-    if (view_valid[0]) found = propagate_line(x, views[0], c, hxc, dc, ic);
-    if (!found && view_valid[1]) propagate_line(x, views[1], c, hxc, dc, ic);
-  }
-
-  // x's sources for propagate: its own virtual source unless x is the (pseudo) source itself, and
-  // its second source (see DRec), settled at x's distance.
-  std::array<SourceView, 2> views;
-  std::array<bool, 2> view_valid{};
-  void set_views(int x, const DRec& rx) {
-    const Vec3& px = mesh.point(VertexHandle(x));
-    view_valid[0] = !(rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0));
-    view_valid[1] = rx.alt.d < kInf && rx.alt.face >= 0 && (rx.alt.source - px).sqrnorm() > 0;
-    for (int k = 0; k < 2; ++k) {
-      if (!view_valid[k]) continue;
-      SourceView& sv = views[k];
-      sv = SourceView{};
-      sv.rec = rx;
-      if (k == 1) {
-        sv.rec.source = rx.alt.source;
-        sv.rec.offset = rx.alt.offset;
-        sv.rec.face = rx.alt.face;
-        sv.rec.origin = rx.alt.origin;
-      }
-      sv.jf = ray_of_face(sv.rec.face);
+    if (!(rx.face < 0 || (rx.d == rx.offset && (rx.source - px).sqrnorm() == 0))) {  // else x is the (pseudo) source
+      found = propagate_line(x, rx, c, hxc, dc);
+    }
+    if (!found && rx.alt.d < kInf && rx.alt.face >= 0 && (rx.alt.source - px).sqrnorm() > 0) {
+      DRec ra = rx;  // the second source, settled at x's distance
+      ra.source = rx.alt.source;
+      ra.offset = rx.alt.offset;
+      ra.face = rx.alt.face;
+      ra.origin = rx.alt.origin;
+      propagate_line(x, ra, c, hxc, dc);
     }
   }
 
   // The straight-line candidate of `c` from rx's virtual source (rx.d: x's settled distance).
   // dc: c's distance before (a bound for the bent path, see Layout::worth).
-  bool propagate_line(int x, SourceView& sv, int c, HalfedgeHandle hxc, double dc, int ic) {
-    const DRec& rx = sv.rec;
+  bool propagate_line(int x, const DRec& rx, int c, HalfedgeHandle hxc, double dc) {
     const Vec3& px = mesh.point(VertexHandle(x));
     const Vec3& pc = mesh.point(VertexHandle(c));
     const double e = (px - pc).norm();
@@ -1183,14 +1118,20 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     // (2) x's virtual source, unfolded into either face at x-c, when the straight line crosses
     // x's faces in between.
     const double euclid_bound = rx.offset + (pc - rx.origin).norm();
-    if (sv.jf < 0) return false;  // the source's face is not at x
+    // Where c and x's source face lie in x's ring (the same for both faces at x-c).
+    int ic = -1, jf = -1;
+    for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
+      if (ring[i].v == c && ic < 0) ic = i;
+      if (ring[i].face_after == rx.face) jf = i;
+    }
+    if (ic < 0 || jf < 0) return false;
     Candidate best, bent;
     Layout L;
     L.worth = dc;
     for (const bool after : {true, false}) {
       const int t0 = after ? f_left : f_right;
       if (t0 < 0) continue;
-      const bool straight = lay_out(sv, x, ic, after, L);
+      const bool straight = lay_out(rx, x, ic, jf, after, L);
       if (!straight && L.bend_ray < 0) continue;
       // Causality: c may lie nearer the source than x (a vertex whose neighbours are all farther,
       // reached across a long edge); it cannot be settled before x any more, so it gets x's
@@ -1250,7 +1191,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // taken here, and the neighbours' positions are prefetched for build_ring).
   void start_ring(int x) {
     ring.clear();
-    ang_known = false;
     const VertexHandle vx(x);
     const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
     if (!h0.is_valid()) return;
@@ -1272,7 +1212,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // The ring's geometry (start_ring(x) first).
   void build_ring(int x) {
     const Vec3& px = mesh.point(VertexHandle(x));
-    ang_known = false;
     for (Ray& r : ring) {
       const Vec3 w = mesh.point(VertexHandle(r.v)) - px;
       const double len = w.norm();
@@ -1292,46 +1231,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return ring_closed ? (k == 0 ? 0 : m - k) : m - 1 - k;
   }
 
-  // A ring index taken modulo the ring's size (without a division: the walks stay within a few
-  // turns, and an integer division was a tenth of lay_out's time).
+  // A ring index taken modulo the ring's size, without an integer division (the walks stay within
+  // a turn or two; the divisions were a tenth of lay_out's time).
   int wrap_ray(int i) const {
     const int m = static_cast<int>(ring.size());
     while (i < 0) i += m;
     while (i >= m) i -= m;
     return i;
-  }
-  int next_ray(int i) const { return i + 1 == static_cast<int>(ring.size()) ? 0 : i + 1; }
-
-  // The last ray whose face after it is `face` (-1: none).
-  int ray_of_face(int face) const {
-    int jf = -1;
-    for (int i = 0; i < static_cast<int>(ring.size()); ++i) {
-      if (ring[i].face_after == face) jf = i;
-    }
-    return jf;
-  }
-
-  // The ring's cumulative corner angles in radians: ang[i] from ray 0 to ray i counter-clockwise,
-  // ang[m] the full angle (a border gap counts 0). Computed once per settled vertex.
-  void ring_angles() {
-    if (ang_known) return;
-    const int m = static_cast<int>(ring.size());
-    ang.assign(static_cast<size_t>(m) + 1, 0.0);
-    for (int i = 0; i < m; ++i) {
-      const P2 c = corner_after(i);
-      ang[static_cast<size_t>(i) + 1] = ang[static_cast<size_t>(i)] + (ring[i].face_after >= 0 ? std::atan2(c.y, c.x) : 0.0);
-    }
-    ang_known = true;
-  }
-
-  // The signed angle of w from the unit direction u0 toward u1 in the plane they span (NaN when
-  // they span none).
-  static double angle_in_face(const Vec3& u0, const Vec3& u1, const Vec3& w) {
-    Vec3 nrm = OpenMesh::cross(u0, u1);
-    const double nl = nrm.norm();
-    if (!(nl > 0)) return std::numeric_limits<double>::quiet_NaN();
-    nrm /= nl;
-    return std::atan2(OpenMesh::dot(nrm, OpenMesh::cross(u0, w)), OpenMesh::dot(u0, w));
   }
 
   // The corner angle at x of the face after ray i as (cos, sin) (computed on first use).
@@ -1339,7 +1245,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     Ray& r = ring[i];
     if (!r.corner_known) {
       const Vec3& a = r.u;
-      const Vec3& b = ring[next_ray(i)].u;
+      const Vec3& b = ring[i + 1 == static_cast<int>(ring.size()) ? 0 : i + 1].u;
       const double c = OpenMesh::dot(a, b), s = OpenMesh::cross(a, b).norm();
       const double l = std::sqrt(c * c + s * s);
       r.corner = l > 0 ? P2{c / l, s / l} : P2{1, 0};
@@ -1383,8 +1289,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
     build_ring(x);
     int open = 0;  // neighbours not settled yet
-    if (!windowed) set_views(x, rx);
-    auto visit = [&](int c, HalfedgeHandle hxc, int ic) {
+    auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
       open += !(rc && rc->settled);
       if (rc) {
@@ -1397,7 +1302,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (rx.loop_in >= 0 && line_source && rx.d == 0) {
         propagate_from_line(x, rx, c);
       } else {
-        propagate(x, rx, c, hxc, ic);
+        propagate(x, rx, c, hxc);
       }
     };
     if (rx.loop_in >= 0) {
@@ -1418,7 +1323,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       for (int k = 0; k < static_cast<int>(ring.size()); ++k) {
         const Ray& r = ring[voh_order(k)];
         if (std::find(wedge.begin(), wedge.end(), r.v) != wedge.end()) {
-          visit(r.v, HalfedgeHandle(r.he), voh_order(k));
+          visit(r.v, HalfedgeHandle(r.he));
         } else if (DRec* ry = dt.find(static_cast<uint32_t>(r.v))) {
           --ry->unsettled;
           if (ry->settled && ry->unsettled <= 0) drop(r.v);
@@ -1427,7 +1332,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     } else {
       for (int k = 0; k < static_cast<int>(ring.size()); ++k) {
         const Ray& r = ring[voh_order(k)];
-        visit(r.v, HalfedgeHandle(r.he), voh_order(k));
+        visit(r.v, HalfedgeHandle(r.he));
       }
     }
     // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
