@@ -203,6 +203,35 @@ TEST_P(MdfOnShapes, BoundsAndOrder) {
   }
 }
 
+// DistanceOptions::track_front off: the same field (bit for bit) without expanding the edge front,
+// from vertices and from a surface point, with and without directions.
+TEST_P(MdfOnShapes, UntrackedFrontGivesTheSameField) {
+  const Mesh mesh = GetParam().make();
+  std::mt19937_64 rng(5);
+  DistanceOptions untracked;
+  untracked.track_front = false;
+  auto expect_same = [&](const DistanceField& a, const DistanceField& b) {
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.direction, b.direction);
+    EXPECT_EQ(a.order, b.order);
+    EXPECT_EQ(a.stop, b.stop);
+    EXPECT_GT(a.peak_front, 0u);
+    EXPECT_EQ(b.peak_front, 0u);
+    EXPECT_GT(b.peak_working_memory_bytes, 0u);
+  };
+  for (int trial = 0; trial < 3; ++trial) {
+    const FrontSource src = FrontSource::from_vertices(eftest::random_vertices(mesh, rng, 1 + trial % 2));
+    expect_same(geodesic_distance(mesh, src), geodesic_distance(mesh, src, untracked));
+  }
+  const std::vector<SurfacePoint> point{{FaceHandle(static_cast<int>(mesh.n_faces() / 2)), {0.2, 0.3, 0.5}}};
+  expect_same(geodesic_distance(mesh, point), geodesic_distance(mesh, point, untracked));
+  DistanceOptions no_dir = untracked;
+  no_dir.directions = false;
+  const FrontSource src = FrontSource::vertex(VertexHandle(0));
+  EXPECT_EQ(geodesic_distance(mesh, src, DistanceOptions{.directions = false}).distance,
+            geodesic_distance(mesh, src, no_dir).distance);
+}
+
 TEST_P(MdfOnShapes, StepwiseFrontStaysValid) {
   const Mesh mesh = GetParam().make();
   std::mt19937_64 rng(2);
@@ -432,6 +461,35 @@ TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
     }
     EXPECT_GT(reached, 0u);
   }
+}
+
+// Without the edge front, a loop source gives the same field, and a non-manifold vertex is still
+// refused (when it settles; the front refuses it when it reaches it).
+TEST(Mdf, UntrackedFrontLoopSourceAndNonManifoldVertex) {
+  const Mesh grid = shapes::grid(shapes::GridOptions{.cells = 16});
+  std::vector<VertexHandle> ring;
+  for (double x = -0.75; x <= 0.75 + 1e-9; x += 0.125) ring.push_back(nearest_vertex(grid, Vec3(x, -0.5, 0)));
+  ring.push_back(nearest_vertex(grid, Vec3(0.75, -0.375, 0)));
+  for (double x = 0.75; x >= -0.75 - 1e-9; x -= 0.125) ring.push_back(nearest_vertex(grid, Vec3(x, -0.25, 0)));
+  ring.push_back(nearest_vertex(grid, Vec3(-0.75, -0.375, 0)));
+  DistanceOptions untracked;
+  untracked.track_front = false;
+  for (LoopSide side : {LoopSide::Left, LoopSide::Right}) {
+    const FrontSource src = loop_from_vertices(grid, ring, side);
+    const DistanceField a = geodesic_distance(grid, src), b = geodesic_distance(grid, src, untracked);
+    EXPECT_EQ(a.distance, b.distance);
+    EXPECT_EQ(a.order, b.order);
+  }
+  // A bow tie: two triangles meeting at vertex c.
+  Mesh mesh;
+  const auto c = mesh.add_vertex({0, 0, 0});
+  const auto a1 = mesh.add_vertex({1, 0.5, 0}), a2 = mesh.add_vertex({1, -0.5, 0});
+  const auto b1 = mesh.add_vertex({-1, 0.5, 0}), b2 = mesh.add_vertex({-1, -0.5, 0});
+  mesh.add_face(c, a2, a1);
+  mesh.add_face(c, b1, b2);
+  ASSERT_FALSE(mesh.is_manifold(c));
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(a1), untracked), TopologyError);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(c), untracked), TopologyError);
 }
 
 TEST(Mdf, SurfacePointSource) {

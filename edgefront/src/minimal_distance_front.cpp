@@ -1373,11 +1373,15 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
       r->settled = true;
       ++n_settled;
+      // Without the front (DistanceOptions::track_front off), the check the front makes when a
+      // vertex joins it is made here, before the ring walk relies on the vertex's single fan.
+      const bool track = opts.track_front || windowed;
+      if (!track) check_joining(v);
       // The ring walk first: its cache misses overlap the caller's callback.
       start_ring(v);
       const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
-      const bool expanded = expand_vertex(v);
+      const bool expanded = track && expand_vertex(v);
       if (windowed && !expanded && !r->seed) r->unexpanded = true;
       settle_neighbours(v);
       if (windowed) expand_late_neighbours();

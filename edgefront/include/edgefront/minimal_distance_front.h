@@ -69,6 +69,14 @@ struct DistanceOptions {
   /// distance plus its longest edge): O(front), like the default's. Off: one virtual source per vertex.
   /// Vertex and surface-point sources only; a loop source ignores it.
   bool windows = false;
+  /// Keep the Minimal Edge Front under the distances: `front_size`, `peak_front` and `validate`
+  /// follow it, and its loops count in the working memory. The distances do not need it. Off, the
+  /// front is not expanded: about 10% less time for a full field (bench/results/geodesic-speed.md,
+  /// session 8), the same distances, directions, order and stop; `peak_front` is then 0 for vertex
+  /// and point sources, and the working memory counts the distance records and the queue.
+  /// Non-manifold vertices are still refused (when they settle instead of when they are reached).
+  /// Ignored (kept on) in window mode, which expands the front to know where windows start.
+  bool track_front = true;
 };
 
 /// Why a distance computation stopped.
