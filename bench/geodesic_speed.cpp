@@ -8,7 +8,8 @@
 //    the armadillo's 52K triangles become 832K) with OpenMesh's LoopT; from N random sources
 //    (default 5), edgefront::geodesic_distance against edgefront::dijkstra_distance (binary heap,
 //    same mesh) in the same run, each timed R times (default 3) alternately, the median taken. Both
-//    with default options (directions on) and with directions off. Also a sanity check of the
+//    with default options (directions on) and with directions off, and with the edge front not
+//    tracked (DistanceOptions::track_front off, directions on). Also a sanity check of the
 //    MDF's values: Euclidean <= MDF <= Dijkstra (up to 1e-9 relative).
 // 2. d_max queries: the same query (source at the centre vertex, d_max D, default 0.5) on a
 //    planar grid of SMALL x SMALL cells (default 100) and one of LARGE x LARGE cells (default
@@ -222,9 +223,11 @@ void full_field(const Args& a) {
             << secs(subdiv_s) << ")\n\n"
             << "Median of " << a.reps << " alternating runs per source and configuration.\n\n"
             << "| source | Dijkstra | MDF | **MDF / Dijkstra** | Dijkstra, no directions | MDF, no directions | ratio, no "
-               "directions | MDF peak front | MDF peak working memory | Dijkstra / MDF distance (mean) | MDF below "
-               "Euclidean / above Dijkstra |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<double> ratios, ratios_nodir;
+               "directions | MDF, front not tracked | ratio, front not tracked | MDF peak front | MDF peak working memory | "
+               "Dijkstra / MDF distance (mean) | MDF below Euclidean / above Dijkstra |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<double> ratios, ratios_nodir, ratios_untracked;
+  bool untracked_same = true;  // DistanceOptions::track_front off gave the same distances
   double cpu_dij = 0, cpu_mdf = 0;  // summed thread CPU time of the runs with directions
   double min_cpu_dij = 0, min_cpu_mdf = 0;  // summed over sources: the fastest run's CPU time
   for (const int s : sources) {
@@ -233,7 +236,9 @@ void full_field(const Args& a) {
     DistanceOptions with_dir, no_dir;
     no_dir.directions = false;
     with_dir.windows = no_dir.windows = a.windows;
-    std::vector<double> td, tm, tdn, tmn, cd, cm;
+    DistanceOptions untracked = with_dir;
+    untracked.track_front = false;
+    std::vector<double> td, tm, tdn, tmn, tmu, cd, cm;
     DistanceField mdf, dij;
     for (int r = 0; r < a.reps; ++r) {
       double c = thread_cpu_seconds();
@@ -254,6 +259,10 @@ void full_field(const Args& a) {
       t = Clock::now();
       (void)edgefront::geodesic_distance(mesh, src, no_dir);
       tmn.push_back(seconds_since(t));
+      t = Clock::now();
+      const DistanceField mu = edgefront::geodesic_distance(mesh, src, untracked);
+      tmu.push_back(seconds_since(t));
+      untracked_same = untracked_same && mu.distance == mdf.distance;
     }
     // Sanity: Euclidean <= MDF <= Dijkstra.
     const Vec3 ps = mesh.point(VertexHandle(s));
@@ -287,29 +296,34 @@ void full_field(const Args& a) {
       bounds << " (worst: vertex " << worst_vertex << ", MDF " << std::setprecision(8) << mdf.distance[static_cast<size_t>(worst_vertex)]
              << " < Euclidean " << (mesh.point(VertexHandle(worst_vertex)) - ps).norm() << ")";
     if (unreached) bounds << "; " << unreached << " unreached by the MDF";
-    const double md = median(td), mm = median(tm), mdn = median(tdn), mmn = median(tmn);
+    const double md = median(td), mm = median(tm), mdn = median(tdn), mmn = median(tmn), mmu = median(tmu);
     min_cpu_dij += *std::min_element(cd.begin(), cd.end());
     min_cpu_mdf += *std::min_element(cm.begin(), cm.end());
     ratios.push_back(mm / md);
     ratios_nodir.push_back(mmn / mdn);
+    ratios_untracked.push_back(mmu / md);
     std::ostringstream ratio_text;
     ratio_text << std::setprecision(4) << (compared ? ratio_sum / static_cast<double>(compared) : std::nan(""));
     std::cout << "| " << s << " | " << secs(md) << " | " << secs(mm) << " | **" << std::setprecision(3) << mm / md
               << "** | " << secs(mdn) << " | " << secs(mmn) << " | " << std::setprecision(3) << mmn / mdn << " | "
-              << mdf.peak_front << " | " << bytes(static_cast<long long>(mdf.peak_working_memory_bytes)) << " | "
+              << secs(mmu) << " | " << std::setprecision(3) << mmu / md << " | " << mdf.peak_front << " | " << bytes(static_cast<long long>(mdf.peak_working_memory_bytes)) << " | "
               << ratio_text.str() << " | " << bounds.str() << " |\n";
   }
-  double mean = 0, mean_nodir = 0;
+  double mean = 0, mean_nodir = 0, mean_untracked = 0;
   for (size_t i = 0; i < ratios.size(); ++i) {
     mean += ratios[i] / static_cast<double>(ratios.size());
     mean_nodir += ratios_nodir[i] / static_cast<double>(ratios.size());
+    mean_untracked += ratios_untracked[i] / static_cast<double>(ratios.size());
   }
   std::cout << "\nMean MDF / Dijkstra time: **" << std::setprecision(3) << mean << "** with directions (target <= 1.5: "
             << (mean <= 1.5 ? "met" : "MISSED") << "), " << mean_nodir << " without.\n"
             << "Ratio of the summed thread CPU times (with directions, all runs; not counting time spent waiting for a "
                "core): "
             << std::setprecision(3) << cpu_mdf / cpu_dij << "; of the fastest run's CPU time per source: "
-            << min_cpu_mdf / min_cpu_dij << ".\n";
+            << min_cpu_mdf / min_cpu_dij << ".\n"
+            << "With the edge front not tracked (`DistanceOptions::track_front = false`, directions on): "
+            << std::setprecision(3) << mean_untracked << "; the same distances: " << (untracked_same ? "yes" : "**NO**")
+            << ".\n";
 }
 
 // ---- part 2: d_max queries -----------------------------------------------------------------
