@@ -431,16 +431,22 @@ TEST(Mdf, DisconnectedPartsAreInfiniteNeverZero) {
   EXPECT_GT(inf, 0u);
 }
 
-// Property 9: a closed edge path as source; on a planar grid the distance to a straight
-// horizontal line of vertices on its ahead side is the height above it.
-TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
-  const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 16});
-  // A rectangle loop: y = -0.5 from x = -0.75 to 0.75 and back along y = -0.25 (ahead = outside).
+// A rectangle loop on the 16-cell grid: y = -0.5 from x = -0.75 to 0.75 and back along y = -0.25.
+std::vector<VertexHandle> rectangle_ring(const Mesh& mesh) {
   std::vector<VertexHandle> ring;
   for (double x = -0.75; x <= 0.75 + 1e-9; x += 0.125) ring.push_back(nearest_vertex(mesh, Vec3(x, -0.5, 0)));
   ring.push_back(nearest_vertex(mesh, Vec3(0.75, -0.375, 0)));
   for (double x = 0.75; x >= -0.75 - 1e-9; x -= 0.125) ring.push_back(nearest_vertex(mesh, Vec3(x, -0.25, 0)));
   ring.push_back(nearest_vertex(mesh, Vec3(-0.75, -0.375, 0)));
+  return ring;
+}
+
+// Property 9: a closed edge path as source; on a planar grid the distance to a straight
+// horizontal line of vertices on its ahead side is the height above it.
+TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
+  const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 16});
+  // The rectangle loop (ahead = outside).
+  const std::vector<VertexHandle> ring = rectangle_ring(mesh);
   for (LoopSide side : {LoopSide::Left, LoopSide::Right}) {
     const FrontSource src = loop_from_vertices(mesh, ring, side);
     const DistanceField f = geodesic_distance(mesh, src);
@@ -467,11 +473,7 @@ TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
 // refused (when it settles; the front refuses it when it reaches it).
 TEST(Mdf, UntrackedFrontLoopSourceAndNonManifoldVertex) {
   const Mesh grid = shapes::grid(shapes::GridOptions{.cells = 16});
-  std::vector<VertexHandle> ring;
-  for (double x = -0.75; x <= 0.75 + 1e-9; x += 0.125) ring.push_back(nearest_vertex(grid, Vec3(x, -0.5, 0)));
-  ring.push_back(nearest_vertex(grid, Vec3(0.75, -0.375, 0)));
-  for (double x = 0.75; x >= -0.75 - 1e-9; x -= 0.125) ring.push_back(nearest_vertex(grid, Vec3(x, -0.25, 0)));
-  ring.push_back(nearest_vertex(grid, Vec3(-0.75, -0.375, 0)));
+  const std::vector<VertexHandle> ring = rectangle_ring(grid);
   DistanceOptions untracked;
   untracked.track_front = false;
   for (LoopSide side : {LoopSide::Left, LoopSide::Right}) {
@@ -480,16 +482,15 @@ TEST(Mdf, UntrackedFrontLoopSourceAndNonManifoldVertex) {
     EXPECT_EQ(a.distance, b.distance);
     EXPECT_EQ(a.order, b.order);
   }
-  // A bow tie: two triangles meeting at vertex c.
-  Mesh mesh;
-  const auto c = mesh.add_vertex({0, 0, 0});
-  const auto a1 = mesh.add_vertex({1, 0.5, 0}), a2 = mesh.add_vertex({1, -0.5, 0});
-  const auto b1 = mesh.add_vertex({-1, 0.5, 0}), b2 = mesh.add_vertex({-1, -0.5, 0});
-  mesh.add_face(c, a2, a1);
-  mesh.add_face(c, b1, b2);
-  ASSERT_FALSE(mesh.is_manifold(c));
-  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(a1), untracked), TopologyError);
-  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(c), untracked), TopologyError);
+  // A triangle hung on a corner of a small grid by one vertex.
+  Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 2});
+  const VertexHandle corner = nearest_vertex(mesh, Vec3(1, 1, 0));
+  const VertexHandle t1 = mesh.add_vertex(Vec3(2, 1.2, 0)), t2 = mesh.add_vertex(Vec3(2, 1.8, 0));
+  ASSERT_TRUE(mesh.add_face(corner, t1, t2).is_valid());
+  ASSERT_FALSE(mesh.is_manifold(corner));
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(t1), untracked), TopologyError);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(nearest_vertex(mesh, Vec3(-1, -1, 0))), untracked),
+               TopologyError);
 }
 
 TEST(Mdf, SurfacePointSource) {
