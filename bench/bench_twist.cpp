@@ -5,7 +5,9 @@
 ///               [--thickness t] [--side-weight W] [--thin-wall E] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
-///               [--no-rejoin] [--peel N] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
+///               [--no-rejoin] [--peel N] [--turned N] [--no-post] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
+///   bench_twist --explain-mesh MESH [--shapes S] [--thickness t] [--explain 2]
+///                                     where the same-orientation pairs of a saved result lie
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
 ///   bench_twist --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]
 ///                                     GCS on a point file with and without the twist operation:
@@ -37,11 +39,15 @@
 /// thinner than the faces too).
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
-/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`).
+/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`),
+/// `--turned N` the largest turned-over patch the final call removes or collapses
+/// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped").
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
-/// `--only-repair` skips the runs without the operation (their columns are then zero).
+/// `--only-repair` skips the runs without the operation (their columns are then zero),
+/// `--no-post` turns off the reconstructor's post-processing of the returned mesh (projection to
+/// the samples and surface fit), so the result is the loop's mesh as the final twist call left it.
 /// Prints a markdown table.
 
 #include <algorithm>
@@ -52,6 +58,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -214,6 +221,7 @@ void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const
   };
   auto vote = [&](edgefront::FaceHandle f) { return truth.judge(mesh.calc_face_centroid(f), mesh.calc_face_normal(f).normalized()); };
   size_t same = 0, both_right = 0, one_wrong = 0, undecided = 0, border = 0, detected = 0;
+  std::set<int> wrong_faces;  // the distinct faces the exact normals reject among the pairs
   std::map<size_t, size_t> small_comp;  // component faces -> pairs with a face in it (components below 100 faces)
   for (const auto& [f, g] : pairs) {
     const int cf = comp(f), cg = comp(g);
@@ -222,6 +230,8 @@ void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const
     if (vf > 0 && vg > 0) ++both_right;
     else if (vf < 0 || vg < 0) ++one_wrong;
     else ++undecided;
+    if (vf < 0) wrong_faces.insert(f.idx());
+    if (vg < 0) wrong_faces.insert(g.idx());
     border += on_border(f) || on_border(g);
     detected += in_region.count(f.idx()) || in_region.count(g.idx());
     const size_t smaller = std::min(comp_faces[static_cast<size_t>(cf)], comp_faces[static_cast<size_t>(cg)]);
@@ -236,6 +246,10 @@ void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const
   }
   std::fprintf(stderr, "%s seed %zu: %zu pairs; same component %zu; both right %zu, one wrong %zu, undecided %zu; touching a border %zu; in a detected region %zu; components %zu",
                label.c_str(), seed, pairs.size(), same, both_right, one_wrong, undecided, border, detected, labels.count);
+  double wrong_area = 0, area = 0;
+  for (auto f : mesh.faces()) area += mesh.calc_face_area(f);
+  for (int k : wrong_faces) wrong_area += mesh.calc_face_area(edgefront::FaceHandle(k));
+  std::fprintf(stderr, "; distinct rejected faces in the pairs %zu (area share %.5f)", wrong_faces.size(), area > 0 ? wrong_area / area : 0.0);
   std::fprintf(stderr, "; face counts of components:");
   std::vector<size_t> sizes = comp_faces;
   std::sort(sizes.rbegin(), sizes.rend());
@@ -354,11 +368,12 @@ int main(int argc, char** argv) {
   double thin_wall = twist::DetectOptions{}.thin_wall;
   int explain = 0;
   bool only_repair = false, trace = false, rejoin = gcs::TwistOperationOptions{}.rejoin_borders;
-  int peel = -1;
+  int peel = -1, turned = -1;
   std::string dump;
+  bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
-  std::string only, cloud_path;
+  std::string only, cloud_path, explain_mesh;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -390,7 +405,10 @@ int main(int argc, char** argv) {
     else if (a == "--no-rejoin") rejoin = false;
     else if (a == "--rejoin") rejoin = true;
     else if (a == "--peel") peel = std::stoi(next());
+    else if (a == "--turned") turned = std::stoi(next());
     else if (a == "--dump") dump = next();
+    else if (a == "--explain-mesh") explain_mesh = next();
+    else if (a == "--no-post") post = false;
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
@@ -408,6 +426,18 @@ int main(int argc, char** argv) {
   }
   if (!cloud_path.empty()) {
     cloud_run(cloud_path, vertices, seeds, retest_all, rejoin, peel);
+    return 0;
+  }
+  if (!explain_mesh.empty()) {
+    // Where the same-orientation pairs of a saved result (e.g. a --dump file) lie, against the
+    // exact normals of the shape (--shapes, first name; --thickness for the shell).
+    const std::string shape = only.empty() ? std::string("vault-shell") : split(only).front();
+    edgefront::shapes::SampleOptions dense;
+    dense.points = 200000;
+    dense.seed = 999;
+    if (only_thickness > 0) dense.shape.thickness = only_thickness;
+    const twist::ReferenceNormals truth(edgefront::shapes::sample(shape, dense));
+    explain_pairs(edgefront::load_mesh(explain_mesh), truth, explain_mesh, 0, std::max(explain, 1));
     return 0;
   }
   std::vector<Case> cases = {{"vault-shell t/R=0.2", "vault-shell", 0.2},   {"vault-shell t/R=0.1", "vault-shell", 0.1},
@@ -430,8 +460,8 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | re-joined | twist time share | twist CPU share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | twist time share | twist CPU share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
     std::string label = c.label;
@@ -457,6 +487,7 @@ int main(int argc, char** argv) {
       ro.target_vertices = case_vertices;
       ro.seed = seed;
       ro.orient_winners = orient_winners;
+      ro.project_to_samples = ro.fit_surface = post;
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
@@ -478,6 +509,7 @@ int main(int argc, char** argv) {
           to.repair.regrow_cut_outs = regrow;
           to.rejoin_borders = rejoin;
           if (peel >= 0) to.repair.peel_flaps = peel;
+          if (turned >= 0) to.repair.drop_turned_patches = static_cast<size_t>(turned);
           if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
           op = std::make_shared<gcs::TwistOperation>(to);
           if (trace) rec.add_operation(std::make_shared<TraceOperation>("before twist"));
@@ -505,11 +537,11 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
                   label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
                   cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
                   cons[1].judged, cons[1].undecided, left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, 100 * share, 100 * cpu_share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

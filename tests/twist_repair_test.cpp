@@ -101,8 +101,9 @@ TEST(TwistRepair, ReferenceNormalsGiveTheSameResult) {
   EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
 }
 
-/// Adds an n x n grid of unit cells at height z with offset (x0, y0), normals +z.
-void add_grid(Mesh& m, int n, double x0, double y0, double z) {
+/// Adds an n x n grid of unit cells at height z with offset (x0, y0), normals +z (-z when
+/// `down`); returns its vertices, row by row.
+std::vector<Mesh::VertexHandle> add_grid(Mesh& m, int n, double x0, double y0, double z, bool down = false) {
   std::vector<Mesh::VertexHandle> v;
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= n; ++i) v.push_back(m.add_vertex(Vec3(x0 + i, y0 + j, z)));
@@ -110,10 +111,16 @@ void add_grid(Mesh& m, int n, double x0, double y0, double z) {
   const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * (n + 1) + i)]; };
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      if (down) {
+        m.add_face(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+        m.add_face(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+      } else {
+        m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
     }
   }
+  return v;
 }
 
 TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
@@ -138,6 +145,11 @@ TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
   Mesh kept = m;
   EXPECT_EQ(twist::repair(kept, o).flap_faces_removed, 0u) << "off by default";
   EXPECT_EQ(kept.n_faces(), 208u);
+  o.drop_turned_patches = 4;
+  const twist::RepairReport right = twist::repair(kept, o);
+  EXPECT_EQ(right.turned_faces_removed + right.turned_faces_collapsed, 0u) << "the flap is oriented right: not turned over";
+  EXPECT_EQ(kept.n_faces(), 208u);
+  o.drop_turned_patches = 0;
   o.peel_flaps = 1;
   const twist::RepairReport r = twist::repair(m, o);
   EXPECT_EQ(r.repairs, 0u);
@@ -152,6 +164,81 @@ TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
     o.min_cut_piece_share = share;
     EXPECT_THROW(twist::repair(m, o), InvalidInput) << share;
   }
+}
+
+/// Two parallel 6 x 6 plates 0.5 apart, the two walls of a slab facing out (z = 0 down, z = 0.5
+/// up), and reference points with those normals on both.
+struct Slab {
+  Mesh mesh;
+  std::vector<Mesh::VertexHandle> top;
+  edgefront::PointCloud cloud;
+};
+Slab slab() {
+  Slab s;
+  add_grid(s.mesh, 6, 0, 0, 0, true);
+  s.top = add_grid(s.mesh, 6, 0, 0, 0.5);
+  for (double x = 0; x <= 6; x += 0.25) {
+    for (double y = 0; y <= 6; y += 0.25) {
+      for (double z : {0.0, 0.5}) {
+        s.cloud.points.emplace_back(x, y, z);
+        s.cloud.normals.emplace_back(0, 0, z > 0 ? 1 : -1);
+      }
+    }
+  }
+  return s;
+}
+
+TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
+  // One triangle on the top plate's border edge y = 0, folded back under the plate (normal -z,
+  // pointing at the bottom plate's back: a same-orientation layer). The reference rejects it,
+  // but alone against right neighbours it is no region the detector repairs (no core).
+  Slab s = slab();
+  const twist::ReferenceNormals ref(s.cloud);
+  // The top plate's border halfedge runs (3, 0) -> (2, 0); the flap continues it.
+  const FaceHandle flap = s.mesh.add_face(s.top[3], s.top[2], s.mesh.add_vertex(Vec3(2.5, 0.8, 0.45)));
+  ASSERT_TRUE(flap.is_valid());
+  ASSERT_LT(s.mesh.calc_face_normal(flap)[2], -0.9);
+  ASSERT_GT(twist::same_orientation_pairs(s.mesh).size(), 0u);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  Mesh kept = s.mesh;
+  const twist::RepairReport off = twist::repair(kept, o);
+  EXPECT_EQ(off.repairs, 0u);
+  EXPECT_EQ(off.turned_faces_removed, 0u) << "off by default";
+  EXPECT_EQ(kept.n_faces(), 145u);
+  o.drop_turned_patches = 4;
+  const twist::RepairReport r = twist::repair(s.mesh, o);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.turned_faces_removed, 1u);
+  EXPECT_EQ(r.turned_faces_collapsed, 0u);
+  EXPECT_EQ(s.mesh.n_faces(), 144u);
+  EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
+  EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
+  o.drop_turned_patches = 65;
+  EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
+}
+
+TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
+  // The top plate's vertex (3, 3) moved just across the edge (4, 3)-(4, 4) of its convex star:
+  // exactly one face turns over, a sliver among right neighbours, facing the bottom plate's
+  // back. Collapsing its shortest edge removes it and leaves every face right.
+  Slab s = slab();
+  const twist::ReferenceNormals ref(s.cloud);
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.05, 3.1, 0.5));
+  size_t turned = 0;
+  for (FaceHandle f : s.mesh.faces()) turned += s.mesh.calc_face_normal(f)[2] < 0 && s.mesh.calc_face_centroid(f)[2] > 0.25;
+  ASSERT_EQ(turned, 1u);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.drop_turned_patches = 4;
+  const twist::RepairReport r = twist::repair(s.mesh, o);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.turned_faces_collapsed, 1u);
+  EXPECT_EQ(r.turned_faces_removed, 0u);
+  EXPECT_EQ(s.mesh.n_faces(), 142u) << "a collapse removes the sliver and its neighbour across the edge";
+  EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
+  EXPECT_EQ(edgefront::compute_stats(s.mesh).components, 2u);
+  EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
 }
 
 TEST(TwistRepair, CorrectMeshIsLeftAlone) {

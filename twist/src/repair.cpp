@@ -389,6 +389,96 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   return removed;
 }
 
+/// Removes or collapses small turned-over patches (see `RepairOptions::drop_turned_patches`).
+/// Runs after the global orientation (the reference verdicts are those of the final sides).
+void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
+  if (!o.detect.reference || o.drop_turned_patches == 0 || mesh.faces().begin() == mesh.faces().end()) return;
+  DetectOptions d = o.detect;
+  d.restrict_to.reset();
+  d.face_grid = nullptr;
+  d.mean_edge_length = 0;
+  const double edge = detail::mean_edge_length(mesh);
+  std::unordered_map<int, bool> verdict;  // face -> rejected by the reference (thin-wall rule on)
+  auto rejected = [&](FaceHandle f) {
+    const auto it = verdict.find(f.idx());
+    if (it != verdict.end()) return it->second;
+    const auto p = detail::face_points(mesh, f);
+    const Vec3 n = detail::unit_normal(p);
+    const Vec3 c = detail::centroid(p);
+    int vote = n.sqrnorm() > 0 ? reference_vote(*o.detect.reference, o.detect, c, n, edge) : 1;
+    // A face the nearest normal leaves undecided (at a crease or rim its nearest point may lie on
+    // the other wall meeting there, at a right angle) is judged by sides (its own wall), unless
+    // the wall is thinner than the thin-wall rule allows.
+    if (vote == 0 && o.detect.reference_side_weight == 0 &&
+        std::abs(OpenMesh::dot(n, o.detect.reference->nearest_normal(c))) < -o.detect.reference_cos &&
+        !(o.detect.reference->wall_thickness(c) < o.detect.thin_wall * edge)) {
+      vote = o.detect.reference->judge(c, n);
+    }
+    const bool r = vote < 0;
+    verdict.emplace(f.idx(), r);
+    return r;
+  };
+  std::vector<FaceHandle> seeds;
+  for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
+    if (rejected(f)) seeds.push_back(f);
+    if (rejected(g)) seeds.push_back(g);
+  }
+  std::sort(seeds.begin(), seeds.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  std::unordered_set<int> grouped;
+  std::vector<FaceHandle> on_border;
+  std::vector<std::vector<FaceHandle>> interior;
+  for (FaceHandle s : seeds) {
+    if (grouped.count(s.idx())) continue;
+    // The edge-connected group of rejected faces around s, explored with a budget of one more
+    // face than the limit (a bigger group is left to the detector).
+    std::vector<FaceHandle> group{s};
+    grouped.insert(s.idx());
+    for (size_t q = 0; q < group.size() && group.size() <= o.drop_turned_patches; ++q) {
+      for (FaceHandle g : mesh.ff_range(group[q])) {
+        if (!grouped.count(g.idx()) && rejected(g)) {
+          grouped.insert(g.idx());
+          group.push_back(g);
+        }
+      }
+    }
+    if (group.size() > o.drop_turned_patches) continue;
+    bool border = false;
+    for (FaceHandle f : group) {
+      for (VertexHandle v : mesh.fv_range(f)) border = border || mesh.is_boundary(v);
+    }
+    if (border) {
+      on_border.insert(on_border.end(), group.begin(), group.end());
+    } else {
+      interior.push_back(std::move(group));
+    }
+  }
+  const size_t removed = remove_faces(mesh, on_border, o.min_component_faces);
+  report.turned_faces_removed += removed;
+  report.faces_removed += removed;
+  // An interior patch is a sliver (or two) inverted among right neighbours: collapse each face's
+  // shortest collapsible edge (at most half a mean edge long: a longer face is no sliver).
+  for (const auto& group : interior) {
+    for (FaceHandle f : group) {
+      if (!edgefront::is_live(mesh, f)) continue;
+      HalfedgeHandle best;
+      double best_length = 0.5 * edge;
+      for (HalfedgeHandle h : mesh.fh_range(f)) {
+        for (HalfedgeHandle c : {h, mesh.opposite_halfedge_handle(h)}) {
+          const double length = mesh.calc_edge_length(c);
+          if (length <= best_length && mesh.is_collapse_ok(c)) {
+            best = c;
+            best_length = length;
+          }
+        }
+      }
+      if (!best.is_valid()) continue;
+      mesh.collapse(best);
+      ++report.turned_faces_collapsed;
+    }
+  }
+}
+
 /// The global orientation convention (see repair.h).
 void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, RepairReport& report) {
   const size_t nv = mesh.n_vertices();
@@ -492,6 +582,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     throw InvalidInput("twist::repair: option min_cut_piece_share must lie in [0, 1]");
   }
   if (o.peel_flaps < 0 || o.peel_flaps > 16) throw InvalidInput("twist::repair: option peel_flaps must lie in [0, 16]");
+  if (o.drop_turned_patches > 64) throw InvalidInput("twist::repair: option drop_turned_patches must lie in [0, 64]");
   if (!(o.retest_move >= 0) || !std::isfinite(o.retest_move)) {
     throw InvalidInput("twist::repair: option retest_move must be finite and >= 0");
   }
@@ -596,6 +687,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     report.faces_removed += peeled;
   }
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
+  if (!incremental) drop_turned_patches(mesh, o, report);
   if (o.garbage_collect) {
     const size_t before = mesh.n_vertices();
     mesh.garbage_collection();

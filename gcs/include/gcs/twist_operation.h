@@ -25,13 +25,16 @@ struct TwistOperationOptions {
   /// on the border of a region (`max_border_ratio` = 0): in the loop, cutting scattered regions
   /// too gives higher orientation consistency on the vault shells, at the price of more
   /// components (bench/results/twist-vaults.md has both); and the final call peels border flaps
-  /// (`peel_flaps` = 3: faces at a border lying over another layer with the same orientation).
+  /// (`peel_flaps` = 3: faces at a border lying over another layer with the same orientation),
+  /// and, with reference normals, removes or collapses turned-over patches of up to 4 faces that
+  /// lie over the other layer (`drop_turned_patches`).
   twist::RepairOptions repair = default_repair();
   static twist::RepairOptions default_repair() {
     twist::RepairOptions o;
     o.max_border_ratio = 0;
     o.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
     o.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
+    o.drop_turned_patches = 4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
     return o;
   }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
@@ -68,6 +71,7 @@ struct TwistOperationStats {
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
   std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
   std::size_t borders_rejoined = 0;    ///< border strips and loop merges added after repairs
+  std::size_t turned_faces_dropped = 0;  ///< turned-over patch faces removed or collapsed by the final call
 };
 
 class TwistOperation : public Operation {

@@ -54,6 +54,19 @@ struct RepairOptions {
   /// face peeled before. A run that cut nothing then keeps its mesh as it is (the GCS hook turns
   /// it on: the loop's own border flaps are the loop's business).
   bool peel_from_cuts = false;
+  /// At the end of a full repair, after the global orientation, with reference normals only:
+  /// small turned-over patches the detector leaves alone (no core of orientation evidence, see
+  /// `DetectOptions::require_orientation_evidence`) but that lie over another layer with their
+  /// orientation. A patch is an edge-connected group of at most this many faces the reference
+  /// rejects (`reference_vote` with the thin-wall rule: faces on a wall thinner than the edges
+  /// stay undecided and are never touched), at least one of which has a same-orientation partner
+  /// (`same_orientation_pairs`). A patch touching the mesh border is removed (a flap turned over
+  /// at a rim, and the tiny pieces that leaves); an interior one (a sliver inverted by the
+  /// smoothing among right neighbours) is collapsed, each face by its shortest collapsible edge.
+  /// Each such face makes every face of the other layer within the radius a same-orientation
+  /// pair (tens of pairs from one face of a few thousandths of the area). Bigger groups are the
+  /// detector's business. In [0, 64]; 0 = off (the default; the GCS hook turns it on).
+  size_t drop_turned_patches = 0;
   /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
   /// hole; falls back to a hole when a loop is not simple.
@@ -102,6 +115,8 @@ struct RepairReport {
   size_t faces_visited = 0;            ///< by the alternating fronts, all repairs together
   size_t faces_removed = 0;             ///< all removals (tiny pieces, cut-outs, flaps)
   size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairOptions::peel_flaps`)
+  size_t turned_faces_removed = 0;      ///< faces of turned-over border patches removed (`drop_turned_patches`)
+  size_t turned_faces_collapsed = 0;    ///< faces of turned-over interior patches collapsed (`drop_turned_patches`)
   size_t vertices_duplicated = 0;
   size_t cut_edges = 0;
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
