@@ -426,8 +426,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
   std::sort(seeds.begin(), seeds.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
   seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
   std::unordered_set<int> grouped;
-  std::vector<FaceHandle> on_border;
-  std::vector<std::vector<FaceHandle>> interior;
+  std::vector<std::vector<FaceHandle>> groups;
   for (FaceHandle s : seeds) {
     if (grouped.count(s.idx())) continue;
     // The edge-connected group of rejected faces around s, explored with a budget of one more
@@ -442,23 +441,14 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
         }
       }
     }
-    if (group.size() > o.drop_turned_patches) continue;
-    bool border = false;
-    for (FaceHandle f : group) {
-      for (VertexHandle v : mesh.fv_range(f)) border = border || mesh.is_boundary(v);
-    }
-    if (border) {
-      on_border.insert(on_border.end(), group.begin(), group.end());
-    } else {
-      interior.push_back(std::move(group));
-    }
+    if (group.size() <= o.drop_turned_patches) groups.push_back(std::move(group));
   }
-  const size_t removed = remove_faces(mesh, on_border, o.min_component_faces);
-  report.turned_faces_removed += removed;
-  report.faces_removed += removed;
-  // An interior patch is a sliver (or two) inverted among right neighbours: collapse each face's
-  // shortest collapsible edge (at most half a mean edge long: a longer face is no sliver).
-  for (const auto& group : interior) {
+  // A turned face with an edge shorter than half a mean edge is a sliver (inverted by the
+  // smoothing among right neighbours, or bevelled over a rim): collapsing that edge removes it
+  // and keeps the surface around it closed. A turned face on the border that is no sliver is
+  // removed (a flap turned over at a rim); an interior one is left (a hole would be worse).
+  std::vector<FaceHandle> flaps;
+  for (const auto& group : groups) {
     for (FaceHandle f : group) {
       if (!edgefront::is_live(mesh, f)) continue;
       HalfedgeHandle best;
@@ -472,11 +462,19 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
           }
         }
       }
-      if (!best.is_valid()) continue;
-      mesh.collapse(best);
-      ++report.turned_faces_collapsed;
+      if (best.is_valid()) {
+        mesh.collapse(best);
+        ++report.turned_faces_collapsed;
+        continue;
+      }
+      bool border = false;
+      for (VertexHandle v : mesh.fv_range(f)) border = border || mesh.is_boundary(v);
+      if (border) flaps.push_back(f);
     }
   }
+  const size_t removed = remove_faces(mesh, flaps, o.min_component_faces);
+  report.turned_faces_removed += removed;
+  report.faces_removed += removed;
 }
 
 /// The global orientation convention (see repair.h).
