@@ -2,6 +2,7 @@
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
 ///                   [--rejoin-borders] [--no-fit] [--fit-rounds R] [--fit-smoothness W]
+///                   [--no-delaunay-flips]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
@@ -71,6 +72,10 @@ int main(int argc, char** argv) {
   app.add_option("--fit-smoothness", options.fit_smoothness,
                  "smoothness weight of the surface fit, >= 0 (default 0.1; larger fits less)")
       ->check(CLI::Range(0.0, 1e9));
+  bool no_flips = false;
+  app.add_flag("--no-delaunay-flips", no_flips,
+               "do not flip edges of the result toward a Delaunay triangulation (on by default: only between nearly "
+               "coplanar faces, vertex positions unchanged)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
@@ -89,6 +94,7 @@ int main(int argc, char** argv) {
     options.create_borders = options.merge_borders = !no_borders;
     options.orient_winners = !no_orient;
     options.fit_surface = !no_fit;
+    options.delaunay_flips = !no_flips;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");

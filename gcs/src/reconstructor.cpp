@@ -1153,6 +1153,7 @@ struct Reconstructor::Impl {
     if (opt.project_to_samples) {
       detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * ell);
     }
+    if (opt.delaunay_flips) detail::delaunay_flips(r.mesh, 0.9, 10);
     if (opt.fit_surface) {
       const auto t_fit = Clock::now();
       detail::SurfaceFitParams fp;

@@ -1,7 +1,13 @@
 #include "detail/sample_projection.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <utility>
 #include <vector>
+
+#include "detail/self_intersection.h"
+#include "edgefront/error.h"
 
 namespace gcs::detail {
 
@@ -20,7 +26,90 @@ Vec3 moved_face_normal(const Mesh& mesh, FaceHandle f, VertexHandle v, const Vec
   return (p[1] - p[0]) % (p[2] - p[0]);
 }
 
+double angle_at(const Vec3& apex, const Vec3& a, const Vec3& b) {
+  const Vec3 u = a - apex, w = b - apex;
+  return std::atan2((u % w).norm(), u | w);
+}
+
+Vec3 unit_normal_of(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a) % (c - a);
+  const double len = n.norm();
+  return len > 0 ? n / len : Vec3(0, 0, 0);
+}
+
+// The unordered vertex pair {a, b} as (smaller index, larger index).
+std::pair<int, int> pair_key(VertexHandle a, VertexHandle b) {
+  return a.idx() < b.idx() ? std::pair<int, int>(a.idx(), b.idx()) : std::pair<int, int>(b.idx(), a.idx());
+}
+
+// Whether the vertex pair {a, b} is one of `keys` (sorted pair_keys).
+bool listed(const std::vector<std::pair<int, int>>& keys, VertexHandle a, VertexHandle b) {
+  return std::binary_search(keys.begin(), keys.end(), pair_key(a, b));
+}
+
+// One run of Delaunay flips (see delaunay_flips), skipping the edges whose end pairs are in
+// `frozen`; the flipped edges in order.
+std::vector<edgefront::EdgeHandle> flip_pass(Mesh& mesh, double min_dihedral_cos, int max_passes,
+                                             const std::vector<std::pair<int, int>>& frozen) {
+  std::vector<edgefront::EdgeHandle> done;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    const std::size_t before = done.size();
+    for (auto e : mesh.edges()) {
+      if (mesh.status(e).deleted() || mesh.is_boundary(e) || !mesh.is_flip_ok(e)) continue;
+      const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+      const VertexHandle p = mesh.from_vertex_handle(h0), q = mesh.to_vertex_handle(h0);
+      const VertexHandle r = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
+      const VertexHandle t = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
+      const auto too_low = [&](VertexHandle x) { return mesh.valence(x) <= (mesh.is_boundary(x) ? 2u : 3u); };
+      if (too_low(p) || too_low(q) || listed(frozen, p, q)) continue;
+      const Vec3 &xp = mesh.point(p), &xq = mesh.point(q), &xr = mesh.point(r), &xt = mesh.point(t);
+      if (angle_at(xr, xp, xq) + angle_at(xt, xq, xp) <= std::numbers::pi + 1e-9) continue;
+      const Vec3 n0 = unit_normal_of(xp, xq, xr), n1 = unit_normal_of(xq, xp, xt);
+      if ((n0 | n1) < min_dihedral_cos) continue;
+      const Vec3 m0 = unit_normal_of(xp, xt, xr), m1 = unit_normal_of(xt, xq, xr);
+      if ((m0 | n0) < min_dihedral_cos || (m0 | n1) < min_dihedral_cos || (m1 | n0) < min_dihedral_cos ||
+          (m1 | n1) < min_dihedral_cos)
+        continue;
+      mesh.flip(e);
+      done.push_back(e);
+    }
+    if (done.size() == before) break;
+  }
+  return done;
+}
+
 }  // namespace
+
+std::size_t delaunay_flips(Mesh& mesh, double min_dihedral_cos, int max_passes) {
+  if (!(min_dihedral_cos >= -1 && min_dihedral_cos <= 1))
+    throw edgefront::InvalidInput("gcs Delaunay flips: min_dihedral_cos must be in [-1, 1]");
+  if (max_passes < 0) throw edgefront::InvalidInput("gcs Delaunay flips: max_passes must be >= 0");
+  const std::vector<std::pair<int, int>> pairs_before = self_intersecting_face_pairs(mesh);
+  std::vector<std::pair<int, int>> frozen;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const std::vector<edgefront::EdgeHandle> done = flip_pass(mesh, min_dihedral_cos, max_passes, frozen);
+    if (done.empty()) return 0;
+    std::vector<std::pair<int, int>> fresh;
+    for (const auto& pair : self_intersecting_face_pairs(mesh))
+      if (!std::binary_search(pairs_before.begin(), pairs_before.end(), pair)) fresh.push_back(pair);
+    if (fresh.empty()) {
+      mesh.update_face_normals();
+      return done.size();
+    }
+    // A flip made faces intersect: undo every flip (in reverse order: each flip of an edge is
+    // undone by flipping it again) and try again without flipping the edges of those faces.
+    for (auto it = done.rbegin(); it != done.rend(); ++it) mesh.flip(*it);
+    for (const auto& pair : fresh) {
+      for (const int f : {pair.first, pair.second}) {
+        for (auto h : mesh.fh_range(FaceHandle(f)))
+          frozen.push_back(pair_key(mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)));
+      }
+    }
+    std::sort(frozen.begin(), frozen.end());
+    frozen.erase(std::unique(frozen.begin(), frozen.end()), frozen.end());
+  }
+  return 0;
+}
 
 std::size_t project_to_samples(Mesh& mesh, const CloudQuery& nearest, double max_move, double min_face_cos) {
   std::vector<Vec3> target(mesh.n_vertices());

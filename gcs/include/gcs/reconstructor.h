@@ -122,6 +122,14 @@ struct ReconstructOptions {
   /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
   /// The loop's own mesh (Reconstructor::mesh()) is not moved.
   bool project_to_samples = true;
+  /// Post-processing of the returned mesh, after project_to_samples and before the fit: interior
+  /// edges whose two opposite angles sum to more than 180 degrees are flipped (toward a Delaunay
+  /// triangulation on the surface) where the two faces and the two new faces are within about 25
+  /// degrees of each other (creases stay) and no end drops below valence 3 (2 on a border); flips that would create
+  /// a self-intersecting face pair are not made. Vertex positions do not change. It removes most
+  /// of the loop's thin faces (on the kitten at 5K vertices the smallest angle goes from about
+  /// 9 to about 21 degrees); the distances to the samples hardly change.
+  bool delaunay_flips = true;
   /// Post-processing of the returned mesh, after project_to_samples: a least-squares fit that moves
   /// every vertex along its normal so that the samples lie on the triangles closest to them (the
   /// chord error between vertices on a curved surface included), with a smoothness term between
