@@ -15,6 +15,7 @@
 #include "render/image.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
+#include "gcs/evaluation.h"
 
 namespace {
 
@@ -172,6 +173,22 @@ TEST_F(GcsCli, FitOptionsAreCheckedAndNoFitKeepsTheConnectivity) {
     EXPECT_NE(r.err.find("--fit-"), std::string::npos) << bad << ": " << r.err;
     EXPECT_FALSE(fs::exists(c)) << bad;
   }
+}
+
+// --no-delaunay-flips (with --no-fit, so that the positions are comparable) gives the same vertices
+// and a different triangulation whose smallest angle is not larger than with the flips.
+TEST_F(GcsCli, NoDelaunayFlipsIsAcceptedAndKeepsTheVertexCount) {
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 150 --seed 2 --no-twist --no-fit --quiet";
+  ASSERT_EQ(run(q(vault()) + " -o " + q(a) + common).exit_code, 0);
+  const eftest::CommandResult rb = run(q(vault()) + " -o " + q(b) + common + " --no-delaunay-flips");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  const edgefront::Mesh ma = edgefront::load_mesh(a), mb = edgefront::load_mesh(b);
+  ASSERT_EQ(ma.n_vertices(), mb.n_vertices());
+  ASSERT_EQ(ma.n_faces(), mb.n_faces());
+  for (auto v : ma.vertices()) EXPECT_EQ(ma.point(v), mb.point(v)) << v.idx();
+  EXPECT_NE(eftest::slurp(a), eftest::slurp(b));  // some edges were flipped
+  EXPECT_GE(gcs::mesh_validity(ma).min_angle_deg, gcs::mesh_validity(mb).min_angle_deg);
 }
 
 }  // namespace
