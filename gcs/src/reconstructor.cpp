@@ -1153,7 +1153,11 @@ struct Reconstructor::Impl {
     if (opt.project_to_samples) {
       detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * ell);
     }
-    if (opt.delaunay_flips) detail::delaunay_flips(r.mesh, 0.9, 10);
+    if (opt.delaunay_flips) {
+      const auto t_flips = Clock::now();
+      detail::delaunay_flips(r.mesh, 0.9, 10);
+      r.seconds_fit += seconds_since(t_flips);
+    }
     if (opt.fit_surface) {
       const auto t_fit = Clock::now();
       detail::SurfaceFitParams fp;
@@ -1169,7 +1173,7 @@ struct Reconstructor::Impl {
       fp.measure_after = false;
       const std::vector<Vec3> none;
       detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
-      r.seconds_fit = seconds_since(t_fit);
+      r.seconds_fit += seconds_since(t_fit);
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();
@@ -1182,7 +1186,7 @@ struct Reconstructor::Impl {
     r.slits_zipped = slits_zipped;
     r.holes_filled = holes_filled;
     r.batches = batches;
-    r.seconds_total = seconds + r.seconds_fit;  // the fit runs after the loop's clock stopped
+    r.seconds_total = seconds + r.seconds_fit;  // the flips and the fit run after the loop's clock stopped
     r.seconds_operations = seconds_ops;
     r.seconds_topology = seconds_topology;
     for (const Registered& reg : ops) r.operations.push_back(reg.report);

@@ -205,7 +205,7 @@ struct ReconstructResult {
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
-  double seconds_fit = 0;         ///< of it: in the surface fit of the returned mesh (fit_surface)
+  double seconds_fit = 0;         ///< of it: in the surface fit and Delaunay flips of the returned mesh
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
 };
 
