@@ -115,6 +115,19 @@ TEST(GcsDelaunayFlips, ACreaseIsNotFlippedWhereTheFlatCaseIs) {
   EXPECT_FALSE(has_edge(crease, 0, 1));
 }
 
+// A separate triangle pierces the thin quad: the flipped faces would be in a self-intersecting
+// pair, so the flip is undone and p-q stays (the rest of the mesh may still flip).
+TEST(GcsDelaunayFlips, AFlipWhoseFacesIntersectAnotherFaceIsUndone) {
+  Mesh m = thin_quad(0.0);
+  const VertexHandle a = m.add_vertex(Vec3(2.3, 0.05, -1)), b = m.add_vertex(Vec3(2.33, 0.11, 1));
+  const VertexHandle c = m.add_vertex(Vec3(2.27, 0.11, 1));
+  m.add_face(a, b, c);
+  ASSERT_EQ(gcs::mesh_validity(m).self_intersecting_pairs.value_or(0), 1u);
+  gcs::detail::delaunay_flips(m, 0.9, 10);
+  EXPECT_TRUE(has_edge(m, 0, 1));
+  EXPECT_EQ(gcs::mesh_validity(m).self_intersecting_pairs.value_or(0), 1u);
+}
+
 TEST(GcsDelaunayFlips, BadParametersAreRejected) {
   Mesh m = sheared_grid(2);
   EXPECT_THROW(gcs::detail::delaunay_flips(m, 1.5, 10), edgefront::InvalidInput);

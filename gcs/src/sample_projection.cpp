@@ -48,9 +48,11 @@ bool listed(const std::vector<std::pair<int, int>>& keys, VertexHandle a, Vertex
 }
 
 // One run of Delaunay flips (see delaunay_flips), skipping the edges whose end pairs are in
-// `frozen`; the flipped edges in order.
+// `frozen`; returns the flipped edges in order and flags (by face index, in `changed`) the faces
+// whose triangle a flip replaced (a flip keeps the two face handles of its edge).
 std::vector<edgefront::EdgeHandle> flip_pass(Mesh& mesh, double min_dihedral_cos, int max_passes,
-                                             const std::vector<std::pair<int, int>>& frozen) {
+                                             const std::vector<std::pair<int, int>>& frozen, std::vector<char>& changed) {
+  changed.assign(mesh.n_faces(), 0);
   std::vector<edgefront::EdgeHandle> done;
   for (int pass = 0; pass < max_passes; ++pass) {
     const std::size_t before = done.size();
@@ -70,6 +72,8 @@ std::vector<edgefront::EdgeHandle> flip_pass(Mesh& mesh, double min_dihedral_cos
       if ((m0 | n0) < min_dihedral_cos || (m0 | n1) < min_dihedral_cos || (m1 | n0) < min_dihedral_cos ||
           (m1 | n1) < min_dihedral_cos)
         continue;
+      changed[static_cast<std::size_t>(mesh.face_handle(h0).idx())] = 1;
+      changed[static_cast<std::size_t>(mesh.face_handle(h1).idx())] = 1;
       mesh.flip(e);
       done.push_back(e);
     }
@@ -84,14 +88,16 @@ std::size_t delaunay_flips(Mesh& mesh, double min_dihedral_cos, int max_passes) 
   if (!(min_dihedral_cos >= -1 && min_dihedral_cos <= 1))
     throw edgefront::InvalidInput("gcs Delaunay flips: min_dihedral_cos must be in [-1, 1]");
   if (max_passes < 0) throw edgefront::InvalidInput("gcs Delaunay flips: max_passes must be >= 0");
-  const std::vector<std::pair<int, int>> pairs_before = self_intersecting_face_pairs(mesh);
   std::vector<std::pair<int, int>> frozen;
   for (int attempt = 0; attempt < 4; ++attempt) {
-    const std::vector<edgefront::EdgeHandle> done = flip_pass(mesh, min_dihedral_cos, max_passes, frozen);
+    std::vector<char> flipped;
+    const std::vector<edgefront::EdgeHandle> done = flip_pass(mesh, min_dihedral_cos, max_passes, frozen, flipped);
     if (done.empty()) return 0;
+    // Faces no flip touched keep their triangles: a self-intersecting pair is new (or at least
+    // involves a new triangle) exactly when one of its faces was flipped.
     std::vector<std::pair<int, int>> fresh;
     for (const auto& pair : self_intersecting_face_pairs(mesh))
-      if (!std::binary_search(pairs_before.begin(), pairs_before.end(), pair)) fresh.push_back(pair);
+      if (flipped[static_cast<std::size_t>(pair.first)] || flipped[static_cast<std::size_t>(pair.second)]) fresh.push_back(pair);
     if (fresh.empty()) {
       mesh.update_face_normals();
       return done.size();

@@ -26,10 +26,10 @@ std::size_t project_to_samples(edgefront::Mesh& mesh, const CloudQuery& nearest,
 /// opposite angles sum to more than pi is flipped when both its faces and both new faces are
 /// nearly coplanar (every pair of their unit normals has a cosine >= min_dihedral_cos, so creases
 /// stay) and both its ends keep valence >= 3 (>= 2 on a border); passes over all edges until
-/// none flips (at most max_passes). If the flips create a self-intersecting face pair that was
-/// not there before, all are undone and the run is repeated without flipping the edges of those
-/// faces (at most 4 runs; after that nothing is flipped). Vertex positions do not change. Returns the number of
-/// flips kept. \throw edgefront::InvalidInput for min_dihedral_cos outside [-1, 1] or
+/// none flips (at most max_passes). If a face whose triangle a flip replaced is in a
+/// self-intersecting pair afterwards, all flips are undone and the run is repeated without
+/// flipping the edges of those faces (at most 4 runs; after that nothing is flipped). Vertex
+/// positions do not change. Returns the number of flips kept. \throw edgefront::InvalidInput for min_dihedral_cos outside [-1, 1] or
 /// max_passes < 0.
 std::size_t delaunay_flips(edgefront::Mesh& mesh, double min_dihedral_cos, int max_passes);
 
