@@ -1,6 +1,6 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
+//   bench_gcs [--quick] [--eval] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
 //             [--seeds N] [--step-factor F] [--points P] [--reference DIR]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
@@ -10,7 +10,8 @@
 //    vertices: components, border loops, genus per component (target: two closed spheres).
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
-// 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape.
+// 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape,
+//    with both meshes' figures; with --eval also gcs::evaluate of both against the 100K points.
 // 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
 //    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
 //    F = --step-factor, default 100).
@@ -142,6 +143,7 @@ void print_evaluation(const std::string& label, const Mesh& mesh, const gcs::Gro
 
 int main(int argc, char** argv) {
   bool quick = false;
+  bool eval = false;
   std::string only;
   size_t vertices = 0;
   size_t seeds = 0;
@@ -151,6 +153,7 @@ int main(int argc, char** argv) {
   std::filesystem::path data = EDGEFRONT_BENCH_DATA_DIR;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--eval")) eval = true;
     else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
     else if (!std::strcmp(argv[i], "--vertices") && i + 1 < argc) vertices = std::stoul(argv[++i]);
@@ -160,7 +163,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--points") && i + 1 < argc) big_points = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) reference = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--eval] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
       return 2;
     }
   }
@@ -252,6 +255,15 @@ int main(int argc, char** argv) {
       }
       std::printf("  set-up CPU: 100K %.2f s, 1M %.2f s; topology wall: 100K %.2f s, 1M %.2f s\n", setup[0], setup[1],
                   a.seconds_topology, b.seconds_topology);
+      g_last_cpu = cpu_a;
+      print_mesh("  100K points", a);
+      g_last_cpu = cpu_b;
+      print_mesh("  1M points", b);
+      if (eval) {  // both against the 100K-point cloud (the same shape)
+        const gcs::GroundTruth gt = gcs::GroundTruth::from_points(small_cloud);
+        print_evaluation("100K points", a.mesh, gt, cpu_a);
+        print_evaluation("1M points", b.mesh, gt, cpu_b);
+      }
     }
     if (want("big")) {
       const size_t n = vertices ? vertices : 100000 / div;

@@ -154,7 +154,13 @@ struct Reconstructor::Impl {
   Vec3 offset{0, 0, 0};
   double bbox_diagonal = 0;
   double sample_spacing = 0;
-  std::unique_ptr<PointIndex> tree;  // over the (static, centred) input points
+  // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
+  // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
+  // subsample of it (ReconstructOptions::max_query_points), whose points and normals are then
+  // kept side by side in tree order (query_point, query_normal: no scattered reads in the cloud).
+  std::unique_ptr<PointIndex> tree;
+  std::vector<Vec3> query_normals;  // subsampled: the input normals of the tree's points; else empty
+  const std::vector<Vec3>* query_points = nullptr;  // the tree's points: the cloud's or the subsample's
   std::vector<PointIndex::Neighbor> knn;  // query scratch
   // Faces whose centroid is at least this many mean edge lengths from the nearest sample are
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
@@ -239,16 +245,26 @@ struct Reconstructor::Impl {
     if (!(ev[1] > 1e-14 * ev[2]))
       throw InvalidInput("gcs: all points lie on one line: there is no surface to reconstruct");
 
-    if (cloud.size() >= kSpatialSortMinPoints) sort_cloud_spatially();
-    tree = std::make_unique<PointIndex>(cloud.points);
+    // Subsampled: the topology's support distance is measured to the subsample, so its spacing
+    // (below) is the subsample's.
+    const size_t query_limit = opt.max_query_points ? opt.max_query_points
+                                                    : std::max<size_t>(kAutoQueryPoints, 8 * opt.target_vertices);
+    if (cloud.has_normals() && cloud.size() > query_limit) {
+      build_subsampled_tree(query_limit);
+    } else {
+      if (cloud.size() >= kSpatialSortMinPoints) sort_cloud_spatially();
+      tree = std::make_unique<PointIndex>(cloud.points);
+      query_points = &cloud.points;
+    }
     // Sample spacing: mean distance to the nearest other (distinct) point over up to 1000 points.
     {
-      const size_t n = cloud.size(), m = std::min<size_t>(n, 1000);
+      const std::vector<Vec3>& tp = *query_points;
+      const size_t n = tp.size(), m = std::min<size_t>(n, 1000);
       double sum = 0;
       size_t cnt = 0;
       for (size_t k = 0; k < m; ++k) {
         const size_t i = k * n / m;
-        tree->k_nearest(cloud.points[i], 8, knn);
+        tree->k_nearest(tp[i], 8, knn);
         for (const PointIndex::Neighbor& nb : knn) {
           if (nb.distance2 > 0) {
             sum += std::sqrt(nb.distance2);
@@ -292,6 +308,24 @@ struct Reconstructor::Impl {
   // reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
   // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
   static constexpr size_t kSpatialSortMinPoints = 65536;
+  // ReconstructOptions::max_query_points = 0: the subsample's least size.
+  static constexpr size_t kAutoQueryPoints = 131072;
+  // The tree over a spatially even subsample (detail::stride_subsample over the Morton order) of
+  // at most `limit` points; the cloud itself keeps its order (the draws are uniform by index, and
+  // nothing else walks it in space).
+  void build_subsampled_tree(size_t limit) {
+    const std::vector<size_t> perm = detail::morton_order(cloud.points);
+    const std::vector<size_t> ids = detail::stride_subsample(perm.size(), limit, opt.seed);
+    std::vector<Vec3> sub(ids.size());
+    query_normals.resize(ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) {
+      sub[k] = cloud.points[perm[ids[k]]];
+      query_normals[k] = cloud.normals[perm[ids[k]]];
+    }
+    tree = std::make_unique<PointIndex>(std::move(sub));
+    query_points = &tree->points();
+  }
+
   void sort_cloud_spatially() {
     const std::vector<size_t> perm = detail::morton_order(cloud.points);
     std::vector<Vec3> sorted(cloud.size());
@@ -391,7 +425,8 @@ struct Reconstructor::Impl {
   }
 
   // The input normal of point i, or (without input normals) the normal of a plane fitted to its
-  // 20 nearest points, computed once on first use; NaN where the neighbourhood is not flat.
+  // 20 nearest points, computed once on first use; NaN where the neighbourhood is not flat. (A
+  // cloud without normals is never subsampled: the tree indices are cloud indices here.)
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
@@ -421,9 +456,16 @@ struct Reconstructor::Impl {
 
   const Vec3& oriented_normal(size_t i) const { return cloud.has_normals() ? cloud.normals[i] : oriented_fitted[i]; }
 
+  // The normal of tree point k: point_normal (the input or the fitted one) for cloud_query,
+  // oriented_normal for the others; both are the input normal in a subsample.
+  const Vec3& query_point_normal(size_t k) { return query_normals.empty() ? point_normal(k) : query_normals[k]; }
+  const Vec3& query_oriented_normal(size_t k) const {
+    return query_normals.empty() ? oriented_normal(k) : query_normals[k];
+  }
+
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
-    return {std::sqrt(nb.distance2), point_normal(nb.index), cloud.points[nb.index]};
+    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
   }
 
   // The k samples nearest to p with their oriented normals (the film test of the border creation).
@@ -432,7 +474,7 @@ struct Reconstructor::Impl {
     tree->k_nearest(p, k, knn_oriented);
     out.clear();
     for (const PointIndex::Neighbor& nb : knn_oriented)
-      out.push_back({std::sqrt(nb.distance2), oriented_normal(nb.index), cloud.points[nb.index]});
+      out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index]});
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -1070,7 +1112,7 @@ struct Reconstructor::Impl {
     if (opt.create_borders && oriented)
       tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
         const PointIndex::Neighbor nb = tree->nearest(p);
-        return {std::sqrt(nb.distance2), oriented_normal(nb.index)};
+        return {std::sqrt(nb.distance2), query_oriented_normal(nb.index)};
       }, {.max_distance = support}));
     if (opt.merge_borders) {
       detail::MergeParams mp;

@@ -52,6 +52,32 @@ struct MortonCoder {
   }
 };
 
+// Sorts (code, index) pairs that are in increasing index order by code, ties keeping the index
+// order: the same result as std::sort of the pairs. An LSD radix sort (11-bit digits over the 63
+// code bits; digits every key shares are skipped): linear in n, where the comparison sort of a
+// large cloud was most of the set-up's sorting time.
+void sort_by_code(std::vector<std::pair<std::uint64_t, std::size_t>>& keyed) {
+  constexpr int kBits = 11, kPasses = 6;
+  constexpr std::size_t kBuckets = std::size_t(1) << kBits;
+  if (keyed.size() < 4096) {
+    std::sort(keyed.begin(), keyed.end());
+    return;
+  }
+  std::vector<std::array<std::size_t, kBuckets>> count(kPasses);
+  for (auto& c : count) c.fill(0);
+  for (const auto& [code, index] : keyed)
+    for (int p = 0; p < kPasses; ++p) ++count[p][(code >> (p * kBits)) & (kBuckets - 1)];
+  std::vector<std::pair<std::uint64_t, std::size_t>> other(keyed.size());
+  for (int p = 0; p < kPasses; ++p) {
+    std::array<std::size_t, kBuckets>& c = count[p];
+    if (std::find(c.begin(), c.end(), keyed.size()) != c.end()) continue;  // one digit for all
+    std::size_t sum = 0;
+    for (std::size_t& x : c) sum += std::exchange(x, sum);  // bucket starts
+    for (const auto& e : keyed) other[c[(e.first >> (p * kBits)) & (kBuckets - 1)]++] = e;
+    keyed.swap(other);
+  }
+}
+
 }  // namespace
 
 std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
@@ -65,9 +91,23 @@ std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
   const MortonCoder code(lo, hi);
   std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {code(points[i]), i};
-  std::sort(keyed.begin(), keyed.end());
+  sort_by_code(keyed);
   for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
   return order;
+}
+
+std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed) {
+  EF_CHECK(max_points >= 1, "stride_subsample: max_points must be at least 1");
+  const std::size_t k = n <= max_points ? 1 : (n + max_points - 1) / max_points;
+  // The run position from the seed (splitmix64 finalizer: nearby seeds give unrelated positions).
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  std::vector<std::size_t> out;
+  out.reserve(n / k + 1);
+  for (std::size_t i = static_cast<std::size_t>(z % k); i < n; i += k) out.push_back(i);
+  return out;
 }
 
 MeshRenumbering renumber_spatially(Mesh& mesh) {

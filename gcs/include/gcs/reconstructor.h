@@ -154,6 +154,14 @@ struct ReconstructOptions {
   /// Safety stop: at most this many basic steps per target vertex (0 = no limit). The loop stops
   /// with StopReason::step_limit when collapses keep the mesh from growing.
   std::uint64_t max_steps_per_vertex = 2000;
+  /// For a large cloud with input normals, the nearest-sample queries of the topology passes and
+  /// of project_to_samples search a spatially even subsample of at most this many points (one
+  /// point out of every run of ceil(n / limit) in spatial order; which one depends on the seed)
+  /// instead of the whole cloud, so that their cost and the set-up's (no k-d tree over all the
+  /// points) do not grow with the cloud. The basic steps still draw from every point, and the
+  /// surface fit uses its own even stride. 0 = automatic: max(131072, 8 * target_vertices); a
+  /// cloud of at most that many points (or without normals) is used whole.
+  std::size_t max_query_points = 0;
 };
 
 /// Why run() stopped.

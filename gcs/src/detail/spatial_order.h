@@ -19,6 +19,12 @@ namespace gcs::detail {
 /// bits per axis), ties by index: result[k] is the index of the k-th point in Morton order.
 std::vector<std::size_t> morton_order(const std::vector<edgefront::Vec3>& points);
 
+/// A spatially even subsample of n points that are in spatial (Morton) order: one index out of
+/// every run of k = ceil(n / max_points) consecutive indices, at the same seed-chosen position
+/// (in [0, k)) in every run; increasing, at most max_points of them (a shorter last run may give
+/// none). All of 0 .. n-1 when n <= max_points. Deterministic for a seed. max_points >= 1.
+std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed);
+
 /// Rebuilds `mesh` with the same connectivity, positions, face normals and circulation starts
 /// (each vertex keeps its outgoing halfedge, each face its halfedge, so circulators visit the same
 /// elements in the same order), without the deleted elements, numbered in spatial order:
