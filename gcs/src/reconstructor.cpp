@@ -248,7 +248,7 @@ struct Reconstructor::Impl {
     // Subsampled: the topology's support distance is measured to the subsample, so its spacing
     // (below) is the subsample's.
     const size_t query_limit = opt.max_query_points ? opt.max_query_points
-                                                    : std::max<size_t>(kAutoQueryPoints, 8 * opt.target_vertices);
+                                                    : std::max<size_t>(kAutoQueryPoints, kAutoQueryPerVertex * opt.target_vertices);
     if (cloud.has_normals() && cloud.size() > query_limit) {
       build_subsampled_tree(query_limit);
     } else {
@@ -308,19 +308,18 @@ struct Reconstructor::Impl {
   // reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
   // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
   static constexpr size_t kSpatialSortMinPoints = 65536;
-  // ReconstructOptions::max_query_points = 0: the subsample's least size.
-  static constexpr size_t kAutoQueryPoints = 131072;
-  // The tree over a spatially even subsample (detail::stride_subsample over the Morton order) of
-  // at most `limit` points; the cloud itself keeps its order (the draws are uniform by index, and
-  // nothing else walks it in space).
+  // ReconstructOptions::max_query_points = 0: max(kAutoQueryPoints, kAutoQueryPerVertex * target).
+  static constexpr size_t kAutoQueryPoints = 100000, kAutoQueryPerVertex = 5;
+  // The tree over a spatially even subsample (detail::spatial_subsample) of at most `limit`
+  // points; the cloud itself keeps its order (the draws are uniform by index, and nothing else
+  // walks it in space).
   void build_subsampled_tree(size_t limit) {
-    const std::vector<size_t> perm = detail::morton_order(cloud.points);
-    const std::vector<size_t> ids = detail::stride_subsample(perm.size(), limit, opt.seed);
+    const std::vector<size_t> ids = detail::spatial_subsample(cloud.points, limit, opt.seed);
     std::vector<Vec3> sub(ids.size());
     query_normals.resize(ids.size());
     for (size_t k = 0; k < ids.size(); ++k) {
-      sub[k] = cloud.points[perm[ids[k]]];
-      query_normals[k] = cloud.normals[perm[ids[k]]];
+      sub[k] = cloud.points[ids[k]];
+      query_normals[k] = cloud.normals[ids[k]];
     }
     tree = std::make_unique<PointIndex>(std::move(sub));
     query_points = &tree->points();

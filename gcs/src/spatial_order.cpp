@@ -19,8 +19,6 @@ using edgefront::VertexHandle;
 
 namespace {
 
-constexpr std::uint32_t kMortonMax = (1u << 21) - 1;
-
 // Spreads the low 21 bits of x so that bit i lands on bit 3 i.
 std::uint64_t spread3(std::uint64_t x) {
   x &= 0x1fffff;
@@ -32,13 +30,20 @@ std::uint64_t spread3(std::uint64_t x) {
   return x;
 }
 
-// Morton codes of points over the box [lo, hi].
+// Morton codes of points over their bounding box, `bits` (<= 21) per axis.
 struct MortonCoder {
   Vec3 lo, scale;
-  MortonCoder(const Vec3& lo_, const Vec3& hi) : lo(lo_) {
+  double max;
+  MortonCoder(const std::vector<Vec3>& points, int bits) : max(static_cast<double>((1u << bits) - 1)) {
+    Vec3 hi = points[0];
+    lo = points[0];
+    for (const Vec3& p : points) {
+      lo.minimize(p);
+      hi.maximize(p);
+    }
     for (int a = 0; a < 3; ++a) {
       const double ext = hi[a] - lo[a];
-      scale[a] = ext > 0 ? kMortonMax / ext : 0.0;
+      scale[a] = ext > 0 ? max / ext : 0.0;
     }
   }
   std::uint64_t operator()(const Vec3& p) const {
@@ -46,29 +51,31 @@ struct MortonCoder {
     for (int a = 0; a < 3; ++a) {
       const double q = (p[a] - lo[a]) * scale[a];
       // NaN and out-of-box coordinates go to the box's faces (only the order is affected).
-      c[a] = q > 0 ? static_cast<std::uint64_t>(std::min(q, static_cast<double>(kMortonMax))) : 0;
+      c[a] = q > 0 ? static_cast<std::uint64_t>(std::min(q, max)) : 0;
     }
     return spread3(c[0]) | spread3(c[1]) << 1 | spread3(c[2]) << 2;
   }
 };
 
-// Sorts (code, index) pairs that are in increasing index order by code, ties keeping the index
-// order: the same result as std::sort of the pairs. An LSD radix sort (11-bit digits over the 63
-// code bits; digits every key shares are skipped): linear in n, where the comparison sort of a
-// large cloud was most of the set-up's sorting time.
-void sort_by_code(std::vector<std::pair<std::uint64_t, std::size_t>>& keyed) {
-  constexpr int kBits = 11, kPasses = 6;
+// Sorts (code, index) pairs that are in increasing index order by their code_bits-bit codes, ties
+// keeping the index order: the same result as std::sort of the pairs. An LSD radix sort (11-bit
+// digits; digits every key shares are skipped): linear in n, where the comparison sort of a large
+// cloud was most of the set-up's sorting time.
+template <class Code, class Index>
+void sort_by_code(std::vector<std::pair<Code, Index>>& keyed, int code_bits) {
+  constexpr int kBits = 11;
   constexpr std::size_t kBuckets = std::size_t(1) << kBits;
   if (keyed.size() < 4096) {
     std::sort(keyed.begin(), keyed.end());
     return;
   }
-  std::vector<std::array<std::size_t, kBuckets>> count(kPasses);
+  const int passes = (code_bits + kBits - 1) / kBits;
+  std::vector<std::array<std::size_t, kBuckets>> count(static_cast<std::size_t>(passes));
   for (auto& c : count) c.fill(0);
-  for (const auto& [code, index] : keyed)
-    for (int p = 0; p < kPasses; ++p) ++count[p][(code >> (p * kBits)) & (kBuckets - 1)];
-  std::vector<std::pair<std::uint64_t, std::size_t>> other(keyed.size());
-  for (int p = 0; p < kPasses; ++p) {
+  for (const auto& e : keyed)
+    for (int p = 0; p < passes; ++p) ++count[p][(e.first >> (p * kBits)) & (kBuckets - 1)];
+  std::vector<std::pair<Code, Index>> other(keyed.size());
+  for (int p = 0; p < passes; ++p) {
     std::array<std::size_t, kBuckets>& c = count[p];
     if (std::find(c.begin(), c.end(), keyed.size()) != c.end()) continue;  // one digit for all
     std::size_t sum = 0;
@@ -83,17 +90,26 @@ void sort_by_code(std::vector<std::pair<std::uint64_t, std::size_t>>& keyed) {
 std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
   std::vector<std::size_t> order(points.size());
   if (points.empty()) return order;
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) {
-    lo.minimize(p);
-    hi.maximize(p);
-  }
-  const MortonCoder code(lo, hi);
+  const MortonCoder code(points, 21);
   std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {code(points[i]), i};
-  sort_by_code(keyed);
+  sort_by_code(keyed, 63);
   for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
   return order;
+}
+
+std::vector<std::size_t> spatial_subsample(const std::vector<Vec3>& points, std::size_t max_points, std::uint64_t seed) {
+  EF_CHECK(points.size() < (std::size_t(1) << 32), "spatial_subsample: more than 2^32 points");
+  std::vector<std::size_t> out = stride_subsample(points.size(), max_points, seed);
+  if (points.empty() || out.size() == points.size()) return out;
+  // 8-byte pairs and three radix passes instead of morton_order's 16 bytes and six.
+  const MortonCoder code(points, 10);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    keyed[i] = {static_cast<std::uint32_t>(code(points[i])), static_cast<std::uint32_t>(i)};
+  sort_by_code(keyed, 30);
+  for (std::size_t& i : out) i = keyed[i].second;
+  return out;
 }
 
 std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed) {

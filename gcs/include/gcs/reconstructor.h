@@ -159,7 +159,7 @@ struct ReconstructOptions {
   /// point out of every run of ceil(n / limit) in spatial order; which one depends on the seed)
   /// instead of the whole cloud, so that their cost and the set-up's (no k-d tree over all the
   /// points) do not grow with the cloud. The basic steps still draw from every point, and the
-  /// surface fit uses its own even stride. 0 = automatic: max(131072, 8 * target_vertices); a
+  /// surface fit uses its own even stride. 0 = automatic: max(100000, 5 * target_vertices); a
   /// cloud of at most that many points (or without normals) is used whole.
   std::size_t max_query_points = 0;
 };

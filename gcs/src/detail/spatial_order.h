@@ -25,6 +25,13 @@ std::vector<std::size_t> morton_order(const std::vector<edgefront::Vec3>& points
 /// none). All of 0 .. n-1 when n <= max_points. Deterministic for a seed. max_points >= 1.
 std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed);
 
+/// A spatially even subsample of `points` (fewer than 2^32): stride_subsample over the points
+/// ordered by a coarse Morton code (10 bits per axis over their bounding box, ties by index;
+/// cheaper than morton_order), as indices into `points` in that order. All indices in increasing
+/// order when there are at most max_points points. Deterministic for a seed. max_points >= 1.
+std::vector<std::size_t> spatial_subsample(const std::vector<edgefront::Vec3>& points, std::size_t max_points,
+                                           std::uint64_t seed);
+
 /// Rebuilds `mesh` with the same connectivity, positions, face normals and circulation starts
 /// (each vertex keeps its outgoing halfedge, each face its halfedge, so circulators visit the same
 /// elements in the same order), without the deleted elements, numbered in spatial order:
