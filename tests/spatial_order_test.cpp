@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../gcs/src/detail/spatial_order.h"
+#include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
 #include "gcs/reconstructor.h"
@@ -75,6 +76,90 @@ TEST(SpatialOrder, MortonOrderIsASortedPermutationWithTiesByIndex) {
     EXPECT_EQ((hi - lo).max(), 1.0) << "block " << b / 8;
   }
   EXPECT_TRUE(gcs::detail::morton_order({}).empty());
+}
+
+// Large sets are sorted by a radix sort, small ones by a comparison sort: the two must agree. A
+// 6000-point set (radix) and its 3000-point subset (comparison) with the same bounding box (both
+// hold its two corners), hence the same codes: the subset keeps its relative order.
+TEST(SpatialOrder, MortonOrderOfALargeSetAgreesWithASmallOne) {
+  std::vector<Vec3> pts{Vec3(0, 0, 0), Vec3(1, 1, 1)};
+  unsigned x = 12345;
+  const auto next = [&x] {
+    x = x * 1103515245u + 12345u;
+    return static_cast<double>((x >> 8) % 1000) / 999.0;
+  };
+  while (pts.size() < 5000) pts.emplace_back(next(), next(), next());
+  for (size_t i = 0; i < 1000; ++i) pts.push_back(pts[(i * 7) % 5000]);  // duplicates: ties by index
+  std::vector<size_t> subset_ids;  // in increasing index order, with both corners
+  for (size_t i = 0; i < pts.size(); ++i)
+    if (i < 2 || i % 2 == 1) subset_ids.push_back(i);
+  std::vector<Vec3> subset;
+  for (const size_t i : subset_ids) subset.push_back(pts[i]);
+  ASSERT_GE(pts.size(), 4096u);
+  ASSERT_LT(subset.size(), 4096u);
+  const std::vector<size_t> big = gcs::detail::morton_order(pts), small = gcs::detail::morton_order(subset);
+  std::vector<char> in_subset(pts.size(), 0);
+  for (const size_t i : subset_ids) in_subset[i] = 1;
+  std::vector<size_t> restricted;
+  for (const size_t i : big)
+    if (in_subset[i]) restricted.push_back(i);
+  ASSERT_EQ(restricted.size(), small.size());
+  for (size_t k = 0; k < small.size(); ++k) ASSERT_EQ(restricted[k], subset_ids[small[k]]) << "position " << k;
+}
+
+TEST(SpatialOrder, StrideSubsampleTakesOnePerRunAtASeededPosition) {
+  using gcs::detail::stride_subsample;
+  std::vector<size_t> all(50);
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  EXPECT_EQ(stride_subsample(50, 50, 3), all);  // within the limit: everything
+  EXPECT_EQ(stride_subsample(50, 1000, 3), all);
+  std::set<size_t> offsets;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const std::vector<size_t> s = stride_subsample(1005, 100, seed);  // runs of 11
+    EXPECT_EQ(s, stride_subsample(1005, 100, seed));
+    ASSERT_FALSE(s.empty());
+    EXPECT_LE(s.size(), 100u);
+    EXPECT_GE(s.size(), 91u);
+    EXPECT_LT(s[0], 11u);
+    for (size_t k = 1; k < s.size(); ++k) EXPECT_EQ(s[k] - s[k - 1], 11u);
+    EXPECT_LT(s.back(), 1005u);
+    offsets.insert(s[0]);
+  }
+  EXPECT_GE(offsets.size(), 5u) << "the seed chooses the position in the run";
+  EXPECT_THROW(stride_subsample(10, 0, 1), edgefront::InternalError);
+}
+
+// A 128 x 128 lattice (16,384 points) shuffled, subsampled to at most 1,024: every 16 x 16 tile
+// (256 points, 16 expected picks) gets between 8 and 24 (a uniform random choice of 1,024 points
+// misses that range in some of the 64 tiles on most seeds; standard deviation 3.9).
+TEST(SpatialOrder, SpatialSubsampleIsEvenAndDeterministic) {
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 128; ++i)
+    for (int j = 0; j < 128; ++j) pts.emplace_back(i, j, 0.25 * ((i * 7 + j * 3) % 5));
+  for (size_t i = pts.size() - 1; i > 0; --i) std::swap(pts[i], pts[(i * 2654435761u) % (i + 1)]);
+  for (std::uint64_t seed : {1u, 2u, 7u}) {
+    const std::vector<size_t> s = gcs::detail::spatial_subsample(pts, 1024, seed);
+    EXPECT_EQ(s, gcs::detail::spatial_subsample(pts, 1024, seed));
+    EXPECT_LE(s.size(), 1024u);
+    EXPECT_GE(s.size(), 1000u);
+    EXPECT_EQ(std::set<size_t>(s.begin(), s.end()).size(), s.size());
+    std::map<std::pair<int, int>, int> tiles;
+    for (const size_t i : s) {
+      ASSERT_LT(i, pts.size());
+      ++tiles[{static_cast<int>(pts[i][0]) / 16, static_cast<int>(pts[i][1]) / 16}];
+    }
+    EXPECT_EQ(tiles.size(), 64u) << "seed " << seed;
+    for (const auto& [tile, count] : tiles) {
+      EXPECT_GE(count, 8) << "tile " << tile.first << "," << tile.second << " seed " << seed;
+      EXPECT_LE(count, 24) << "tile " << tile.first << "," << tile.second << " seed " << seed;
+    }
+  }
+  EXPECT_NE(gcs::detail::spatial_subsample(pts, 1024, 1), gcs::detail::spatial_subsample(pts, 1024, 2));
+  const std::vector<Vec3> few(pts.begin(), pts.begin() + 100);
+  std::vector<size_t> all(100);
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  EXPECT_EQ(gcs::detail::spatial_subsample(few, 100, 1), all);
+  EXPECT_TRUE(gcs::detail::spatial_subsample({}, 10, 1).empty());
 }
 
 TEST(SpatialOrder, RenumberingKeepsTheMeshAndDropsDeletedElements) {

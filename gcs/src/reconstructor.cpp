@@ -134,6 +134,9 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
   if (o.film_samples > 64) fail("film_samples must be at most 64");
   if (o.border_trim_rings > 8) fail("border_trim_rings must be at most 8");
+  if (o.max_query_points != 0 && o.max_query_points < o.target_vertices)
+    fail("max_query_points " + std::to_string(o.max_query_points) + " is below target_vertices " +
+         std::to_string(o.target_vertices) + ": a subsample sparser than the mesh cannot support its faces (0 = automatic)");
   if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
   if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
 }

@@ -160,7 +160,8 @@ struct ReconstructOptions {
   /// instead of the whole cloud, so that their cost and the set-up's (no k-d tree over all the
   /// points) do not grow with the cloud. The basic steps still draw from every point, and the
   /// surface fit uses its own even stride. 0 = automatic: max(100000, 5 * target_vertices); a
-  /// cloud of at most that many points (or without normals) is used whole.
+  /// cloud of at most that many points (or without normals) is used whole. Otherwise at least
+  /// target_vertices.
   std::size_t max_query_points = 0;
 };
 
