@@ -248,8 +248,9 @@ struct Reconstructor::Impl {
     if (!(ev[1] > 1e-14 * ev[2]))
       throw InvalidInput("gcs: all points lie on one line: there is no surface to reconstruct");
 
-    // Subsampled: the topology's support distance is measured to the subsample, so its spacing
-    // (below) is the subsample's.
+    // A large cloud with normals is queried through a subsample (max_query_points): then the
+    // support distance of the topology is measured to the subsample, and the spacing (below) is
+    // the subsample's. (Without normals, the normals are fitted to and oriented over all points.)
     const size_t query_limit = opt.max_query_points ? opt.max_query_points
                                                     : std::max<size_t>(kAutoQueryPoints, kAutoQueryPerVertex * opt.target_vertices);
     if (cloud.has_normals() && cloud.size() > query_limit) {
@@ -306,7 +307,7 @@ struct Reconstructor::Impl {
     opt.topology_min_vertices = std::min(opt.topology_min_vertices, opt.target_vertices / 2);
   }
 
-  // A large cloud is put in spatial (Morton) order once: the kd-tree's leaves and the nearest-
+  // A large cloud queried whole is put in spatial (Morton) order once: the kd-tree's leaves and the nearest-
   // sample queries of the topology passes (over faces that are in spatial order too, see
   // reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
   // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
