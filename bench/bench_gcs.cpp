@@ -1,6 +1,6 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--eval] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
+//   bench_gcs [--quick] [--eval] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
 //             [--seeds N] [--step-factor F] [--points P] [--reference DIR]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
@@ -11,7 +11,9 @@
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape,
-//    with both meshes' figures; with --eval also gcs::evaluate of both against the 100K points.
+//    with both meshes' figures; with --eval also gcs::evaluate of both against the 100K points;
+//    with --repeat R, R pairs run alternately, then the CPU ratio of the fastest runs and the
+//    median pair ratio.
 // 5. (--case step only) time per basic step at --vertices N (default 10000) on the 1M-point cloud:
 //    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
 //    F = --step-factor, default 100).
@@ -144,6 +146,7 @@ void print_evaluation(const std::string& label, const Mesh& mesh, const gcs::Gro
 int main(int argc, char** argv) {
   bool quick = false;
   bool eval = false;
+  size_t repeat = 1;
   std::string only;
   size_t vertices = 0;
   size_t seeds = 0;
@@ -154,6 +157,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--eval")) eval = true;
+    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
     else if (!std::strcmp(argv[i], "--vertices") && i + 1 < argc) vertices = std::stoul(argv[++i]);
@@ -163,7 +167,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--points") && i + 1 < argc) big_points = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) reference = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--eval] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--eval] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
       return 2;
     }
   }
@@ -236,14 +240,33 @@ int main(int argc, char** argv) {
       so.points = 100'000;
       const edgefront::PointCloud small_cloud = edgefront::shapes::sample("bumpy-sphere", so);
       const size_t fixed = vertices ? vertices : 20000 / div;
-      const gcs::ReconstructResult a = run(small_cloud, fixed);
-      const double cpu_a = g_last_cpu;
-      const gcs::ReconstructResult b = run(big, fixed);
-      const double cpu_b = g_last_cpu;
-      std::printf("fixed target %zu: 100K points %.2f s wall / %.2f s CPU, 1M points %.2f s wall / %.2f s CPU, "
-                  "ratio 1M/100K %.3f (CPU %.3f), load average %.1f\n",
-                  fixed, a.seconds_total, cpu_a, b.seconds_total, cpu_b, b.seconds_total / a.seconds_total,
-                  cpu_b / cpu_a, load_average());
+      // --repeat R: R pairs, the two clouds alternately (the machine's load drifts).
+      gcs::ReconstructResult a, b;
+      double cpu_a = 0, cpu_b = 0;
+      std::vector<double> all_a, all_b, ratios;
+      for (size_t k = 0; k < std::max<size_t>(1, repeat); ++k) {
+        a = run(small_cloud, fixed);
+        cpu_a = g_last_cpu;
+        b = run(big, fixed);
+        cpu_b = g_last_cpu;
+        all_a.push_back(cpu_a);
+        all_b.push_back(cpu_b);
+        ratios.push_back(cpu_b / cpu_a);
+        std::printf("fixed target %zu: 100K points %.2f s wall / %.2f s CPU, 1M points %.2f s wall / %.2f s CPU, "
+                    "ratio 1M/100K %.3f (CPU %.3f), load average %.1f\n",
+                    fixed, a.seconds_total, cpu_a, b.seconds_total, cpu_b, b.seconds_total / a.seconds_total,
+                    cpu_b / cpu_a, load_average());
+      }
+      if (ratios.size() > 1) {
+        const size_t within = static_cast<size_t>(
+            std::count_if(ratios.begin(), ratios.end(), [](double r) { return r >= 0.8 && r <= 1.2; }));
+        std::sort(ratios.begin(), ratios.end());
+        std::printf("  %zu pairs: CPU ratio of the fastest runs %.3f (%.2f / %.2f s), median pair ratio %.3f, "
+                    "pairs within +-20%%: %zu\n",
+                    ratios.size(), *std::min_element(all_b.begin(), all_b.end()) / *std::min_element(all_a.begin(), all_a.end()),
+                    *std::min_element(all_b.begin(), all_b.end()), *std::min_element(all_a.begin(), all_a.end()),
+                    ratios[ratios.size() / 2], within);
+      }
       // Where the difference goes: the set-up alone (Reconstructor constructor) and the topology passes.
       double setup[2];
       for (int k = 0; k < 2; ++k) {

@@ -129,17 +129,27 @@ TEST(SpatialOrder, StrideSubsampleTakesOnePerRunAtASeededPosition) {
   EXPECT_THROW(stride_subsample(10, 0, 1), edgefront::InternalError);
 }
 
-// A 128 x 128 lattice (16,384 points) shuffled, subsampled to at most 1,024: every 16 x 16 tile
-// (256 points, 16 expected picks) gets between 8 and 24 (a uniform random choice of 1,024 points
-// misses that range in some of the 64 tiles on most seeds; standard deviation 3.9).
-TEST(SpatialOrder, SpatialSubsampleIsEvenAndDeterministic) {
+// A 128 x 128 lattice (16,384 points) shuffled, in coarse Morton order, subsampled to at most
+// 1,024 (as the reconstructor's query subsample): every 16 x 16 tile (256 points, 16 expected
+// picks) gets between 8 and 24 (a uniform random choice of 1,024 points misses that range in some
+// of the 64 tiles for about 4 seeds in 5; standard deviation 3.9).
+TEST(SpatialOrder, CoarseMortonStrideSubsampleIsEvenAndDeterministic) {
   std::vector<Vec3> pts;
   for (int i = 0; i < 128; ++i)
     for (int j = 0; j < 128; ++j) pts.emplace_back(i, j, 0.25 * ((i * 7 + j * 3) % 5));
   for (size_t i = pts.size() - 1; i > 0; --i) std::swap(pts[i], pts[(i * 2654435761u) % (i + 1)]);
+  const std::vector<size_t> order = gcs::detail::coarse_morton_order(pts);
+  EXPECT_EQ(order, gcs::detail::coarse_morton_order(pts));
+  ASSERT_EQ(std::set<size_t>(order.begin(), order.end()).size(), pts.size());
+  EXPECT_LT(*std::max_element(order.begin(), order.end()), pts.size());
+  const auto subsample = [&](std::uint64_t seed) {
+    std::vector<size_t> s = gcs::detail::stride_subsample(pts.size(), 1024, seed);
+    for (size_t& i : s) i = order[i];
+    return s;
+  };
   for (std::uint64_t seed : {1u, 2u, 7u}) {
-    const std::vector<size_t> s = gcs::detail::spatial_subsample(pts, 1024, seed);
-    EXPECT_EQ(s, gcs::detail::spatial_subsample(pts, 1024, seed));
+    const std::vector<size_t> s = subsample(seed);
+    EXPECT_EQ(s, subsample(seed));
     EXPECT_LE(s.size(), 1024u);
     EXPECT_GE(s.size(), 1000u);
     EXPECT_EQ(std::set<size_t>(s.begin(), s.end()).size(), s.size());
@@ -154,12 +164,8 @@ TEST(SpatialOrder, SpatialSubsampleIsEvenAndDeterministic) {
       EXPECT_LE(count, 24) << "tile " << tile.first << "," << tile.second << " seed " << seed;
     }
   }
-  EXPECT_NE(gcs::detail::spatial_subsample(pts, 1024, 1), gcs::detail::spatial_subsample(pts, 1024, 2));
-  const std::vector<Vec3> few(pts.begin(), pts.begin() + 100);
-  std::vector<size_t> all(100);
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  EXPECT_EQ(gcs::detail::spatial_subsample(few, 100, 1), all);
-  EXPECT_TRUE(gcs::detail::spatial_subsample({}, 10, 1).empty());
+  EXPECT_NE(subsample(1), subsample(2));
+  EXPECT_TRUE(gcs::detail::coarse_morton_order({}).empty());
 }
 
 TEST(SpatialOrder, RenumberingKeepsTheMeshAndDropsDeletedElements) {

@@ -314,11 +314,12 @@ struct Reconstructor::Impl {
   static constexpr size_t kSpatialSortMinPoints = 65536;
   // ReconstructOptions::max_query_points = 0: max(kAutoQueryPoints, kAutoQueryPerVertex * target).
   static constexpr size_t kAutoQueryPoints = 100000, kAutoQueryPerVertex = 5;
-  // The tree over a spatially even subsample (detail::spatial_subsample) of at most `limit`
-  // points; the cloud itself keeps its order (the draws are uniform by index, and nothing else
-  // walks it in space).
+  // The tree over a spatially even subsample of at most `limit` points: the cloud in a coarse
+  // Morton order (cheaper than sort_cloud_spatially's, as good for the surface fit's walk over
+  // the samples), then one point out of every run (detail::stride_subsample).
   void build_subsampled_tree(size_t limit) {
-    const std::vector<size_t> ids = detail::spatial_subsample(cloud.points, limit, opt.seed);
+    permute_cloud(detail::coarse_morton_order(cloud.points));
+    const std::vector<size_t> ids = detail::stride_subsample(cloud.size(), limit, opt.seed);
     std::vector<Vec3> sub(ids.size());
     query_normals.resize(ids.size());
     for (size_t k = 0; k < ids.size(); ++k) {
@@ -329,8 +330,8 @@ struct Reconstructor::Impl {
     query_points = &tree->points();
   }
 
-  void sort_cloud_spatially() {
-    const std::vector<size_t> perm = detail::morton_order(cloud.points);
+  void sort_cloud_spatially() { permute_cloud(detail::morton_order(cloud.points)); }
+  void permute_cloud(const std::vector<size_t>& perm) {
     std::vector<Vec3> sorted(cloud.size());
     for (size_t k = 0; k < perm.size(); ++k) sorted[k] = cloud.points[perm[k]];
     cloud.points.swap(sorted);

@@ -98,18 +98,18 @@ std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
   return order;
 }
 
-std::vector<std::size_t> spatial_subsample(const std::vector<Vec3>& points, std::size_t max_points, std::uint64_t seed) {
-  EF_CHECK(points.size() < (std::size_t(1) << 32), "spatial_subsample: more than 2^32 points");
-  std::vector<std::size_t> out = stride_subsample(points.size(), max_points, seed);
-  if (points.empty() || out.size() == points.size()) return out;
+std::vector<std::size_t> coarse_morton_order(const std::vector<Vec3>& points) {
+  EF_CHECK(points.size() < (std::size_t(1) << 32), "coarse_morton_order: more than 2^32 points");
+  std::vector<std::size_t> order(points.size());
+  if (points.empty()) return order;
   // 8-byte pairs and three radix passes instead of morton_order's 16 bytes and six.
   const MortonCoder code(points, 10);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     keyed[i] = {static_cast<std::uint32_t>(code(points[i])), static_cast<std::uint32_t>(i)};
   sort_by_code(keyed, 30);
-  for (std::size_t& i : out) i = keyed[i].second;
-  return out;
+  for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+  return order;
 }
 
 std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed) {

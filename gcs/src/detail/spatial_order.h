@@ -19,18 +19,17 @@ namespace gcs::detail {
 /// bits per axis), ties by index: result[k] is the index of the k-th point in Morton order.
 std::vector<std::size_t> morton_order(const std::vector<edgefront::Vec3>& points);
 
-/// A spatially even subsample of n points that are in spatial (Morton) order: one index out of
+/// A spatially even subsample of n points that are in spatial (e.g. coarse Morton) order: one index out of
 /// every run of k = ceil(n / max_points) consecutive indices, at the same seed-chosen position
 /// (in [0, k)) in every run; increasing, at most max_points of them (a shorter last run may give
 /// none). All of 0 .. n-1 when n <= max_points. Deterministic for a seed. max_points >= 1.
 std::vector<std::size_t> stride_subsample(std::size_t n, std::size_t max_points, std::uint64_t seed);
 
-/// A spatially even subsample of `points` (fewer than 2^32): stride_subsample over the points
-/// ordered by a coarse Morton code (10 bits per axis over their bounding box, ties by index;
-/// cheaper than morton_order), as indices into `points` in that order. All indices in increasing
-/// order when there are at most max_points points. Deterministic for a seed. max_points >= 1.
-std::vector<std::size_t> spatial_subsample(const std::vector<edgefront::Vec3>& points, std::size_t max_points,
-                                           std::uint64_t seed);
+/// The permutation that sorts `points` (fewer than 2^32) by a coarse Morton code (10 bits per
+/// axis over their bounding box), ties by index: cheaper than morton_order (8-byte keys, three
+/// radix passes), and spatially ordered down to 1/1024 of the box (memory locality, and what
+/// stride_subsample needs to be spatially even).
+std::vector<std::size_t> coarse_morton_order(const std::vector<edgefront::Vec3>& points);
 
 /// Rebuilds `mesh` with the same connectivity, positions, face normals and circulation starts
 /// (each vertex keeps its outgoing halfedge, each face its halfedge, so circulators visit the same
