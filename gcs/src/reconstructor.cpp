@@ -160,7 +160,7 @@ struct Reconstructor::Impl {
   // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
   // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
   // subsample of it (ReconstructOptions::max_query_points), whose points and normals are then
-  // kept side by side in tree order (query_point, query_normal: no scattered reads in the cloud).
+  // kept side by side in tree order (query_points, query_normals: no scattered reads in the cloud).
   std::unique_ptr<PointIndex> tree;
   std::vector<Vec3> query_normals;  // subsampled: the input normals of the tree's points; else empty
   const std::vector<Vec3>* query_points = nullptr;  // the tree's points: the cloud's or the subsample's
@@ -251,8 +251,9 @@ struct Reconstructor::Impl {
     // A large cloud with normals is queried through a subsample (max_query_points): then the
     // support distance of the topology is measured to the subsample, and the spacing (below) is
     // the subsample's. (Without normals, the normals are fitted to and oriented over all points.)
-    const size_t query_limit = opt.max_query_points ? opt.max_query_points
-                                                    : std::max<size_t>(kAutoQueryPoints, kAutoQueryPerVertex * opt.target_vertices);
+    const size_t query_limit =
+        opt.max_query_points ? opt.max_query_points
+                             : std::max<size_t>(kAutoQueryPoints, kAutoQueryPerVertex * opt.target_vertices);
     if (cloud.has_normals() && cloud.size() > query_limit) {
       build_subsampled_tree(query_limit);
     } else {
@@ -307,9 +308,9 @@ struct Reconstructor::Impl {
     opt.topology_min_vertices = std::min(opt.topology_min_vertices, opt.target_vertices / 2);
   }
 
-  // A large cloud queried whole is put in spatial (Morton) order once: the kd-tree's leaves and the nearest-
-  // sample queries of the topology passes (over faces that are in spatial order too, see
-  // reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
+  // A large cloud queried whole is put in spatial (Morton) order once: the kd-tree's leaves and
+  // the nearest-sample queries of the topology passes (over faces that are in spatial order too,
+  // see reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
   // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
   static constexpr size_t kSpatialSortMinPoints = 65536;
   // ReconstructOptions::max_query_points = 0: max(kAutoQueryPoints, kAutoQueryPerVertex * target).
