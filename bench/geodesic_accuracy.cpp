@@ -2,8 +2,8 @@
 // exact polyhedral geodesics, next to Dijkstra over edges and CGAL's heat method.
 //
 //   geodesic_accuracy MESH --ref PREFIX [--sources a,b,...] [--name NAME] [--pairs N] [--seed S]
-//                          [--worst K]
-//   geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K]
+//                          [--worst K] [--windows] [--fast]
+//   geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K] [--windows] [--fast]
 //   geodesic_accuracy --write-shapes DIR
 //
 // Mesh mode reads the reference files of bench/cgal_geodesic_reference (PREFIX.exact.<s>.bin,
@@ -20,6 +20,9 @@
 // the cone is a pyramid and unrolls into a fan). With --ref-dir, CGAL's exact distances for the
 // cylinders and cones (made by cgal_geodesic_reference from the meshes that --write-shapes writes)
 // are compared too, and against the closed form.
+//
+// --fast runs the MDF with DistanceOptions::fast (the "MDF" columns are then the fast mode);
+// --windows with DistanceOptions::windows.
 //
 // Output: markdown on stdout. Exit codes: 0 done (targets missed are reported, not fatal),
 // 1 error, 2 usage.
@@ -241,13 +244,15 @@ struct Timed {
   double seconds = 0;
 };
 
-// --windows: the MDF runs with DistanceOptions::windows.
+// --windows: the MDF runs with DistanceOptions::windows; --fast: with DistanceOptions::fast.
 bool g_windows = false;
+bool g_fast = false;
 
 Timed run_mdf(const Mesh& mesh, int source, const DistanceOptions& options = {}) {
   const auto t0 = std::chrono::steady_clock::now();
   DistanceOptions o = options;
   o.windows = o.windows || g_windows;
+  o.fast = o.fast || g_fast;
   DistanceField f = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(source)), o);
   return {std::move(f), seconds_since(t0)};
 }
@@ -281,6 +286,7 @@ SymmetryStats symmetry(const Mesh& mesh, int pairs, std::uint64_t seed) {
     DistanceOptions o;
     o.directions = false;
     o.windows = g_windows;
+    o.fast = g_fast;
     o.target = VertexHandle(b);
     const double dab = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(a)), o)
                            .distance[static_cast<size_t>(b)];
@@ -766,8 +772,8 @@ int run_synthetic(const fs::path& ref_dir, size_t worst) {
 
 void print_usage(std::ostream& os) {
   os << "usage: geodesic_accuracy MESH --ref PREFIX [--sources a,b,...] [--name NAME] [--pairs N] [--seed S]\n"
-        "                         [--worst K] [--windows]\n"
-        "       geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K] [--windows]\n"
+        "                         [--worst K] [--windows] [--fast]\n"
+        "       geodesic_accuracy --synthetic [--ref-dir DIR] [--worst K] [--windows] [--fast]\n"
         "       geodesic_accuracy --write-shapes DIR\n";
 }
 
@@ -807,6 +813,8 @@ int run_cli(int argc, char** argv) {
       m.worst = static_cast<size_t>(integer(0, 100000));
     } else if (arg == "--windows") {
       g_windows = true;
+    } else if (arg == "--fast") {
+      g_fast = true;
     } else if (arg == "--synthetic") {
       synthetic = true;
     } else if (arg == "--ref-dir") {

@@ -10,7 +10,9 @@
 //    same mesh) in the same run, each timed R times (default 3) alternately, the median taken. Both
 //    with default options (directions on) and with directions off, and with the edge front not
 //    tracked (DistanceOptions::track_front off, directions on). Also a sanity check of the
-//    MDF's values: Euclidean <= MDF <= Dijkstra (up to 1e-9 relative).
+//    MDF's values: Euclidean <= MDF <= Dijkstra (up to 1e-9 relative). And the fast mode
+//    (DistanceOptions::fast, directions on): time, ratio to Dijkstra, the same bounds, and its mean
+//    relative difference from the default MDF.
 // 2. d_max queries: the same query (source at the centre vertex, d_max D, default 0.5) on a
 //    planar grid of SMALL x SMALL cells (default 100) and one of LARGE x LARGE cells (default
 //    2000), both with cell size H (default 0.02), so the local triangulation is the same. With the
@@ -224,9 +226,10 @@ void full_field(const Args& a) {
             << "Median of " << a.reps << " alternating runs per source and configuration.\n\n"
             << "| source | Dijkstra | MDF | **MDF / Dijkstra** | Dijkstra, no directions | MDF, no directions | ratio, no "
                "directions | MDF, front not tracked | ratio, front not tracked | MDF peak front | MDF peak working memory | "
-               "Dijkstra / MDF distance (mean) | MDF below Euclidean / above Dijkstra |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<double> ratios, ratios_nodir, ratios_untracked;
+               "Dijkstra / MDF distance (mean) | MDF below Euclidean / above Dijkstra | fast | **fast / Dijkstra** | fast: "
+               "below Euclidean / above Dijkstra | fast vs MDF: mean, max relative difference |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<double> ratios, ratios_nodir, ratios_untracked, ratios_fast;
   bool untracked_same = true;  // DistanceOptions::track_front off gave the same distances
   double cpu_dij = 0, cpu_mdf = 0;  // summed thread CPU time of the runs with directions
   double min_cpu_dij = 0, min_cpu_mdf = 0;  // summed over sources: the fastest run's CPU time
@@ -238,8 +241,11 @@ void full_field(const Args& a) {
     with_dir.windows = no_dir.windows = a.windows;
     DistanceOptions untracked = with_dir;
     untracked.track_front = false;
-    std::vector<double> td, tm, tdn, tmn, tmu, cd, cm;
-    DistanceField mdf, dij;
+    DistanceOptions fast = with_dir;
+    fast.fast = true;
+    fast.windows = false;
+    std::vector<double> td, tm, tdn, tmn, tmu, tf, cd, cm;
+    DistanceField mdf, dij, fst;
     for (int r = 0; r < a.reps; ++r) {
       double c = thread_cpu_seconds();
       auto t = Clock::now();
@@ -263,6 +269,26 @@ void full_field(const Args& a) {
       const DistanceField mu = edgefront::geodesic_distance(mesh, src, untracked);
       tmu.push_back(seconds_since(t));
       untracked_same = untracked_same && mu.distance == mdf.distance;
+      t = Clock::now();
+      fst = edgefront::geodesic_distance(mesh, src, fast);
+      tf.push_back(seconds_since(t));
+    }
+    size_t fast_below = 0, fast_above = 0;
+    double fast_diff_sum = 0, fast_diff_max = 0;
+    size_t fast_compared = 0;
+    for (size_t v = 0; v < n; ++v) {
+      const double df = fst.distance[v], dm = mdf.distance[v], dd = dij.distance[v];
+      if (std::isfinite(dd) != std::isfinite(df)) ++fast_above;  // reached by one and not the other
+      if (!std::isfinite(df) || !std::isfinite(dd)) continue;
+      const double e = (mesh.point(VertexHandle(static_cast<int>(v))) - mesh.point(VertexHandle(s))).norm();
+      if (df < e * (1 - 1e-9)) ++fast_below;
+      if (df > dd * (1 + 1e-9)) ++fast_above;
+      if (std::isfinite(dm) && dm > 0) {
+        const double r = std::abs(df - dm) / dm;
+        fast_diff_sum += r;
+        fast_diff_max = std::max(fast_diff_max, r);
+        ++fast_compared;
+      }
     }
     // Sanity: Euclidean <= MDF <= Dijkstra.
     const Vec3 ps = mesh.point(VertexHandle(s));
@@ -302,18 +328,25 @@ void full_field(const Args& a) {
     ratios.push_back(mm / md);
     ratios_nodir.push_back(mmn / mdn);
     ratios_untracked.push_back(mmu / md);
+    const double mf = median(tf);
+    ratios_fast.push_back(mf / md);
+    std::ostringstream fast_text;
+    fast_text << secs(mf) << " | **" << std::setprecision(3) << mf / md << "** | " << fast_below << " / " << fast_above
+              << " | " << std::setprecision(3) << 100 * fast_diff_sum / static_cast<double>(std::max<size_t>(fast_compared, 1))
+              << "%, " << 100 * fast_diff_max << "%";
     std::ostringstream ratio_text;
     ratio_text << std::setprecision(4) << (compared ? ratio_sum / static_cast<double>(compared) : std::nan(""));
     std::cout << "| " << s << " | " << secs(md) << " | " << secs(mm) << " | **" << std::setprecision(3) << mm / md
               << "** | " << secs(mdn) << " | " << secs(mmn) << " | " << std::setprecision(3) << mmn / mdn << " | "
               << secs(mmu) << " | " << std::setprecision(3) << mmu / md << " | " << mdf.peak_front << " | " << bytes(static_cast<long long>(mdf.peak_working_memory_bytes)) << " | "
-              << ratio_text.str() << " | " << bounds.str() << " |\n";
+              << ratio_text.str() << " | " << bounds.str() << " | " << fast_text.str() << " |\n";
   }
-  double mean = 0, mean_nodir = 0, mean_untracked = 0;
+  double mean = 0, mean_nodir = 0, mean_untracked = 0, mean_fast = 0;
   for (size_t i = 0; i < ratios.size(); ++i) {
     mean += ratios[i] / static_cast<double>(ratios.size());
     mean_nodir += ratios_nodir[i] / static_cast<double>(ratios.size());
     mean_untracked += ratios_untracked[i] / static_cast<double>(ratios.size());
+    mean_fast += ratios_fast[i] / static_cast<double>(ratios.size());
   }
   std::cout << "\nMean MDF / Dijkstra time: **" << std::setprecision(3) << mean << "** with directions (target <= 1.5: "
             << (mean <= 1.5 ? "met" : "MISSED") << "), " << mean_nodir << " without.\n"
@@ -323,7 +356,8 @@ void full_field(const Args& a) {
             << min_cpu_mdf / min_cpu_dij << ".\n"
             << "With the edge front not tracked (`DistanceOptions::track_front = false`, directions on): "
             << std::setprecision(3) << mean_untracked << "; the same distances: " << (untracked_same ? "yes" : "**NO**")
-            << ".\n";
+            << ".\nFast mode (`DistanceOptions::fast`, directions on) / Dijkstra: **" << std::setprecision(3) << mean_fast
+            << "**.\n";
 }
 
 // ---- part 2: d_max queries -----------------------------------------------------------------

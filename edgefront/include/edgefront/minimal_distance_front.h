@@ -77,6 +77,20 @@ struct DistanceOptions {
   /// Non-manifold vertices are still refused (when they settle instead of when they are reached).
   /// Ignored (kept on) in window mode, which expands the front to know where windows start.
   bool track_front = true;
+  /// Fast mode, for `geodesic_distance` only (whole field, `max_distance`, `target`): a Dijkstra
+  /// over per-mesh arrays (O(mesh) memory, no edge front) whose relaxation is one straight line.
+  /// A settled vertex keeps its distance d and its direction toward the source, i.e. a virtual
+  /// source at distance d in its tangent plane (normal: the sum of its faces' area vectors); a
+  /// neighbour takes the distance from that point to the edge laid into the plane (law of
+  /// cosines), clamped to at least the straight (3D) distance from the real source and at most
+  /// d + edge length: never below the Euclidean distance, never above Dijkstra. Exact on a plane
+  /// from a vertex source inside a convex region; on the scanned models between Dijkstra and the
+  /// default mode in accuracy and close to Dijkstra in time (bench/results/geodesic-speed.md,
+  /// session 8, mdf9). Not provided: the edge front (`peak_front` is 0), windows, pseudo sources
+  /// (paths around re-entrant corners and saddles can come out short, down to the Euclidean
+  /// bound), the stepwise `MinimalDistanceFront` (its `reset` refuses the option). A loop source
+  /// ignores it (default mode). `order` follows the settling, which can step back slightly.
+  bool fast = false;
 };
 
 /// Why a distance computation stopped.
