@@ -469,6 +469,21 @@ TEST(Mdf, LineSourceMeasuresDistanceToTheLineOnItsAheadSide) {
   }
 }
 
+// A triangle hung on a corner of a small 2x2-cell grid by one vertex (a non-manifold vertex).
+struct HungTriangle {
+  Mesh mesh;
+  VertexHandle corner, t1;
+};
+HungTriangle hung_triangle() {
+  HungTriangle h{shapes::grid(shapes::GridOptions{.cells = 2}), VertexHandle(), VertexHandle()};
+  h.corner = nearest_vertex(h.mesh, Vec3(1, 1, 0));
+  h.t1 = h.mesh.add_vertex(Vec3(2, 1.2, 0));
+  const VertexHandle t2 = h.mesh.add_vertex(Vec3(2, 1.8, 0));
+  EXPECT_TRUE(h.mesh.add_face(h.corner, h.t1, t2).is_valid());
+  EXPECT_FALSE(h.mesh.is_manifold(h.corner));
+  return h;
+}
+
 // Without the edge front, a loop source gives the same field, and a non-manifold vertex is still
 // refused (when it settles; the front refuses it when it reaches it).
 TEST(Mdf, UntrackedFrontLoopSourceAndNonManifoldVertex) {
@@ -482,14 +497,9 @@ TEST(Mdf, UntrackedFrontLoopSourceAndNonManifoldVertex) {
     EXPECT_EQ(a.distance, b.distance);
     EXPECT_EQ(a.order, b.order);
   }
-  // A triangle hung on a corner of a small grid by one vertex.
-  Mesh mesh = shapes::grid(shapes::GridOptions{.cells = 2});
-  const VertexHandle corner = nearest_vertex(mesh, Vec3(1, 1, 0));
-  const VertexHandle t1 = mesh.add_vertex(Vec3(2, 1.2, 0)), t2 = mesh.add_vertex(Vec3(2, 1.8, 0));
-  ASSERT_TRUE(mesh.add_face(corner, t1, t2).is_valid());
-  ASSERT_FALSE(mesh.is_manifold(corner));
-  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(t1), untracked), TopologyError);
-  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(nearest_vertex(mesh, Vec3(-1, -1, 0))), untracked),
+  const HungTriangle h = hung_triangle();
+  EXPECT_THROW(geodesic_distance(h.mesh, FrontSource::vertex(h.t1), untracked), TopologyError);
+  EXPECT_THROW(geodesic_distance(h.mesh, FrontSource::vertex(nearest_vertex(h.mesh, Vec3(-1, -1, 0))), untracked),
                TopologyError);
 }
 
@@ -747,3 +757,118 @@ TEST(MdfWindows, ReusedFrontAndLoopSource) {
 }
 
 }  // namespace
+
+// ---- DistanceOptions::fast: one straight-line update per (settled vertex, neighbour) ----
+
+constexpr DistanceOptions kFast{.fast = true};
+
+// Exact (1e-9) on planar convex regions from a vertex, directions included.
+TEST(MdfFast, PlanarConvexRegionsAreExact) { expect_planar_exact(kFast); }
+
+TEST(MdfFast, OpenCylinderUnrollsExactly) { EXPECT_LT(cylinder_mean_error(kFast), 1e-9); }
+
+// Euclidean <= d <= Dijkstra, reached iff connected, sources 0, settling order non-decreasing.
+TEST_P(MdfOnShapes, FastBoundsAndOrder) {
+  const Mesh mesh = GetParam().make();
+  std::mt19937_64 rng(8);
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto sources = eftest::random_vertices(mesh, rng, 1 + trial % 2);
+    expect_bounds_and_order(mesh, sources, kFast, GetParam().name);
+  }
+}
+
+// On a fine sphere: far below Dijkstra's error against the great-circle distance.
+TEST(MdfFast, SphereIsAccurate) {
+  const Mesh mesh = shapes::icosphere(4);
+  const VertexHandle s(7);
+  const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(s), kFast);
+  const DistanceField dj = dijkstra_distance(mesh, FrontSource::vertex(s));
+  double err = 0, err_dj = 0;
+  size_t n = 0;
+  for (VertexHandle v : mesh.vertices()) {
+    const double exact = std::acos(std::clamp(OpenMesh::dot(mesh.point(v), mesh.point(s)), -1.0, 1.0));
+    if (exact < 1e-9 || exact > 3.0) continue;
+    err += std::abs(f.distance[v.idx()] - exact) / exact;
+    err_dj += std::abs(dj.distance[v.idx()] - exact) / exact;
+    ++n;
+  }
+  EXPECT_LT(err / n, 0.01);
+  EXPECT_LT(err / n, err_dj / n / 5);
+  EXPECT_EQ(f.peak_front, 0u);
+}
+
+TEST(MdfFast, DisconnectedPartsStopsAndPointSource) {
+  const Mesh spheres = shapes::nested_spheres(2);
+  const DistanceField f = geodesic_distance(spheres, FrontSource::vertex(VertexHandle(0)), kFast);
+  const auto hops = eftest::bfs_levels(spheres, {VertexHandle(0)});
+  size_t inf = 0;
+  for (VertexHandle v : spheres.vertices()) {
+    EXPECT_EQ(std::isinf(f.distance[v.idx()]), hops[v.idx()] < 0);
+    inf += std::isinf(f.distance[v.idx()]);
+  }
+  EXPECT_GT(inf, 0u);
+
+  const Mesh mesh = shapes::icosphere(3);
+  DistanceOptions o = kFast;
+  o.max_distance = 1.0;
+  const DistanceField m = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), o);
+  EXPECT_EQ(m.stop, DistanceStop::MaxDistance);
+  size_t finite = 0;
+  for (double d : m.distance) {
+    if (!std::isfinite(d)) continue;
+    EXPECT_LE(d, 1.0);
+    ++finite;
+  }
+  EXPECT_GT(finite, 10u);
+  EXPECT_LT(finite, mesh.n_vertices());
+  EXPECT_EQ(finite, m.order.size());
+  o = kFast;
+  o.target = VertexHandle(100);
+  const DistanceField t = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), o);
+  EXPECT_EQ(t.stop, DistanceStop::TargetReached);
+  EXPECT_EQ(t.order.back(), VertexHandle(100));
+
+  const Mesh grid = shapes::grid(shapes::GridOptions{.cells = 10});
+  const SurfacePoint p{FaceHandle(37), {0.2, 0.3, 0.5}};
+  Vec3 x(0, 0, 0);
+  int k = 0;
+  for (VertexHandle v : grid.fv_range(p.face)) x += grid.point(v) * p.bary[k++];
+  const DistanceField d = geodesic_distance(grid, std::vector<SurfacePoint>{p}, kFast);
+  for (VertexHandle v : grid.vertices()) {
+    const double exact = (grid.point(v) - x).norm();
+    ASSERT_NEAR(d.distance[v.idx()], exact, 1e-9 * exact) << v.idx();
+    ASSERT_NEAR(OpenMesh::dot(d.direction[v.idx()], (x - grid.point(v)) / exact), 1.0, 1e-9) << v.idx();
+  }
+}
+
+// The same errors as the default mode; the stepwise front refuses the option; a loop source runs
+// the default mode.
+TEST(MdfFast, BadInputLoopSourceAndNonManifoldVertex) {
+  Mesh mesh = shapes::icosphere(1);
+  auto with = [](DistanceOptions o) {
+    o.fast = true;
+    return o;
+  };
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(1000)), kFast), InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), with({.max_distance = -1})), InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), with({.max_distance = std::nan("")})),
+               InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), with({.target = VertexHandle(-3)})),
+               InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, std::vector<SurfacePoint>{}, kFast), InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, std::vector<SurfacePoint>{{FaceHandle(9999), {1, 0, 0}}}, kFast), InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, std::vector<SurfacePoint>{{FaceHandle(0), {0.5, 0.5, 0.5}}}, kFast), InvalidInput);
+  EXPECT_THROW(geodesic_distance(mesh, std::vector<SurfacePoint>{{FaceHandle(0), {-0.5, 1.0, 0.5}}}, kFast),
+               InvalidInput);
+  MinimalDistanceFront front(mesh);
+  EXPECT_THROW(front.reset(FrontSource::vertex(VertexHandle(0)), kFast), InvalidInput);
+  mesh.delete_vertex(VertexHandle(3), false);
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(3)), kFast), InvalidInput);
+
+  const HungTriangle h = hung_triangle();
+  EXPECT_THROW(geodesic_distance(h.mesh, FrontSource::vertex(h.t1), kFast), TopologyError);
+
+  const Mesh grid = shapes::grid(shapes::GridOptions{.cells = 16});
+  const FrontSource src = loop_from_vertices(grid, rectangle_ring(grid), LoopSide::Left);
+  EXPECT_EQ(geodesic_distance(grid, src, kFast).distance, geodesic_distance(grid, src).distance);
+}

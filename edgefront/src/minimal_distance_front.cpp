@@ -1539,6 +1539,7 @@ Vec3 fast_direction(const std::vector<FastRay>& ring, size_t first, double phi) 
     i = nx;
   }
   const size_t nx = i + 1 == m ? 0 : i + 1;
+  if (!(ring[i].len > 0)) return Vec3(0, 0, 0);
   const Vec3 u = ring[i].e / ring[i].len;
   Vec3 w = ring[nx].e - OpenMesh::dot(ring[nx].e, u) * u;
   const double lw = w.norm();
@@ -1643,7 +1644,7 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
         }
       }
     }
-    if (o.directions && aimed && ring[first].len > 0) out.direction[x] = fast_direction(ring, first, phi);
+    if (o.directions && aimed) out.direction[x] = fast_direction(ring, first, phi);
     if (o.target && o.target->idx() == x) {
       out.stop = DistanceStop::TargetReached;
       break;
@@ -1654,7 +1655,7 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
     for (size_t i = 0; i < m; ++i) {
       const FastRay& ry = ring[i];
       FastRec& rc = rec[ry.v];
-      if (rc.settled || !(ry.len > 0)) continue;
+      if (rc.settled) continue;
       double alpha = phi - ry.theta;
       if (closed) {
         if (alpha > 0.5 * total) alpha -= total;
@@ -1722,7 +1723,10 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
         cb = 0;
         cd = d + ry.len;
       }
-      cd = std::max(cd, (px + ry.e - origin).norm());
+      // Never below the straight line from the source, nor below x's own distance: vertices settle
+      // in non-decreasing order, so every neighbour nearer than d + edge length settles first and
+      // its bound holds (never above Dijkstra).
+      cd = std::max({cd, (px + ry.e - origin).norm(), d});
       if (d + ry.len < rc.bound) rc.bound = d + ry.len;
       if (cd > rc.bound) {
         cd = rc.bound;
@@ -1731,7 +1735,9 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           cb = 0;
         }
       }
-      if (by_face ? (rc.by_face && !(cd < rc.d)) : (rc.by_face || !(cd < rc.d))) continue;
+      // A face value overrides the others; any value is taken when it is shorter and c's value is
+      // above the bound.
+      if (by_face ? (rc.by_face && !(cd < rc.d)) : (!(cd < rc.d) || (rc.by_face && !(rc.d > rc.bound)))) continue;
       rc.by_face = by_face;
       rc.d = cd;
       rc.r = cr;
