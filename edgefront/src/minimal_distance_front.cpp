@@ -1514,6 +1514,7 @@ struct FastRay {
   double len;
   double theta;      // ring angle
   double cos_after, sin_after;  // the corner angle of the face after this edge
+  double angle_after;
   bool face_after;   // a face between this edge and the next one in the walk
 };
 
@@ -1601,7 +1602,7 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           gap = ring.size();
           ++gaps;
         }
-        ring.push_back(FastRay{y.idx(), e, e.norm(), 0.0, 1.0, 0.0, face});
+        ring.push_back(FastRay{y.idx(), e, e.norm(), 0.0, 1.0, 0.0, 0.0, face});
         h = mesh.next_halfedge_handle(g);
         if (ring.size() > max_ring) {
           throw InternalError("distance: the ring of vertex " + std::to_string(x) + " does not close");
@@ -1623,7 +1624,8 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
       if (ry.face_after) {
         const Vec3& f = ring[nx].e;
         const double sn = OpenMesh::cross(ry.e, f).norm(), cs = OpenMesh::dot(ry.e, f);
-        total += std::atan2(sn, cs);
+        ry.angle_after = std::atan2(sn, cs);
+        total += ry.angle_after;
         const double ll = ry.len * ring[nx].len;
         if (ll > 0) {
           ry.cos_after = cs / ll;
@@ -1632,6 +1634,7 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
       }
       i = nx;
     }
+    const bool flat = closed && std::abs(total - kTwoPi) < kFlatDefect;
     // The source's ring angle (none at a source vertex or when the parent is not in the ring).
     double phi = 0;
     bool aimed = false;
@@ -1712,7 +1715,28 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           // In x's development, c on the x axis, the source side up: S - c = (-ca, |cb|).
           const double yx = fy->len * corner.cos_after - ry.len, yy = fy->len * corner.sin_after;
           const double side = -ca * yy - std::abs(cb) * yx;
-          if (side <= 1e-12 * (std::abs(ca) + std::abs(cb)) * (std::abs(yx) + yy)) {
+          bool inside = side <= 1e-12 * (std::abs(ca) + std::abs(cb)) * (std::abs(yx) + yy);
+          // And, unless x is intrinsically flat, it must cross every edge of x between c and the
+          // source inside the edge (the ring is laid out exactly only up to its outer edges).
+          double t = 0, ct = 1, st = 0;
+          size_t k = i;
+          for (size_t steps = flat ? m : 0; inside && steps < m; ++steps) {
+            const size_t kc = alpha >= 0 ? k : (k == 0 ? m - 1 : k - 1);  // the corner crossed
+            const FastRay& cr_ray = ring[kc];
+            if (!cr_ray.face_after) {
+              inside = false;
+              break;
+            }
+            t += cr_ray.angle_after;
+            if (t >= std::abs(alpha)) break;
+            const double c2 = ct * cr_ray.cos_after - st * cr_ray.sin_after;
+            st = st * cr_ray.cos_after + ct * cr_ray.sin_after;
+            ct = c2;
+            k = alpha >= 0 ? (k + 1 == m ? 0 : k + 1) : kc;
+            const double den = ct * std::abs(cb) + st * ca;  // cross(ray, S - c), S - c = (-ca, |cb|)
+            if (!(den > 0) || ry.len * std::abs(cb) > ring[k].len * (1 + 1e-9) * den) inside = false;
+          }
+          if (inside) {
             cr = std::sqrt(ca * ca + cb * cb);
             cd = before + cr;
           }
