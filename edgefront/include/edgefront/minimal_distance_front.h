@@ -87,9 +87,9 @@ struct DistanceOptions {
   /// intrinsically flat); otherwise d + edge length (x a pseudo source: saddles, borders). Values are
   /// clamped between the straight (3D) distance from the source and the Dijkstra bound, and
   /// vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact on planar convex
-  /// regions, open cylinders and cones (vertex or point sources); on armadillo, homer, man and
-  /// bunny00 the mean error is 0.15-0.77% (heat method 1.2-3%, Dijkstra 4.3-6.5%, the default
-  /// mode 0.1-0.35%), the asymmetry 0.15-0.72%, at 2.2-2.5x a binary-heap Dijkstra (the default:
+  /// regions, open cylinders and cones (vertex or point sources); on CGAL's six scanned models
+  /// the mean error is 0.15-0.82% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the default mode
+  /// 0.1-0.37%), the asymmetry 0.15-0.81%, at 2.2-2.5x a binary-heap Dijkstra (the default:
   /// 5-6x); bench/results/geodesic-speed.md, "Session 8 (mdf9)". Not provided: the edge front (`peak_front` is 0), the
   /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
   /// sources (they run the default mode). A vertex nearer the source than all its neighbours gets
