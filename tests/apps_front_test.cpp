@@ -290,6 +290,23 @@ TEST_F(AppsFrontTest, EfDistanceFromAVertexMatchesTheLibraryExactly) {
   ASSERT_EQ(w.size(), e.size());
   for (size_t i = 0; i < w.size(); ++i) EXPECT_LE(w[i], e[i] * (1 + 1e-12)) << i;
   EXPECT_NE(win.err.find("windows, "), std::string::npos) << win.err;
+
+  // --method fast: the library's fast field, byte for byte, between the straight distance and the
+  // edge paths.
+  const CommandResult fst = run(quoted(data_file("torus.off")) + " --source 7 --method fast");
+  ASSERT_EQ(fst.exit_code, 0) << fst.err;
+  const std::vector<double> f = parse_distances(fst.out);
+  edgefront::DistanceOptions fast;
+  fast.fast = true;
+  EXPECT_EQ(f, edgefront::geodesic_distance(mesh, source, fast).distance);
+  EXPECT_NE(f, e);  // not the edge paths
+  ASSERT_EQ(f.size(), e.size());
+  for (size_t i = 0; i < f.size(); ++i) {
+    EXPECT_LE(f[i], e[i] * (1 + 1e-12)) << i;
+    EXPECT_GE(f[i], (mesh.point(VertexHandle(static_cast<int>(i))) - mesh.point(VertexHandle(7))).norm() * (1 - 1e-12)) << i;
+  }
+  EXPECT_NE(fst.err.find("fast, "), std::string::npos) << fst.err;
+  EXPECT_NE(fst.err.find("no front"), std::string::npos) << fst.err;
 }
 
 TEST_F(AppsFrontTest, EfDistanceMaxDistanceBoundsEveryFiniteOutput) {
@@ -405,6 +422,7 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_usage_error(torus + " --source 0 --point 0:1,0,0");
   expect_usage_error(torus + " --point 0:1,0,0 --method dijkstra");
   expect_usage_error(torus + " --loop 0,1,2 --method windows", "--loop");
+  expect_usage_error(torus + " --loop 0,1,2 --method fast", "--loop");
   expect_usage_error(torus + " --source 0 --method heat");
   expect_usage_error(torus + " --source 0 --max-distance -1");
   expect_usage_error(torus + " --source 0 --max-distance nan");
