@@ -138,10 +138,11 @@ TEST_F(GcsCli, ErrorsAndUsage) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("at least 4 points"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
-  // Target above 4 x the point count.
-  r = run(q(vault()) + " -o " + q(out) + " --vertices 20000");
+  // Target above the point count (the vault has 3000 points).
+  r = run(q(vault()) + " -o " + q(out) + " --vertices 3001");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("more than 4 times"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than the number of points (3000)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
   EXPECT_EQ(run(q(vault()) + " -o " + q(out) + " --vertices 3").exit_code, 2);
   EXPECT_EQ(run(q(vault())).exit_code, 2);                                       // no -o
   EXPECT_EQ(run(q(vault()) + " -o " + q(dir_ / "x.abc") + " --vertices 50").exit_code, 1);  // bad extension

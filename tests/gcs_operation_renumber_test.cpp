@@ -155,7 +155,7 @@ gcs::ReconstructOptions options() {
 
 edgefront::PointCloud torus_cloud() {
   edgefront::shapes::SampleOptions so;
-  so.points = 2000;
+  so.points = 2500;  // at least one point per target vertex (options(): 2100)
   return edgefront::shapes::sample("torus", so);
 }
 

@@ -173,11 +173,12 @@ TEST(GcsSurfaceFit, ReconstructionOptionsOutOfRangeAreRejected) {
     }
   };
   gcs::ReconstructOptions o;
+  o.target_vertices = 300;  // within the cloud's 3000 points: only the fit option is out of range
   o.fit_rounds = 0;
   expect_rejected(o, "fit_rounds");
   o.fit_rounds = 21;
   expect_rejected(o, "fit_rounds");
-  o = {};
+  o.fit_rounds = gcs::ReconstructOptions{}.fit_rounds;
   o.fit_smoothness = -0.5;
   expect_rejected(o, "fit_smoothness");
   o.fit_smoothness = std::numeric_limits<double>::infinity();

@@ -212,7 +212,7 @@ TEST(SpatialOrder, RenumberingKeepsTheMeshAndDropsDeletedElements) {
 // per split keep the test fast).
 TEST(SpatialOrder, ReconstructionThatRenumbersStaysValidAndDeterministic) {
   edgefront::shapes::SampleOptions so;
-  so.points = 2000;
+  so.points = 2500;  // at least one point per target vertex
   const edgefront::PointCloud cloud = edgefront::shapes::sample("torus", so);
   gcs::ReconstructOptions o;
   o.target_vertices = 2200;

@@ -119,8 +119,10 @@ void check_options(const ReconstructOptions& o, size_t n_points) {
   auto fail = [](const std::string& m) { throw InvalidInput("gcs: " + m); };
   if (o.target_vertices < 4) fail("target_vertices must be at least 4 (got " + std::to_string(o.target_vertices) + ")");
   if (o.target_vertices > 50'000'000) fail("target_vertices above 50,000,000 is not supported");
-  if (o.target_vertices > 4 * n_points)
-    fail("target_vertices " + std::to_string(o.target_vertices) + " is more than 4 times the number of points (" +
+  // Each vertex needs samples that it wins: above one vertex per point the loop cannot hold the
+  // vertices it adds (it collapses them as inactive) and runs into the step limit.
+  if (o.target_vertices > n_points)
+    fail("target_vertices " + std::to_string(o.target_vertices) + " is more than the number of points (" +
          std::to_string(n_points) + "): the samples cannot place that many vertices");
   if (o.steps_per_split < 1) fail("steps_per_split must be >= 1");
   if (!(o.winner_rate > 0 && o.winner_rate <= 1)) fail("winner_rate must be in (0, 1]");
