@@ -329,16 +329,25 @@ TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
   EXPECT_THROW(r.add_operation(nullptr), InvalidInput);
 }
 
-TEST(GcsReconstructor, DuplicatePointsWork) {
-  PointCloud c = cloud_of("icosphere", 1500);
-  const size_t n = c.size();
-  for (size_t i = 0; i < n; ++i) {
-    c.points.push_back(c.points[i]);
-    c.normals.push_back(c.normals[i]);
+// Repeated points are dropped: a cloud written three times gives the mesh of the cloud written
+// once, byte for byte, with and without normals. (Before, a 1000-point plane without normals, each
+// point written 3 times, came out at 900 vertices in 12 pieces with 28 holes.)
+TEST(GcsReconstructor, RepeatedPointsAreDroppedAndChangeNothing) {
+  for (const bool with_normals : {true, false}) {
+    PointCloud once = cloud_of("icosphere", 1500);
+    if (!with_normals) once.normals.clear();
+    PointCloud thrice = once;
+    for (int k = 0; k < 2; ++k) {
+      thrice.points.insert(thrice.points.end(), once.points.begin(), once.points.end());
+      thrice.normals.insert(thrice.normals.end(), once.normals.begin(), once.normals.end());
+    }
+    const gcs::ReconstructResult a = gcs::reconstruct(once, small(300));
+    const gcs::ReconstructResult b = gcs::reconstruct(thrice, small(300));
+    expect_manifold(b.mesh, "repeated points");
+    EXPECT_EQ(edgefront::compute_stats(b.mesh).border_loops, 0u);
+    EXPECT_EQ(flat_points(a.mesh), flat_points(b.mesh)) << "normals: " << with_normals;
+    EXPECT_EQ(flat_faces(a.mesh), flat_faces(b.mesh)) << "normals: " << with_normals;
   }
-  const gcs::ReconstructResult res = gcs::reconstruct(c, small(300));
-  expect_manifold(res.mesh, "duplicates");
-  EXPECT_EQ(edgefront::compute_stats(res.mesh).border_loops, 0u);
 }
 
 TEST(GcsReconstructor, FourPointsGiveAValidMesh) {
@@ -350,6 +359,15 @@ TEST(GcsReconstructor, FourPointsGiveAValidMesh) {
   // One vertex per point at most: the loop cannot hold more (measured: a 3000-point plane asked
   // for 5000 vertices ran into the step limit after 10M steps with 15 holes).
   EXPECT_THROW(gcs::reconstruct(c, small(5)), edgefront::InvalidInput);
+  // Repeated points do not count.
+  PointCloud twice = c;
+  twice.points.insert(twice.points.end(), c.points.begin(), c.points.end());
+  try {
+    gcs::reconstruct(twice, small(5));
+    ADD_FAILURE() << "5 vertices from 4 distinct points were accepted";
+  } catch (const edgefront::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("distinct points (4; 4 repeat"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GcsReconstructor, CoplanarCloudGivesAValidSheetNearThePlane) {

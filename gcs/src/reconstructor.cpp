@@ -115,6 +115,44 @@ class DrawSamples {
 };
 static_assert(std::is_trivially_destructible_v<DrawSample>, "DrawSamples frees without destructors");
 
+// Drops the points that repeat an earlier one exactly (with their normals); the others keep their
+// input order. Returns how many were dropped. Sorts a copy: O(n log n).
+size_t drop_repeated_points(edgefront::PointCloud& c) {
+  const std::vector<Vec3>& p = c.points;
+  struct Key {
+    double x, y, z;
+    size_t i;
+  };
+  std::vector<Key> keys(p.size());
+  for (size_t i = 0; i < p.size(); ++i) keys[i] = {p[i][0], p[i][1], p[i][2], i};
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    if (a.z != b.z) return a.z < b.z;
+    return a.i < b.i;
+  });
+  std::vector<uint8_t> repeated(p.size(), 0);
+  size_t dropped = 0;
+  for (size_t k = 1; k < keys.size(); ++k) {
+    const Key &a = keys[k - 1], &b = keys[k];
+    if (a.x == b.x && a.y == b.y && a.z == b.z) {
+      repeated[b.i] = 1;
+      ++dropped;
+    }
+  }
+  if (dropped == 0) return 0;
+  size_t out = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (repeated[i]) continue;
+    c.points[out] = c.points[i];
+    if (!c.normals.empty()) c.normals[out] = c.normals[i];
+    ++out;
+  }
+  c.points.resize(out);
+  if (!c.normals.empty()) c.normals.resize(out);
+  return dropped;
+}
+
 void check_options(const ReconstructOptions& o, size_t n_points) {
   auto fail = [](const std::string& m) { throw InvalidInput("gcs: " + m); };
   if (o.target_vertices < 4) fail("target_vertices must be at least 4 (got " + std::to_string(o.target_vertices) + ")");
@@ -237,6 +275,13 @@ struct Reconstructor::Impl {
     bbox_diagonal = (hi - lo).norm();
     if (!(bbox_diagonal > 1e-12 * std::max(1.0, offset.norm())))
       throw InvalidInput("gcs: all points coincide: there is no surface to reconstruct");
+    // Repeated points would weigh their place several times in every k-nearest query (a plane whose
+    // points were each written 3 times came out in 12 pieces): they are dropped, and the target must
+    // fit the distinct points.
+    if (const size_t repeated = drop_repeated_points(points); opt.target_vertices > points.size())
+      throw InvalidInput("gcs: target_vertices " + std::to_string(opt.target_vertices) +
+                         " is more than the number of distinct points (" + std::to_string(points.size()) + "; " +
+                         std::to_string(repeated) + " repeat an earlier one): the samples cannot place that many vertices");
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
     // Collinear: the second principal extent vanishes.

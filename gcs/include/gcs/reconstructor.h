@@ -46,8 +46,8 @@ enum class StartShape {
 
 /// Options of the reconstruction. Defaults follow the paper where it gives a value.
 struct ReconstructOptions {
-  /// Stop when the mesh has this many live vertices; in [4, number of input points] (and at most
-  /// 50,000,000).
+  /// Stop when the mesh has this many live vertices; in [4, number of distinct input points] (and
+  /// at most 50,000,000). Points that repeat an earlier one exactly are dropped before the run.
   std::size_t target_vertices = 5000;
   StartShape start = StartShape::box;  ///< start mesh
   /// Basic steps between two vertex splits (the paper's lambda; 70 also works). >= 1.
@@ -225,7 +225,7 @@ class Reconstructor {
   /// Checks the input and builds the start mesh.
   /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates, points
   ///        that all coincide or are collinear (no surface to reconstruct), and options out of
-  ///        their documented ranges (target below 4 or above the number of points, ...).
+  ///        their documented ranges (target below 4 or above the number of distinct points, ...).
   explicit Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options = {});
   ~Reconstructor();
   Reconstructor(const Reconstructor&) = delete;
