@@ -2,7 +2,7 @@
 //
 //   geodesic_speed [--model PATH] [--subdiv K] [--sources N] [--reps R] [--seed S]
 //                  [--small CELLS] [--large CELLS] [--cell H] [--dmax D] [--queries Q]
-//                  [--skip-full] [--skip-dmax] [--windows]
+//                  [--skip-full] [--skip-dmax] [--windows] [--fast-only]
 //
 // 1. Full field: the model (default data/models/armadillo.off) Loop-subdivided K times (default 2:
 //    the armadillo's 52K triangles become 832K) with OpenMesh's LoopT; from N random sources
@@ -22,6 +22,9 @@
 //    contrast, the free functions geodesic_distance and dijkstra_distance with max_distance.
 //
 // --windows: the MDF runs with DistanceOptions::windows (windows per edge).
+// --fast-only: part 1 times only dijkstra_distance and the fast mode (both with directions),
+//    alternately, 2R runs each per source, by thread CPU time (medians), with the same bounds
+//    check; for profiling the fast mode and for its ratio under load.
 //
 // Output: markdown on stdout, progress on stderr. Exit codes: 0 done, 1 error, 2 usage.
 
@@ -191,7 +194,10 @@ struct Args {
   bool full = true;
   bool dmax_part = true;
   bool windows = false;  // --windows: the MDF with DistanceOptions::windows
+  bool fast_only = false;  // --fast-only: part 1 times only Dijkstra and the fast mode
 };
+
+void fast_only(const Mesh& mesh, const std::vector<int>& sources, const Args& a);
 
 // ---- part 1: full field --------------------------------------------------------------------
 
@@ -222,8 +228,12 @@ void full_field(const Args& a) {
 
   std::cout << "\n### Full field: " << a.model.stem().string() << ", Loop-subdivided " << a.subdiv << "x ("
             << faces0 << " -> " << mesh.n_faces() << " triangles, " << n << " vertices; subdivision "
-            << secs(subdiv_s) << ")\n\n"
-            << "Median of " << a.reps << " alternating runs per source and configuration.\n\n"
+            << secs(subdiv_s) << ")\n\n";
+  if (a.fast_only) {
+    fast_only(mesh, sources, a);
+    return;
+  }
+  std::cout << "Median of " << a.reps << " alternating runs per source and configuration.\n\n"
             << "| source | Dijkstra | MDF | **MDF / Dijkstra** | Dijkstra, no directions | MDF, no directions | ratio, no "
                "directions | MDF, front not tracked | ratio, front not tracked | MDF peak front | MDF peak working memory | "
                "Dijkstra / MDF distance (mean) | MDF below Euclidean / above Dijkstra | fast | **fast / Dijkstra** | fast: "
@@ -357,6 +367,48 @@ void full_field(const Args& a) {
             << "With the edge front not tracked (`DistanceOptions::track_front = false`, directions on): "
             << std::setprecision(3) << mean_untracked << "; the same distances: " << (untracked_same ? "yes" : "**NO**")
             << ".\nFast mode (`DistanceOptions::fast`, directions on) / Dijkstra: **" << std::setprecision(3) << mean_fast
+            << "**.\n";
+}
+
+// Dijkstra and the fast mode only, alternately, by thread CPU time.
+void fast_only(const Mesh& mesh, const std::vector<int>& sources, const Args& a) {
+  const size_t n = mesh.n_vertices();
+  DistanceOptions dij_opt, fast_opt;
+  fast_opt.fast = true;
+  std::cout << "Thread CPU time, median of " << 2 * a.reps << " alternating runs each (wall clock in brackets).\n\n"
+            << "| source | Dijkstra | fast | **fast / Dijkstra (CPU)** | fast / Dijkstra (wall) | fast: below Euclidean / "
+               "above Dijkstra |\n|---|---|---|---|---|---|\n";
+  std::vector<double> ratios;
+  for (const int s : sources) {
+    std::cerr << "geodesic_speed: fast mode from " << s << "\n";
+    const FrontSource src = FrontSource::vertex(VertexHandle(s));
+    std::vector<double> cd, cf, wd, wf;
+    DistanceField dij, fst;
+    for (int r = 0; r < 2 * a.reps; ++r) {
+      for (int k = 0; k < 2; ++k) {
+        const bool run_fast = (k == 0) == (r % 2 == 1);  // alternate which one goes first
+        const double c = thread_cpu_seconds();
+        const auto t = Clock::now();
+        (run_fast ? fst : dij) = run_fast ? edgefront::geodesic_distance(mesh, src, fast_opt)
+                                          : edgefront::dijkstra_distance(mesh, src, dij_opt);
+        (run_fast ? wf : wd).push_back(seconds_since(t));
+        (run_fast ? cf : cd).push_back(thread_cpu_seconds() - c);
+      }
+    }
+    size_t below = 0, above = 0;
+    const Vec3 ps = mesh.point(VertexHandle(s));
+    for (size_t v = 0; v < n; ++v) {
+      const double df = fst.distance[v], dd = dij.distance[v];
+      if (std::isfinite(dd) != std::isfinite(df)) ++above;
+      if (!std::isfinite(df) || !std::isfinite(dd)) continue;
+      if (df < (mesh.point(VertexHandle(static_cast<int>(v))) - ps).norm() * (1 - 1e-9)) ++below;
+      if (df > dd * (1 + 1e-9)) ++above;
+    }
+    ratios.push_back(median(cf) / median(cd));
+    std::cout << "| " << s << " | " << secs(median(cd)) << " | " << secs(median(cf)) << " | **" << std::setprecision(3)
+              << ratios.back() << "** | " << median(wf) / median(wd) << " | " << below << " / " << above << " |\n";
+  }
+  std::cout << "\nMedian fast / Dijkstra (thread CPU time) over the sources: **" << std::setprecision(3) << median(ratios)
             << "**.\n";
 }
 
@@ -586,12 +638,14 @@ Args parse(int argc, char** argv) {
       a.full = false;
     else if (arg == "--skip-dmax")
       a.dmax_part = false;
+    else if (arg == "--fast-only")
+      a.fast_only = true;
     else if (arg == "--windows")
       a.windows = true;
     else if (arg == "-h" || arg == "--help") {
       std::cout << "usage: geodesic_speed [--model PATH] [--subdiv K] [--sources N] [--reps R] [--seed S]\n"
                    "                      [--small CELLS] [--large CELLS] [--cell H] [--dmax D] [--queries Q]\n"
-                   "                      [--skip-full] [--skip-dmax] [--windows]\n";
+                   "                      [--skip-full] [--skip-dmax] [--windows] [--fast-only]\n";
       std::exit(0);
     } else
       throw UsageError("unknown argument " + arg);

@@ -1513,6 +1513,7 @@ struct FastRay {
   Vec3 e;            // the edge vector x -> v
   double len;
   double theta;      // ring angle
+  double cos_theta, sin_theta;  // of theta, as the product of the corners' rotations (no cos/sin calls)
   double cos_after, sin_after;  // the corner angle of the face after this edge
   double angle_after;
   bool face_after;   // a face between this edge and the next one in the walk
@@ -1530,8 +1531,9 @@ double fast_angle(const std::vector<FastRay>& ring, size_t j, double a, double b
   return phi;
 }
 
-// The unit 3D vector at ring angle phi (inside the face whose corner contains it).
-Vec3 fast_direction(const std::vector<FastRay>& ring, size_t first, double phi) {
+// The unit 3D vector at ring angle phi (inside the face whose corner contains it); cos_phi and
+// sin_phi are phi's cosine and sine.
+Vec3 fast_direction(const std::vector<FastRay>& ring, size_t first, double phi, double cos_phi, double sin_phi) {
   const size_t m = ring.size();
   size_t i = first;
   for (size_t k = 0; k + 1 < m; ++k) {
@@ -1546,8 +1548,9 @@ Vec3 fast_direction(const std::vector<FastRay>& ring, size_t first, double phi) 
   const double lw = w.norm();
   if (!ring[i].face_after || !(lw > 0)) return u;
   w /= lw;
-  const double t = phi - ring[i].theta;
-  return std::cos(t) * u + std::sin(t) * w;
+  // cos and sin of phi - theta_i.
+  const FastRay& ri = ring[i];
+  return (cos_phi * ri.cos_theta + sin_phi * ri.sin_theta) * u + (sin_phi * ri.cos_theta - cos_phi * ri.sin_theta) * w;
 }
 
 DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
@@ -1602,7 +1605,7 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           gap = ring.size();
           ++gaps;
         }
-        ring.push_back(FastRay{y.idx(), e, e.norm(), 0.0, 1.0, 0.0, 0.0, face});
+        ring.push_back(FastRay{y.idx(), e, e.norm(), 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, face});
         h = mesh.next_halfedge_handle(g);
         if (ring.size() > max_ring) {
           throw InternalError("distance: the ring of vertex " + std::to_string(x) + " does not close");
@@ -1616,10 +1619,12 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
     const size_t m = ring.size();
     const bool closed = gaps == 0;
     const size_t first = closed || m == 0 ? 0 : (gap + 1) % m;  // a border ring starts after its gap
-    double total = 0;
+    double total = 0, cos_total = 1, sin_total = 0;  // the angle sum, its cosine and sine
     for (size_t k = 0, i = first; k < m; ++k) {
       FastRay& ry = ring[i];
       ry.theta = total;
+      ry.cos_theta = cos_total;
+      ry.sin_theta = sin_total;
       const size_t nx = i + 1 == m ? 0 : i + 1;
       if (ry.face_after) {
         const Vec3& f = ring[nx].e;
@@ -1631,6 +1636,9 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           ry.cos_after = cs / ll;
           ry.sin_after = sn / ll;
         }
+        const double c2 = cos_total * ry.cos_after - sin_total * ry.sin_after;
+        sin_total = sin_total * ry.cos_after + cos_total * ry.sin_after;
+        cos_total = c2;
       }
       i = nx;
     }
@@ -1647,7 +1655,14 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
         }
       }
     }
-    if (o.directions && aimed) out.direction[x] = fast_direction(ring, first, phi);
+    // phi's cosine and sine: one call per settled vertex; the neighbours' angles to the source are
+    // rotations of it by their own ring angles.
+    double cos_phi = 1, sin_phi = 0;
+    if (aimed) {
+      cos_phi = std::cos(phi);
+      sin_phi = std::sin(phi);
+    }
+    if (o.directions && aimed) out.direction[x] = fast_direction(ring, first, phi, cos_phi, sin_phi);
     if (o.target && o.target->idx() == x) {
       out.stop = DistanceStop::TargetReached;
       break;
@@ -1660,11 +1675,20 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
       FastRec& rc = rec[ry.v];
       if (rc.settled) continue;
       double alpha = phi - ry.theta;
+      double cos_a = cos_phi * ry.cos_theta + sin_phi * ry.sin_theta;  // of alpha, before the wrap
+      double sin_a = sin_phi * ry.cos_theta - cos_phi * ry.sin_theta;
       if (closed) {
-        if (alpha > 0.5 * total) alpha -= total;
-        if (alpha < -0.5 * total) alpha += total;
+        // The shorter way round: alpha -/+ the angle sum (a rotation by it).
+        const double turn = alpha > 0.5 * total ? -1.0 : alpha < -0.5 * total ? 1.0 : 0.0;
+        if (turn != 0) {
+          alpha += turn * total;
+          const double c2 = cos_a * cos_total - turn * sin_a * sin_total;
+          sin_a = sin_a * cos_total + turn * cos_a * sin_total;
+          cos_a = c2;
+        }
       }
       double cr = 0, ca = 0, cb = 0, cd = kInf;
+      double bent = kInf, bent_x = 0, bent_y = 0;  // the path bent at a ring vertex p: |S - p| + |p - c|, p - c
       const size_t prev = i == 0 ? m - 1 : i - 1;
       const size_t next = i + 1 == m ? 0 : i + 1;
       // A face (x, c, y) whose corner y is settled too, from the same source and offset: the
@@ -1672,7 +1696,10 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
       // if the line from it to c crosses the edge x-y. No angle needed: the face's own layout.
       bool by_face = false;
       const bool lit = r > 0 && std::abs(alpha) < M_PI;  // a straight line from x's source
-      const double cos_a = lit ? std::cos(alpha) : 1.0, sin_a = lit ? std::sin(alpha) : 0.0;
+      if (!lit) {
+        cos_a = 1;
+        sin_a = 0;
+      }
       for (int sgn = 1; sgn >= -1; sgn -= 2) {
         const FastRay& corner = sgn > 0 ? ry : ring[prev];
         if (!corner.face_after) continue;
@@ -1716,6 +1743,14 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
           const double yx = fy->len * corner.cos_after - ry.len, yy = fy->len * corner.sin_after;
           const double side = -ca * yy - std::abs(cb) * yx;
           bool inside = side <= 1e-12 * (std::abs(ca) + std::abs(cb)) * (std::abs(yx) + yy);
+          // When the line from c to the source passes an edge of x beyond its end p, the shortest
+          // path inside x's laid-out faces bends at p (p - c = (px_, py_) in this frame).
+          const auto bend = [&](double px_, double py_) {
+            bent_x = px_;
+            bent_y = py_;
+            const double sx = -ca - px_, sy = std::abs(cb) - py_;
+            bent = std::sqrt(sx * sx + sy * sy) + std::sqrt(px_ * px_ + py_ * py_);
+          };
           // And, unless x is intrinsically flat, it must cross every edge of x between c and the
           // source inside the edge (the ring is laid out exactly only up to its outer edges).
           double t = 0, ct = 1, st = 0;
@@ -1734,13 +1769,23 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
             ct = c2;
             k = alpha >= 0 ? (k + 1 == m ? 0 : k + 1) : kc;
             const double den = ct * std::abs(cb) + st * ca;  // cross(ray, S - c), S - c = (-ca, |cb|)
-            if (!(den > 0) || ry.len * std::abs(cb) > ring[k].len * (1 + 1e-9) * den) inside = false;
+            if (!(den > 0) || ry.len * std::abs(cb) > ring[k].len * (1 + 1e-9) * den) {
+              inside = false;
+              bend(ring[k].len * ct - ry.len, ring[k].len * st);
+            }
           }
           if (inside) {
             cr = std::sqrt(ca * ca + cb * cb);
             cd = before + cr;
           }
         }
+      }
+      if (cd == kInf && before + bent < d + ry.len) {
+        // The ring vertex p as a pseudo source; c's direction toward it (the source side's sign).
+        cd = before + bent;
+        cr = std::sqrt(bent_x * bent_x + bent_y * bent_y);
+        ca = -bent_x;
+        cb = alpha >= 0 ? -bent_y : bent_y;
       }
       if (cd == kInf) {
         cr = ca = ry.len;
@@ -1750,7 +1795,9 @@ DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, c
       // Never below the straight line from the source, nor below x's own distance: vertices settle
       // in non-decreasing order, so every neighbour nearer than d + edge length settles first and
       // its bound holds (never above Dijkstra).
-      cd = std::max({cd, (px + ry.e - origin).norm(), d});
+      const double straight2 = (px + ry.e - origin).sqrnorm();  // no square root when cd is above it
+      if (!(cd * cd >= straight2)) cd = std::max(cd, std::sqrt(straight2));
+      cd = std::max(cd, d);
       if (d + ry.len < rc.bound) rc.bound = d + ry.len;
       if (cd > rc.bound) {
         cd = rc.bound;

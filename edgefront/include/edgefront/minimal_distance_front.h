@@ -84,13 +84,15 @@ struct DistanceOptions {
   /// the distance from the virtual source found, in a face x-c-y whose corner y is settled too, where
   /// the circles of x's and y's source distances meet (when the line to c crosses x-y); otherwise
   /// from x's source by the law of cosines (when the line crosses x's edges inside them, or x is
-  /// intrinsically flat); otherwise d + edge length (x a pseudo source: saddles, borders). Values are
-  /// clamped between the straight (3D) distance from the source and the Dijkstra bound, and
-  /// vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact on planar convex
-  /// regions, open cylinders and cones (vertex or point sources); on CGAL's six scanned models
-  /// the mean error is 0.15-0.82% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the default mode
-  /// 0.1-0.37%), the asymmetry 0.15-0.81%, at 2.2-2.5x a binary-heap Dijkstra (the default:
-  /// 5-6x); bench/results/geodesic-speed.md, "Session 8 (mdf9)". Not provided: the edge front (`peak_front` is 0), the
+  /// intrinsically flat); when it passes an edge of x beyond its far end p, along the path bent
+  /// at p (p becomes c's pseudo source); otherwise d + edge length (x a pseudo source: saddles,
+  /// borders). Values are clamped between the straight (3D) distance from the source and the
+  /// Dijkstra bound, and vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact
+  /// on planar convex regions, open cylinders and cones (vertex or point sources); on CGAL's six
+  /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
+  /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%, at about
+  /// 2.2x a binary-heap Dijkstra (the default: 5-6x); bench/results/geodesic-speed.md, "Session 9
+  /// (mdf10)". Not provided: the edge front (`peak_front` is 0), the
   /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
   /// sources (they run the default mode). A vertex nearer the source than all its neighbours gets
   /// its first settled neighbour's distance.
