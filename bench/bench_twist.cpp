@@ -41,7 +41,7 @@
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
 /// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`),
-/// `--turned N` the largest turned-over patch the final call removes or collapses
+/// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
 /// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped").
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every

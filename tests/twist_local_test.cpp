@@ -243,7 +243,7 @@ TEST(TwistSameOrientationLayers, StackedRuleCountsAShellWithOneWallFlipped) {
   // A closed vault shell (t/R 0.1) whose intrados is turned over: it then faces away from the
   // axis like the extrados 0.1 above it, two walls stacked with the same orientation. Nearly
   // every face of both walls has a stacked partner.
-  const Mesh shell = edgefront::shapes::vault_shell(24, 1.0, 0.1);
+  const Mesh shell = edgefront::shapes::vault_shell(16, 1.0, 0.1);
   auto wall = [&](FaceHandle f, bool inner) {
     const Vec3 c = shell.calc_face_centroid(f);
     return c[2] > 0.05 && (std::hypot(c[0], c[2]) < 1.05) == inner && c[1] > 1e-9 && c[1] < 2.0 - 1e-9;

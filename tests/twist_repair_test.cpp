@@ -218,6 +218,37 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
 }
 
+TEST(TwistRepair, InteriorFaceFoldedByOneVertexIsStraightenedWhenAsked) {
+  // The top plate's vertex (3, 3) pushed across the edge (4, 3)-(4, 4) of its star, far enough
+  // that the one face it turns over is no sliver (every edge over half the mean edge): nothing to
+  // collapse, and an interior face is not removed. Moving one of its vertices to the centroid of
+  // that vertex's neighbours turns it back; every face is right afterwards, none is removed.
+  Slab s = slab();
+  const twist::ReferenceNormals ref(s.cloud);
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.5));
+  std::vector<FaceHandle> turned;
+  for (FaceHandle f : s.mesh.faces()) {
+    if (s.mesh.calc_face_normal(f)[2] < 0 && s.mesh.calc_face_centroid(f)[2] > 0.25) turned.push_back(f);
+  }
+  ASSERT_EQ(turned.size(), 1u);
+  double mean_edge = 0;
+  for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e) / static_cast<double>(s.mesh.n_edges());
+  for (auto h : s.mesh.fh_range(turned[0])) ASSERT_GT(s.mesh.calc_edge_length(h), 0.5 * mean_edge) << "no sliver";
+  ASSERT_GT(twist::same_orientation_pairs(s.mesh).size(), 0u);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.drop_turned_patches = 4;
+  const twist::RepairReport r = twist::repair(s.mesh, o);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.turned_faces_straightened, 1u);
+  EXPECT_EQ(r.turned_faces_collapsed, 0u);
+  EXPECT_EQ(r.turned_faces_removed, 0u);
+  EXPECT_EQ(s.mesh.n_faces(), 144u);
+  EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
+  EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
+  for (FaceHandle f : s.mesh.faces()) EXPECT_GT(s.mesh.calc_face_area(f), 0.05) << "no face degenerates";
+}
+
 TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
   // The top plate's vertex (3, 3) moved just across the edge (4, 3)-(4, 4) of its convex star:
   // exactly one face turns over, a sliver among right neighbours, facing the bottom plate's
