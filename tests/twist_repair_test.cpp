@@ -218,6 +218,23 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
 }
 
+/// Faces of the slab's top plate (z = 0.5) that face down.
+std::vector<FaceHandle> turned_top_faces(const Mesh& mesh) {
+  std::vector<FaceHandle> out;
+  for (FaceHandle f : mesh.faces()) {
+    if (mesh.calc_face_normal(f)[2] < 0 && mesh.calc_face_centroid(f)[2] > 0.25) out.push_back(f);
+  }
+  return out;
+}
+
+/// A full repair with the reference and turned patches of up to 4 faces dropped.
+twist::RepairReport drop_turned(Mesh& mesh, const twist::ReferenceNormals& ref) {
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.drop_turned_patches = 4;
+  return twist::repair(mesh, o);
+}
+
 TEST(TwistRepair, InteriorFaceFoldedByOneVertexIsStraightenedWhenAsked) {
   // The top plate's vertex (3, 3) pushed across the edge (4, 3)-(4, 4) of its star, far enough
   // that the one face it turns over is no sliver (every edge over half the mean edge): nothing to
@@ -226,19 +243,13 @@ TEST(TwistRepair, InteriorFaceFoldedByOneVertexIsStraightenedWhenAsked) {
   Slab s = slab();
   const twist::ReferenceNormals ref(s.cloud);
   s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.5));
-  std::vector<FaceHandle> turned;
-  for (FaceHandle f : s.mesh.faces()) {
-    if (s.mesh.calc_face_normal(f)[2] < 0 && s.mesh.calc_face_centroid(f)[2] > 0.25) turned.push_back(f);
-  }
+  const std::vector<FaceHandle> turned = turned_top_faces(s.mesh);
   ASSERT_EQ(turned.size(), 1u);
   double mean_edge = 0;
   for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e) / static_cast<double>(s.mesh.n_edges());
   for (auto h : s.mesh.fh_range(turned[0])) ASSERT_GT(s.mesh.calc_edge_length(h), 0.5 * mean_edge) << "no sliver";
   ASSERT_GT(twist::same_orientation_pairs(s.mesh).size(), 0u);
-  twist::RepairOptions o;
-  o.detect.reference = &ref;
-  o.drop_turned_patches = 4;
-  const twist::RepairReport r = twist::repair(s.mesh, o);
+  const twist::RepairReport r = drop_turned(s.mesh, ref);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.turned_faces_straightened, 1u);
   EXPECT_EQ(r.turned_faces_collapsed, 0u);
@@ -256,13 +267,8 @@ TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
   Slab s = slab();
   const twist::ReferenceNormals ref(s.cloud);
   s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.05, 3.1, 0.5));
-  size_t turned = 0;
-  for (FaceHandle f : s.mesh.faces()) turned += s.mesh.calc_face_normal(f)[2] < 0 && s.mesh.calc_face_centroid(f)[2] > 0.25;
-  ASSERT_EQ(turned, 1u);
-  twist::RepairOptions o;
-  o.detect.reference = &ref;
-  o.drop_turned_patches = 4;
-  const twist::RepairReport r = twist::repair(s.mesh, o);
+  ASSERT_EQ(turned_top_faces(s.mesh).size(), 1u);
+  const twist::RepairReport r = drop_turned(s.mesh, ref);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.turned_faces_collapsed, 1u);
   EXPECT_EQ(r.turned_faces_removed, 0u);
