@@ -449,29 +449,50 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
   // Moving interior vertex v to the centroid of its neighbours, when afterwards no face around
   // it is degenerate or rejected (a face folded over its neighbours by one vertex pushed across
   // them: the move straightens it and keeps the surface as it is).
-  auto straighten = [&](VertexHandle v) {
-    if (mesh.is_boundary(v)) return false;
-    Vec3 target(0, 0, 0);
-    size_t k = 0;
-    for (VertexHandle w : mesh.vv_range(v)) {
-      target += mesh.point(w);
-      ++k;
+  // Moving vertices `vs` (interior) to the centroids of their neighbours, all at once, up to
+  // `rounds` times, until turned face f is right, no face around them is degenerate and fewer
+  // are rejected than before (near a rim corner some bevelled faces around may stay rejected);
+  // else they are put back.
+  auto straighten = [&](FaceHandle f, const std::vector<VertexHandle>& vs, int rounds) {
+    std::vector<Vec3> old, target(vs.size());
+    for (VertexHandle v : vs) old.push_back(mesh.point(v));
+    auto count_rejected = [&]() {
+      size_t n = 0;
+      for (VertexHandle v : vs) {
+        for (FaceHandle g : mesh.vf_range(v)) n += rejects(detail::face_points(mesh, g));
+      }
+      return n;
+    };
+    const size_t before = count_rejected();
+    for (int round = 0; round < rounds; ++round) {
+      for (size_t i = 0; i < vs.size(); ++i) {
+        Vec3 sum(0, 0, 0);
+        size_t k = 0;
+        for (VertexHandle w : mesh.vv_range(vs[i])) {
+          sum += mesh.point(w);
+          ++k;
+        }
+        target[i] = k > 0 ? sum / static_cast<double>(k) : mesh.point(vs[i]);
+      }
+      for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], target[i]);
+      bool ok = true;
+      size_t now = 0;
+      for (VertexHandle v : vs) {
+        for (FaceHandle g : mesh.vf_range(v)) {
+          const auto p = detail::face_points(mesh, g);
+          ok = ok && detail::unit_normal(p).sqrnorm() > 0;
+          now += rejects(p);
+        }
+      }
+      if (ok && now < before && !rejects(detail::face_points(mesh, f))) {
+        for (VertexHandle v : vs) {
+          for (FaceHandle g : mesh.vf_range(v)) verdict.erase(g.idx());
+        }
+        return true;
+      }
     }
-    if (k < 3) return false;
-    target /= static_cast<double>(k);
-    const Vec3 old = mesh.point(v);
-    mesh.set_point(v, target);
-    bool ok = true;
-    for (FaceHandle g : mesh.vf_range(v)) {
-      const auto p = detail::face_points(mesh, g);
-      ok = ok && detail::unit_normal(p).sqrnorm() > 0 && !rejects(p);
-    }
-    if (!ok) {
-      mesh.set_point(v, old);
-      return false;
-    }
-    for (FaceHandle g : mesh.vf_range(v)) verdict.erase(g.idx());
-    return true;
+    for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], old[i]);
+    return false;
   };
   // A turned face with an edge shorter than half a mean edge is a sliver (inverted by the
   // smoothing among right neighbours, or bevelled over a rim): collapsing that edge removes it
@@ -502,10 +523,23 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
       if (!rejected(f)) continue;  // straightened with a neighbour of its patch
       bool straightened = false;
       for (VertexHandle v : mesh.fv_range(f)) {
-        if (straighten(v)) {
+        if (!mesh.is_boundary(v) && straighten(f, {v}, 1)) {
           straightened = true;
           break;
         }
+      }
+      if (!straightened) {
+        // A tangle one move does not undo (a folded star around a low-valence vertex): smooth
+        // the face's interior vertices and their interior neighbours together, a few rounds.
+        std::vector<VertexHandle> around;
+        for (VertexHandle v : mesh.fv_range(f)) {
+          for (VertexHandle w : mesh.vv_range(v)) around.push_back(w);
+          around.push_back(v);
+        }
+        std::sort(around.begin(), around.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+        around.erase(std::unique(around.begin(), around.end()), around.end());
+        around.erase(std::remove_if(around.begin(), around.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), around.end());
+        straightened = straighten(f, around, 3);
       }
       if (straightened) {
         ++report.turned_faces_straightened;
