@@ -192,6 +192,8 @@ TEST(TwistSameOrientationLayers, CountsTwistedLayersOnlyOnTwistedMeshes) {
     EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::vault_shell(24, 1.0, 0.1), {}, rule), 0u);
     EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::icosphere(2), {}, rule), 0u);
   }
+  EXPECT_THROW(twist::count_same_orientation_layers(edgefront::shapes::icosphere(1), {}, static_cast<twist::LayerRule>(7)),
+               InvalidInput);
 }
 
 /// A copy of `mesh` in which the faces `flip` selects are wound the other way; the two groups

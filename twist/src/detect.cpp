@@ -858,6 +858,9 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
                                                                      LayerRule rule) {
   detail::check_mesh(mesh, "twist::same_orientation_pairs");
   validate_options(mesh, options);
+  if (rule != LayerRule::Facing && rule != LayerRule::Stacked) {
+    throw InvalidInput("twist::same_orientation_pairs: unknown layer rule " + std::to_string(static_cast<int>(rule)));
+  }
   Detector det(mesh, options, false);
   std::vector<std::pair<FaceHandle, FaceHandle>> out;
   for (FaceHandle f : mesh.faces()) {

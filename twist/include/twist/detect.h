@@ -250,7 +250,7 @@ enum class LayerRule {
 /// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
 /// `rule` sharpens which partners count (see `LayerRule`; the repair's flap peeling and turned
 /// patch dropping use `Facing`). Uses the geometry only (`reference`, `restrict_to` are
-/// ignored). Throws as `detect`.
+/// ignored). Throws as `detect`, and InvalidInput for a `rule` that is no `LayerRule`.
 size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {},
                                      LayerRule rule = LayerRule::Facing);
 
