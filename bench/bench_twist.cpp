@@ -27,7 +27,8 @@
 /// agrees with the nearest of 200k exact samples; "abs" without any sign forgiven, "comp" with
 /// the best sign per connected component), the twisted regions left (geometric detector, no
 /// reference), faces with a same-orientation layer (close in space, far along the surface, same
-/// orientation: `twist::count_same_orientation_layers`), border loops and components, the regions
+/// orientation: `twist::count_same_orientation_layers`, "stacked / facing" under the two
+/// `twist::LayerRule`s), border loops and components, the regions
 /// repaired, and the share of the run spent in the twist operation.
 /// `--no-orient-winners` runs GCS with `ReconstructOptions::orient_winners` off (plain winners, as
 /// in the published loop): with oriented samples the oriented winner search keeps most runs from
@@ -40,7 +41,7 @@
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
 /// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`),
-/// `--turned N` the largest turned-over patch the final call removes or collapses
+/// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
 /// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped").
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
@@ -202,9 +203,10 @@ void detect_scaling() {
 /// stderr, then one per pair with --explain 2): same component or not, the sizes of the
 /// components, the exact normals' verdict on both faces (+1 agrees, -1 disagrees, 0 undecided),
 /// whether either face touches a border, and whether the geometric detector (no reference) puts
-/// either face in a twisted region.
-void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const std::string& label, size_t seed, int level) {
-  const auto pairs = twist::same_orientation_pairs(mesh);
+/// either face in a twisted region; under one pair rule (`twist::LayerRule`).
+void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const std::string& label, size_t seed, int level,
+                   twist::LayerRule rule) {
+  const auto pairs = twist::same_orientation_pairs(mesh, {}, rule);
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   std::vector<size_t> comp_faces(labels.count, 0);
   auto comp = [&](edgefront::FaceHandle f) { return labels.vertex_component[static_cast<size_t>((*mesh.cfv_begin(f)).idx())]; };
@@ -251,8 +253,8 @@ void explain_pairs(const Mesh& mesh, const twist::ReferenceNormals& truth, const
                    mesh.calc_face_centroid(f)[0], mesh.calc_face_centroid(f)[1], mesh.calc_face_centroid(f)[2]);
     }
   }
-  std::fprintf(stderr, "%s seed %zu: %zu pairs; same component %zu; both right %zu (on one wall %zu), one wrong %zu, undecided %zu; touching a border %zu; in a detected region %zu; components %zu",
-               label.c_str(), seed, pairs.size(), same, both_right, same_wall, one_wrong, undecided, border, detected, labels.count);
+  std::fprintf(stderr, "%s seed %zu [%s]: %zu pairs; same component %zu; both right %zu (on one wall %zu), one wrong %zu, undecided %zu; touching a border %zu; in a detected region %zu; components %zu",
+               label.c_str(), seed, rule == twist::LayerRule::Stacked ? "stacked" : "facing", pairs.size(), same, both_right, same_wall, one_wrong, undecided, border, detected, labels.count);
   double wrong_area = 0, area = 0;
   for (auto f : mesh.faces()) area += mesh.calc_face_area(f);
   for (int k : wrong_faces) wrong_area += mesh.calc_face_area(edgefront::FaceHandle(k));
@@ -444,7 +446,10 @@ int main(int argc, char** argv) {
     dense.seed = 999;
     if (only_thickness > 0) dense.shape.thickness = only_thickness;
     const twist::ReferenceNormals truth(edgefront::shapes::sample(shape, dense));
-    explain_pairs(edgefront::load_mesh(explain_mesh), truth, explain_mesh, 0, std::max(explain, 1));
+    const Mesh mesh = edgefront::load_mesh(explain_mesh);
+    for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
+      explain_pairs(mesh, truth, explain_mesh, 0, std::max(explain, 1), rule);
+    }
     return 0;
   }
   std::vector<Case> cases = {{"vault-shell t/R=0.2", "vault-shell", 0.2},   {"vault-shell t/R=0.1", "vault-shell", 0.1},
@@ -467,7 +472,7 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | twist time share | twist CPU share |\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | twist time share | twist CPU share |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
@@ -498,7 +503,7 @@ int main(int argc, char** argv) {
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
-      size_t left[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
+      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0, cpu_share = 0;
       for (int with = only_repair ? 1 : 0; with < 2; ++with) {
@@ -530,7 +535,12 @@ int main(int argc, char** argv) {
         cover[with] = coverage(r.mesh, dense_cloud);
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
         left[with] = twist::count_same_orientation_layers(r.mesh);
-        if (explain > 0) explain_pairs(r.mesh, truth, c.label + (with ? " repair" : " plain"), seed, explain);
+        stacked[with] = twist::count_same_orientation_layers(r.mesh, {}, twist::LayerRule::Stacked);
+        if (explain > 0) {
+          for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
+            explain_pairs(r.mesh, truth, c.label + (with ? " repair" : " plain"), seed, explain, rule);
+          }
+        }
         if (!dump.empty()) {
           edgefront::write_mesh(r.mesh, dump + "-" + c.shape + "-" + std::to_string(c.thickness).substr(0, 4) + "-s" +
                                             std::to_string(seed) + (with ? "-repair" : "-plain") + ".off");
@@ -544,10 +554,10 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
                   label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
-                  cons[0].undecided, left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
-                  cons[1].judged, cons[1].undecided, left[1], borders[1], components[1],
+                  cons[0].undecided, stacked[0], left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
+                  cons[1].judged, cons[1].undecided, stacked[1], left[1], borders[1], components[1],
                   stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }

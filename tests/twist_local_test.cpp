@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <limits>
 #include <vector>
 
@@ -185,9 +187,124 @@ TEST(TwistRegrow, ACutOutRegionIsReplacedByAConsistentPatchNotAHole) {
 }
 
 TEST(TwistSameOrientationLayers, CountsTwistedLayersOnlyOnTwistedMeshes) {
-  EXPECT_GT(twist::count_same_orientation_layers(twist::twisted_tube().mesh), 0u);
-  EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::vault_shell(24, 1.0, 0.1)), 0u);
-  EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::icosphere(2)), 0u);
+  for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
+    EXPECT_GT(twist::count_same_orientation_layers(twist::twisted_tube().mesh, {}, rule), 0u);
+    EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::vault_shell(24, 1.0, 0.1), {}, rule), 0u);
+    EXPECT_EQ(twist::count_same_orientation_layers(edgefront::shapes::icosphere(2), {}, rule), 0u);
+  }
+  EXPECT_THROW(twist::count_same_orientation_layers(edgefront::shapes::icosphere(1), {}, static_cast<twist::LayerRule>(7)),
+               InvalidInput);
+}
+
+/// A copy of `mesh` in which the faces `flip` selects are wound the other way; the two groups
+/// get their own copies of the vertices they share, so each stays consistently oriented (the
+/// flipped group becomes its own component(s), geometrically in place).
+Mesh with_faces_flipped(const Mesh& mesh, const std::function<bool(FaceHandle)>& flip) {
+  Mesh out;
+  std::map<std::pair<int, bool>, edgefront::VertexHandle> copy;
+  for (FaceHandle f : mesh.faces()) {
+    const bool flipped = flip(f);
+    std::vector<edgefront::VertexHandle> vs;
+    for (edgefront::VertexHandle v : mesh.fv_range(f)) {
+      auto [it, added] = copy.emplace(std::make_pair(v.idx(), flipped), edgefront::VertexHandle());
+      if (added) it->second = out.add_vertex(mesh.point(v));
+      vs.push_back(it->second);
+    }
+    if (flipped) std::reverse(vs.begin(), vs.end());
+    out.add_face(vs);
+  }
+  return out;
+}
+
+// The stacked rule (two layers covering each other front to back) against the facing rule on
+// the three twists of the issue: it still counts them. (What it leaves out of the facing rule's
+// count lies along the twist line and the fold band, where the layers cross at an angle.)
+TEST(TwistSameOrientationLayers, StackedRuleCountsTheTwistedTube) {
+  const twist::TwistedShape tube = twist::twisted_tube();
+  const size_t facing = twist::count_same_orientation_layers(tube.mesh);
+  const size_t stacked = twist::count_same_orientation_layers(tube.mesh, {}, twist::LayerRule::Stacked);
+  EXPECT_GT(stacked, 0u);
+  EXPECT_LE(stacked, facing);
+  EXPECT_GE(static_cast<double>(stacked), 0.7 * static_cast<double>(facing));
+}
+
+TEST(TwistSameOrientationLayers, StackedRuleCountsTheFlippedDisk) {
+  // The disk turned over in the top of the plate faces down, like the bottom 0.1 under it.
+  twist::FlippedDiskOptions small;
+  small.rings = 8;
+  small.around = 24;
+  const twist::TwistedShape disk = twist::flipped_disk_plate(small);
+  const size_t facing = twist::count_same_orientation_layers(disk.mesh);
+  const size_t stacked = twist::count_same_orientation_layers(disk.mesh, {}, twist::LayerRule::Stacked);
+  EXPECT_GE(stacked, disk.twisted_faces) << "the turned disk and the bottom faces under it";
+  EXPECT_LE(stacked, facing);
+  EXPECT_GE(static_cast<double>(stacked), 0.7 * static_cast<double>(facing));
+}
+
+TEST(TwistSameOrientationLayers, StackedRuleCountsAShellWithOneWallFlipped) {
+  // A closed vault shell (t/R 0.1) whose intrados is turned over: it then faces away from the
+  // axis like the extrados 0.1 above it, two walls stacked with the same orientation. Nearly
+  // every face of both walls has a stacked partner.
+  const Mesh shell = edgefront::shapes::vault_shell(16, 1.0, 0.1);
+  auto wall = [&](FaceHandle f, bool inner) {
+    const Vec3 c = shell.calc_face_centroid(f);
+    return c[2] > 0.05 && (std::hypot(c[0], c[2]) < 1.05) == inner && c[1] > 1e-9 && c[1] < 2.0 - 1e-9;
+  };
+  size_t intrados = 0, extrados = 0;
+  for (FaceHandle f : shell.faces()) {
+    intrados += wall(f, true);
+    extrados += wall(f, false);
+  }
+  ASSERT_GT(intrados, 100u);
+  const Mesh flipped = with_faces_flipped(shell, [&](FaceHandle f) { return wall(f, true); });
+  const size_t stacked = twist::count_same_orientation_layers(flipped, {}, twist::LayerRule::Stacked);
+  EXPECT_GE(static_cast<double>(stacked), 0.9 * static_cast<double>(intrados + extrados));
+  EXPECT_LE(stacked, twist::count_same_orientation_layers(flipped));
+}
+
+TEST(TwistSameOrientationLayers, StackedRuleIgnoresFacesSideBySideAcrossAGap) {
+  // A roof (two planes rising 25 degrees to a ridge along y), both halves facing up, slit open
+  // along the ridge (0.04 wide): the halves are far apart along the surface (not connected), and
+  // near the slit each face's normal tilts enough that the faces across the slit lie "behind" it
+  // for the facing rule. They lie side by side on one surface, not stacked: the stacked rule
+  // counts none (the case of one wall of a GCS result across a hole, bench/results/twist-vaults.md).
+  Mesh roof;
+  const int n = 10;
+  const double cell = 0.1, gap = 0.02, slope = std::tan(25.0 * std::acos(-1.0) / 180.0);
+  for (int side : {-1, 1}) {
+    std::vector<std::vector<edgefront::VertexHandle>> v(n + 1, std::vector<edgefront::VertexHandle>(n + 1));
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; j <= n; ++j) {
+        const double x = side * (gap + i * cell);
+        v[i][j] = roof.add_vertex(Vec3(x, j * cell, 1.0 - slope * std::abs(x)));
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        // Counter-clockwise seen from above on both sides: the normals point up.
+        if (side > 0) {
+          roof.add_face(v[i][j], v[i + 1][j], v[i + 1][j + 1]);
+          roof.add_face(v[i][j], v[i + 1][j + 1], v[i][j + 1]);
+        } else {
+          roof.add_face(v[i][j], v[i][j + 1], v[i + 1][j + 1]);
+          roof.add_face(v[i][j], v[i + 1][j + 1], v[i + 1][j]);
+        }
+      }
+    }
+  }
+  for (FaceHandle f : roof.faces()) ASSERT_GT(roof.calc_face_normal(f)[2], 0.8);
+  EXPECT_GT(twist::count_same_orientation_layers(roof), 0u) << "the facing rule counts the faces along the slit";
+  EXPECT_EQ(twist::count_same_orientation_layers(roof, {}, twist::LayerRule::Stacked), 0u);
+  // Turn the right half by 180 degrees about the vertical line x = 0, y = 0.5 and lower it by
+  // 0.1: it lies under the left half with the same orientation (a real stacked layer), and the
+  // stacked rule counts it.
+  Mesh stacked = roof;
+  for (edgefront::VertexHandle v : stacked.vertices()) {
+    const Vec3 p = stacked.point(v);
+    if (p[0] > 0) stacked.set_point(v, Vec3(-p[0], 1.0 - p[1], p[2] - 0.1));
+  }
+  for (FaceHandle f : stacked.faces()) ASSERT_GT(stacked.calc_face_normal(f)[2], 0.8) << "the rotation keeps both halves up";
+  EXPECT_GT(twist::count_same_orientation_layers(stacked, {}, twist::LayerRule::Stacked), 100u);
 }
 
 }  // namespace

@@ -218,6 +218,80 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
 }
 
+/// Faces of the slab's top plate (z = 0.5) that face down.
+std::vector<FaceHandle> turned_top_faces(const Mesh& mesh) {
+  std::vector<FaceHandle> out;
+  for (FaceHandle f : mesh.faces()) {
+    if (mesh.calc_face_normal(f)[2] < 0 && mesh.calc_face_centroid(f)[2] > 0.25) out.push_back(f);
+  }
+  return out;
+}
+
+/// A full repair with the reference and turned patches of up to 4 faces dropped.
+twist::RepairReport drop_turned(Mesh& mesh, const twist::ReferenceNormals& ref) {
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.drop_turned_patches = 4;
+  return twist::repair(mesh, o);
+}
+
+/// `drop_turned` on a slab with turned top faces that no collapse or removal should touch:
+/// straightened in place, every face right, no same-orientation pair left.
+twist::RepairReport expect_straightened(Mesh& mesh, const twist::ReferenceNormals& ref) {
+  const twist::RepairReport r = drop_turned(mesh, ref);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_GE(r.turned_faces_straightened, 1u);
+  EXPECT_EQ(r.turned_faces_collapsed, 0u);
+  EXPECT_EQ(r.turned_faces_removed, 0u);
+  EXPECT_EQ(mesh.n_faces(), 144u);
+  EXPECT_DOUBLE_EQ(twist::orientation_consistency(mesh, ref), 1.0);
+  EXPECT_EQ(twist::same_orientation_pairs(mesh).size(), 0u);
+  return r;
+}
+
+TEST(TwistRepair, InteriorFaceFoldedByOneVertexIsStraightenedWhenAsked) {
+  // The top plate's vertex (3, 3) pushed across the edge (4, 3)-(4, 4) of its star, far enough
+  // that the one face it turns over is no sliver (every edge over half the mean edge): nothing to
+  // collapse, and an interior face is not removed. Moving one of its vertices to the centroid of
+  // that vertex's neighbours turns it back; every face is right afterwards, none is removed.
+  Slab s = slab();
+  const twist::ReferenceNormals ref(s.cloud);
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.5));
+  const std::vector<FaceHandle> turned = turned_top_faces(s.mesh);
+  ASSERT_EQ(turned.size(), 1u);
+  double mean_edge = 0;
+  for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e) / static_cast<double>(s.mesh.n_edges());
+  for (auto h : s.mesh.fh_range(turned[0])) ASSERT_GT(s.mesh.calc_edge_length(h), 0.5 * mean_edge) << "no sliver";
+  ASSERT_GT(twist::same_orientation_pairs(s.mesh).size(), 0u);
+  EXPECT_EQ(expect_straightened(s.mesh, ref).turned_faces_straightened, 1u);
+  for (FaceHandle f : s.mesh.faces()) EXPECT_GT(s.mesh.calc_face_area(f), 0.05) << "no face degenerates";
+}
+
+TEST(TwistRepair, TangleOfTwoPushedVerticesIsSmoothedWhenAsked) {
+  // The top plate's vertices (3, 3) and (4, 4), each pushed across the other's star: two faces
+  // turn over, no sliver among them, and moving any one of their vertices to the centroid of its
+  // neighbours leaves a face turned (the neighbours are displaced too). Smoothing the faces'
+  // vertices and their neighbours together turns them back; nothing is removed.
+  Slab s = slab();
+  const twist::ReferenceNormals ref(s.cloud);
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(3.75, 4.25, 0.5));
+  s.mesh.set_point(s.top[4 * 7 + 4], Vec3(4.75, 3.0, 0.5));
+  const std::vector<FaceHandle> turned = turned_top_faces(s.mesh);
+  ASSERT_EQ(turned.size(), 2u);
+  for (FaceHandle f : turned) {
+    for (auto h : s.mesh.fh_range(f)) ASSERT_GT(s.mesh.calc_edge_length(h), 0.7) << "no sliver";
+    for (auto v : s.mesh.fv_range(f)) {
+      Vec3 sum(0, 0, 0);
+      for (auto w : s.mesh.vv_range(v)) sum += s.mesh.point(w);
+      const Vec3 old = s.mesh.point(v);
+      s.mesh.set_point(v, sum / static_cast<double>(s.mesh.valence(v)));
+      EXPECT_FALSE(turned_top_faces(s.mesh).empty()) << "one vertex moved alone leaves a turned face";
+      s.mesh.set_point(v, old);
+    }
+  }
+  expect_straightened(s.mesh, ref);
+}
+
 TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
   // The top plate's vertex (3, 3) moved just across the edge (4, 3)-(4, 4) of its convex star:
   // exactly one face turns over, a sliver among right neighbours, facing the bottom plate's
@@ -225,13 +299,8 @@ TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
   Slab s = slab();
   const twist::ReferenceNormals ref(s.cloud);
   s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.05, 3.1, 0.5));
-  size_t turned = 0;
-  for (FaceHandle f : s.mesh.faces()) turned += s.mesh.calc_face_normal(f)[2] < 0 && s.mesh.calc_face_centroid(f)[2] > 0.25;
-  ASSERT_EQ(turned, 1u);
-  twist::RepairOptions o;
-  o.detect.reference = &ref;
-  o.drop_turned_patches = 4;
-  const twist::RepairReport r = twist::repair(s.mesh, o);
+  ASSERT_EQ(turned_top_faces(s.mesh).size(), 1u);
+  const twist::RepairReport r = drop_turned(s.mesh, ref);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.turned_faces_collapsed, 1u);
   EXPECT_EQ(r.turned_faces_removed, 0u);

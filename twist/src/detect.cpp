@@ -255,6 +255,13 @@ class Detector {
     return {mesh_.point(VertexHandle(v[0])), mesh_.point(VertexHandle(v[1])), mesh_.point(VertexHandle(v[2]))};
   }
   const Vec3& normal(FaceHandle f) { return geo(f).normal; }
+  /// Do f and g (same orientation) cover each other along their mean normal (`LayerRule::Stacked`)?
+  bool stacked_on(FaceHandle f, FaceHandle g) {
+    constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)
+    const Vec3 m = (normal(f) + normal(g)).normalized();
+    const double edge = std::min(geo(f).longest, geo(g).longest);
+    return detail::projected_overlap(points(f), points(g), m) > kStackedOverlap * edge;
+  }
   const Vec3& center(FaceHandle f) { return geo(f).centre; }
 
   /// How far the self-intersection scan of f looks: a partner's centroid lies within the sum of
@@ -359,7 +366,8 @@ class Detector {
 
   /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
   /// -1: behind) that is far along the surface, or an invalid handle.
-  FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false) {
+  /// `stacked` (with `same_orientation_only`): only partners stacked on f (`LayerRule::Stacked`).
+  FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false, bool stacked = false) {
     const Vec3 nf = normal(f);
     const Vec3 cf = center(f);
     layers_.clear();
@@ -377,6 +385,7 @@ class Detector {
                           -along >= o_.facing_cos * dist && cos_ng >= o_.parallel_cos;
       if (!layer && !behind) continue;
       if (shares_vertex(f, g)) continue;
+      if (layer && stacked && !stacked_on(f, g)) continue;
       if (layer) {
         layers_.emplace_back(dist, g);
       } else if (!o_.reference || vote(g) == 0) {
@@ -845,22 +854,27 @@ DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   return detect_pass(mesh, options, false, has_core);
 }
 
-std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh& mesh, const DetectOptions& options) {
+std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh& mesh, const DetectOptions& options,
+                                                                     LayerRule rule) {
   detail::check_mesh(mesh, "twist::same_orientation_pairs");
   validate_options(mesh, options);
+  if (rule != LayerRule::Facing && rule != LayerRule::Stacked) {
+    throw InvalidInput("twist::same_orientation_pairs: unknown layer rule " + std::to_string(static_cast<int>(rule)));
+  }
   Detector det(mesh, options, false);
   std::vector<std::pair<FaceHandle, FaceHandle>> out;
   for (FaceHandle f : mesh.faces()) {
     if (det.normal(f).sqrnorm() == 0) continue;
-    FaceHandle g = det.far_layer(f, 1.0, true);
-    if (!g.is_valid()) g = det.far_layer(f, -1.0, true);
+    const bool stacked = rule == LayerRule::Stacked;
+    FaceHandle g = det.far_layer(f, 1.0, true, stacked);
+    if (!g.is_valid()) g = det.far_layer(f, -1.0, true, stacked);
     if (g.is_valid()) out.emplace_back(f, g);
   }
   return out;
 }
 
-size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options) {
-  return same_orientation_pairs(mesh, options).size();
+size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options, LayerRule rule) {
+  return same_orientation_pairs(mesh, options, rule).size();
 }
 
 std::vector<TwistRegion> detect(const Mesh& mesh, const DetectOptions& options) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "edgefront/error.h"
@@ -82,6 +83,37 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
     if (segment_crosses(b[i], b[(i + 1) % 3], a, eps)) return true;
   }
   return false;
+}
+
+double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction) {
+  // An in-plane basis (u, v) perpendicular to the direction.
+  const Vec3 helper = std::abs(direction[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  const Vec3 u = OpenMesh::cross(direction, helper).normalized();
+  const Vec3 v = OpenMesh::cross(direction, u);
+  std::array<std::array<double, 2>, 6> p{};
+  for (size_t i = 0; i < 3; ++i) {
+    p[i] = {OpenMesh::dot(a[i], u), OpenMesh::dot(a[i], v)};
+    p[i + 3] = {OpenMesh::dot(b[i], u), OpenMesh::dot(b[i], v)};
+  }
+  double depth = std::numeric_limits<double>::infinity();
+  for (size_t t = 0; t < 2; ++t) {
+    for (size_t i = 0; i < 3; ++i) {
+      const auto& s = p[3 * t + i];
+      const auto& e = p[3 * t + (i + 1) % 3];
+      const double ax = -(e[1] - s[1]), ay = e[0] - s[0];
+      const double len = std::hypot(ax, ay);
+      if (!(len > 0)) continue;  // a degenerate projected edge separates nothing
+      double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      double hi[2] = {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+      for (size_t k = 0; k < 6; ++k) {
+        const double x = (p[k][0] * ax + p[k][1] * ay) / len;
+        lo[k / 3] = std::min(lo[k / 3], x);
+        hi[k / 3] = std::max(hi[k / 3], x);
+      }
+      depth = std::min(depth, std::min(hi[0], hi[1]) - std::max(lo[0], lo[1]));
+    }
+  }
+  return std::isfinite(depth) ? depth : 0.0;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -398,11 +398,8 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
   d.face_grid = nullptr;
   d.mean_edge_length = 0;
   const double edge = detail::mean_edge_length(mesh);
-  std::unordered_map<int, bool> verdict;  // face -> rejected by the reference (thin-wall rule on)
-  auto rejected = [&](FaceHandle f) {
-    const auto it = verdict.find(f.idx());
-    if (it != verdict.end()) return it->second;
-    const auto p = detail::face_points(mesh, f);
+  // The reference's verdict on a triangle: rejected (thin-wall rule on).
+  auto rejects = [&](const std::array<Vec3, 3>& p) {
     const Vec3 n = detail::unit_normal(p);
     const Vec3 c = detail::centroid(p);
     int vote = n.sqrnorm() > 0 ? reference_vote(*o.detect.reference, o.detect, c, n, edge) : 1;
@@ -414,7 +411,13 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
         !(o.detect.reference->wall_thickness(c) < o.detect.thin_wall * edge)) {
       vote = o.detect.reference->judge(c, n);
     }
-    const bool r = vote < 0;
+    return vote < 0;
+  };
+  std::unordered_map<int, bool> verdict;  // face -> rejected (cached per face)
+  auto rejected = [&](FaceHandle f) {
+    const auto it = verdict.find(f.idx());
+    if (it != verdict.end()) return it->second;
+    const bool r = rejects(detail::face_points(mesh, f));
     verdict.emplace(f.idx(), r);
     return r;
   };
@@ -443,10 +446,60 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     }
     if (group.size() <= o.drop_turned_patches) groups.push_back(std::move(group));
   }
+  // Moving interior vertex v to the centroid of its neighbours, when afterwards no face around
+  // it is degenerate or rejected (a face folded over its neighbours by one vertex pushed across
+  // them: the move straightens it and keeps the surface as it is).
+  // Moving vertices `vs` (interior) to the centroids of their neighbours, all at once, up to
+  // `rounds` times, until turned face f is right, no face around them is degenerate and fewer
+  // are rejected than before (near a rim corner some bevelled faces around may stay rejected);
+  // else they are put back.
+  auto straighten = [&](FaceHandle f, const std::vector<VertexHandle>& vs, int rounds) {
+    std::vector<Vec3> old, target(vs.size());
+    for (VertexHandle v : vs) old.push_back(mesh.point(v));
+    auto count_rejected = [&]() {
+      size_t n = 0;
+      for (VertexHandle v : vs) {
+        for (FaceHandle g : mesh.vf_range(v)) n += rejects(detail::face_points(mesh, g));
+      }
+      return n;
+    };
+    const size_t before = count_rejected();
+    for (int round = 0; round < rounds; ++round) {
+      for (size_t i = 0; i < vs.size(); ++i) {
+        Vec3 sum(0, 0, 0);
+        size_t k = 0;
+        for (VertexHandle w : mesh.vv_range(vs[i])) {
+          sum += mesh.point(w);
+          ++k;
+        }
+        target[i] = k > 0 ? sum / static_cast<double>(k) : mesh.point(vs[i]);
+      }
+      for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], target[i]);
+      bool ok = true;
+      size_t now = 0;
+      for (VertexHandle v : vs) {
+        for (FaceHandle g : mesh.vf_range(v)) {
+          const auto p = detail::face_points(mesh, g);
+          ok = ok && detail::unit_normal(p).sqrnorm() > 0;
+          now += rejects(p);
+        }
+      }
+      if (ok && now < before && !rejects(detail::face_points(mesh, f))) {
+        for (VertexHandle v : vs) {
+          for (FaceHandle g : mesh.vf_range(v)) verdict.erase(g.idx());
+        }
+        return true;
+      }
+    }
+    for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], old[i]);
+    return false;
+  };
   // A turned face with an edge shorter than half a mean edge is a sliver (inverted by the
   // smoothing among right neighbours, or bevelled over a rim): collapsing that edge removes it
-  // and keeps the surface around it closed. A turned face on the border that is no sliver is
-  // removed (a flap turned over at a rim); an interior one is left (a hole would be worse).
+  // and keeps the surface around it closed. Otherwise, a turned face that moving one of its
+  // interior vertices to the centroid of its neighbours straightens is straightened. A turned
+  // face on the border that is neither is removed (a flap turned over at a rim); an interior
+  // one is left (a hole would be worse).
   std::vector<FaceHandle> flaps;
   for (const auto& group : groups) {
     for (FaceHandle f : group) {
@@ -465,6 +518,31 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
       if (best.is_valid()) {
         mesh.collapse(best);
         ++report.turned_faces_collapsed;
+        continue;
+      }
+      if (!rejected(f)) continue;  // straightened with a neighbour of its patch
+      bool straightened = false;
+      for (VertexHandle v : mesh.fv_range(f)) {
+        if (!mesh.is_boundary(v) && straighten(f, {v}, 1)) {
+          straightened = true;
+          break;
+        }
+      }
+      if (!straightened) {
+        // A tangle one move does not undo (a folded star around a low-valence vertex): smooth
+        // the face's interior vertices and their interior neighbours together, a few rounds.
+        std::vector<VertexHandle> around;
+        for (VertexHandle v : mesh.fv_range(f)) {
+          for (VertexHandle w : mesh.vv_range(v)) around.push_back(w);
+          around.push_back(v);
+        }
+        std::sort(around.begin(), around.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+        around.erase(std::unique(around.begin(), around.end()), around.end());
+        around.erase(std::remove_if(around.begin(), around.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), around.end());
+        straightened = straighten(f, around, 3);
+      }
+      if (straightened) {
+        ++report.turned_faces_straightened;
         continue;
       }
       bool border = false;

@@ -71,7 +71,7 @@ struct TwistOperationStats {
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
   std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
   std::size_t borders_rejoined = 0;    ///< border strips and loop merges added after repairs
-  std::size_t turned_faces_dropped = 0;  ///< turned-over patch faces removed or collapsed by the final call
+  std::size_t turned_faces_dropped = 0;  ///< turned-over patch faces removed, collapsed or straightened by the final call
 };
 
 class TwistOperation : public Operation {

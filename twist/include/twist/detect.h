@@ -228,16 +228,36 @@ DetectResult detect_regions(const edgefront::Mesh& mesh, const DetectOptions& op
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const edgefront::Vec3& centre,
                    const edgefront::Vec3& normal, double mean_edge_length = 0);
 
+/// Which partners make a same-orientation pair (see `same_orientation_pairs`).
+enum class LayerRule {
+  /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >= `facing_cos`·|d|
+  /// for d = c_g - c_f (the rule of sessions 1-8). It also counts two faces of one wall side by
+  /// side across a hole or a border gap, and two faces bevelled over a rim corner (two walls
+  /// meeting at a right angle), when their normals tilt enough: both may be oriented right.
+  Facing,
+  /// As `Facing`, and the two layers are stacked front to back: the two triangles, projected
+  /// along their mean normal (n_f + n_g, normalised), overlap by more than 0.1 times the
+  /// shorter of their longest edges (the depth of the overlap along the separating
+  /// axes of the two projected triangles). Two layers approximating the front and the back of
+  /// one wall with the same orientation (the twist the issue rules out) cover each other along
+  /// the wall's normal, so every face of them but a few at their borders has such a partner;
+  /// faces side by side (one wall across a hole) or meeting at a rim corner do not overlap.
+  Stacked,
+};
+
 /// Faces that have a partner close in space (centroids within `radius`, in front or behind:
 /// |n_f·d| >= `facing_cos`·|d|), far along the surface (as for facing layers) and with the same
 /// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
-/// Uses the geometry only (`reference`, `restrict_to` are ignored). Throws as `detect`.
-size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {});
+/// `rule` sharpens which partners count (see `LayerRule`; the repair's flap peeling and turned
+/// patch dropping use `Facing`). Uses the geometry only (`reference`, `restrict_to` are
+/// ignored). Throws as `detect`, and InvalidInput for a `rule` that is no `LayerRule`.
+size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {},
+                                     LayerRule rule = LayerRule::Facing);
 
 /// The faces `count_same_orientation_layers` counts, each with its nearest such partner (the one
 /// in front when there is one, else behind), in increasing face index order.
 std::vector<std::pair<edgefront::FaceHandle, edgefront::FaceHandle>> same_orientation_pairs(
-    const edgefront::Mesh& mesh, const DetectOptions& options = {});
+    const edgefront::Mesh& mesh, const DetectOptions& options = {}, LayerRule rule = LayerRule::Facing);
 
 /// `detect_regions(mesh, options).regions`.
 std::vector<TwistRegion> detect(const edgefront::Mesh& mesh, const DetectOptions& options = {});

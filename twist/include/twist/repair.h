@@ -63,8 +63,15 @@ struct RepairOptions {
   /// (`same_orientation_pairs`). Each face of such a patch with an edge shorter than half the
   /// mean edge (a sliver inverted by the smoothing among right neighbours, or bevelled over a
   /// rim) is collapsed by its shortest collapsible edge, which keeps the surface around it
-  /// closed; a longer one on the mesh border is removed (a flap turned over at a rim, and the
-  /// tiny pieces that leaves); a longer interior one is left (a hole would be worse).
+  /// closed; a longer one is straightened: one of its interior vertices (tried in circulation
+  /// order) moved to the centroid of its neighbours, or else (a tangle: neighbours displaced too)
+  /// its interior vertices and their interior neighbours smoothed together that way, up to 3
+  /// rounds, kept when the face is then right, no face around the moved vertices is degenerate
+  /// and fewer of them are rejected than before (at a rim corner some bevelled faces may stay
+  /// rejected); else a longer one on the border is removed (a flap turned over at a rim, and the
+  /// tiny pieces that leaves) and a longer interior one is left (a hole would be worse).
+  /// (Vault shell t/R 0.05 at edge = t, seed 7: a face folded over the inner wall's foot corner
+  /// by a valence-4 vertex, which no single move straightens.)
   /// (Removing rim slivers instead of collapsing them widens the border gap, and faces of the
   /// same wall across it then count as pairs: vault shell t/R 0.2 seed 2, 31 pairs before, 45
   /// removing, 26 collapsing.)
@@ -122,6 +129,7 @@ struct RepairReport {
   size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairOptions::peel_flaps`)
   size_t turned_faces_removed = 0;      ///< faces of turned-over border patches removed (`drop_turned_patches`)
   size_t turned_faces_collapsed = 0;    ///< faces of turned-over interior patches collapsed (`drop_turned_patches`)
+  size_t turned_faces_straightened = 0; ///< turned-over faces straightened by moving vertices (`drop_turned_patches`)
   size_t vertices_duplicated = 0;
   size_t cut_edges = 0;
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)

@@ -29,6 +29,12 @@ Vec3 centroid(const std::array<Vec3, 3>& p);
 /// count; coplanar overlaps are not detected).
 bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
 
+/// How deeply the two triangles overlap when both are projected along `direction` (unit) onto a
+/// plane: the smallest overlap of their projections onto the six in-plane edge normals (the
+/// separating axes of two convex polygons). Positive when the projections overlap (the depth of
+/// the overlap, a length), zero or negative when they only touch or are apart.
+double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction);
+
 /// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
 /// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`
 /// faces around it, so `side` becomes its own component(s). Faces are re-added in the given
