@@ -71,9 +71,9 @@ struct ReconstructOptions {
   /// live / batch_growth_vertices) splits, so that the per-batch costs (the operations' change
   /// sets, which cover most faces after a batch, and the loop's bookkeeping over all faces) stay a
   /// fixed share of the run instead of growing with the square of the target (at 100,000 vertices:
-  /// 1,000-split batches, 161 batches above 20,000 vertices instead of 400). Smaller meshes are not
+  /// 2,000-split batches, 115 batches above 10,000 vertices instead of 450). Smaller meshes are not
   /// affected. 0 = batches of batch_splits always.
-  std::size_t batch_growth_vertices = 20000;
+  std::size_t batch_growth_vertices = 10000;
   /// Remove triangles no sample supports (creates borders on open surfaces).
   bool create_borders = true;
   /// A face is unsupported when its centroid is farther than this times the mean edge length from
