@@ -65,7 +65,8 @@ struct ReconstructOptions {
   /// mu * |V| steps are collapsed. > 0; 0 disables collapses.
   double inactivity_window = 20.0;
   /// Vertex splits between two calls of the registered operations and of the built-in topology
-  /// pass (border creation and loop merging). >= 1.
+  /// pass (border creation and loop merging); on meshes above batch_growth_vertices, more (see
+  /// there). >= 1.
   std::size_t batch_splits = 200;
   /// From this many live vertices on, a batch grows in proportion to the mesh: ceil(batch_splits x
   /// live / batch_growth_vertices) splits, so that the per-batch costs (the operations' change
