@@ -1,6 +1,6 @@
 // bench_gcs: the GCS reconstructor on real and synthetic clouds (not a test; prints a report).
 //
-//   bench_gcs [--quick] [--eval] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
+//   bench_gcs [--quick] [--eval] [--twist] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K]
 //             [--seeds N] [--step-factor F] [--points P] [--reference DIR]
 //
 // 1. kitten.xyz (CGAL sample, 5210 points) at 5K vertices: time, closed?, genus, valences; with
@@ -21,6 +21,8 @@
 //    without the surface fit (ReconstructOptions::fit_surface), judged by gcs::evaluate against the
 //    5,210 points (as gcs-eval: exact distances, 100K samples, seed 1); with --reference DIR also
 //    DIR/kitten-advancing-front.off and DIR/kitten-poisson.off (bench/cgal_reconstruct_reference).
+// --twist registers the twist repair (gcs::TwistOperation, default options) as gcs-reconstruct
+// does without --no-twist (the cases above run without it), and prints the time spent in it.
 // --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case; --points P
 // replaces the 1M-point cloud of cases 3 and 5 by a P-point one. Single thread. Case 3 also prints
 // the CPU time of the set-up (Reconstructor constructor: sorting, kd-tree) apart.
@@ -31,6 +33,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +45,7 @@
 #include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
+#include "gcs/twist_operation.h"
 
 namespace {
 
@@ -113,6 +117,7 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
 }
 
 bool g_fit = true;  // ReconstructOptions::fit_surface
+bool g_twist = false;  // --twist: the twist repair registered as in gcs-reconstruct
 
 gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
@@ -121,8 +126,11 @@ gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
   o.seed = g_seed;
   const double c0 = cpu_seconds();
-  gcs::ReconstructResult r = gcs::reconstruct(cloud, o);
+  gcs::Reconstructor rec(cloud, o);
+  if (g_twist) rec.add_operation(std::make_shared<gcs::TwistOperation>(gcs::TwistOperationOptions{}));
+  gcs::ReconstructResult r = rec.run();
   g_last_cpu = cpu_seconds() - c0;
+  if (g_twist) std::printf("  (twist repair: %.2f s wall in the operation)\n", r.seconds_operations);
   return r;
 }
 
@@ -157,6 +165,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--eval")) eval = true;
+    else if (!std::strcmp(argv[i], "--twist")) g_twist = true;
     else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];
@@ -167,7 +176,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--points") && i + 1 < argc) big_points = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) reference = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_gcs [--quick] [--eval] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
+      std::fprintf(stderr, "usage: bench_gcs [--quick] [--eval] [--twist] [--repeat R] [--data DIR] [--case kitten|sphere|fixed|big|step|nested|fit] [--vertices N] [--smoothing K] [--seeds N] [--step-factor F] [--points P] [--reference DIR]\n");
       return 2;
     }
   }

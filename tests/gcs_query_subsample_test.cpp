@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,55 @@ TEST(QuerySubsample, CloudWithinTheLimitOrWithoutNormalsIsUsedWhole) {
   PointCloud bare = cloud;
   bare.normals.clear();
   EXPECT_TRUE(same_mesh(gcs::reconstruct(bare, options(200, 0)).mesh, gcs::reconstruct(bare, options(200, 1000)).mesh));
+}
+
+// OperationContext::query_points: the subsample (points with their normals, a part of the cloud in
+// the operation's coordinates) when the loop queries one, nullptr when it uses the whole cloud.
+class QueryPointsRecorder : public gcs::Operation {
+ public:
+  std::string name() const override { return "query-points-recorder"; }
+  gcs::OperationResult apply(Mesh&, const gcs::ChangeSet&, const gcs::OperationContext& context) override {
+    ++calls;
+    if (!context.query_points) return {};
+    ++with_subsample;
+    const PointCloud& q = *context.query_points;
+    sizes.push_back(q.size());
+    normals_ok = normals_ok && q.has_normals();
+    // Every subsample point is a point of the cloud (checked for a few).
+    for (size_t k = 0; k < q.size(); k += 97) {
+      bool found = false;
+      for (size_t i = 0; i < context.points.size() && !found; ++i)
+        found = context.points.points[i] == q.points[k];
+      members_ok = members_ok && found;
+    }
+    return {};
+  }
+  size_t calls = 0, with_subsample = 0;
+  std::vector<size_t> sizes;
+  bool normals_ok = true, members_ok = true;
+};
+
+TEST(QuerySubsample, OperationsGetTheSubsampleInTheirContext) {
+  const PointCloud cloud = cloud_of("torus", 6000);
+  for (const size_t limit : {size_t(0), size_t(1500)}) {
+    gcs::ReconstructOptions o = options(300, limit);
+    o.batch_splits = 50;
+    gcs::Reconstructor r(cloud, o);
+    auto rec = std::make_shared<QueryPointsRecorder>();
+    r.add_operation(rec);
+    r.run();
+    ASSERT_GT(rec->calls, 2u) << limit;
+    if (limit == 0) {  // 6000 points are within the automatic limit
+      EXPECT_EQ(rec->with_subsample, 0u);
+      continue;
+    }
+    EXPECT_EQ(rec->with_subsample, rec->calls);
+    ASSERT_FALSE(rec->sizes.empty());
+    EXPECT_LE(rec->sizes.front(), limit);
+    EXPECT_GE(rec->sizes.front(), limit / 2);
+    EXPECT_TRUE(rec->normals_ok);
+    EXPECT_TRUE(rec->members_ok);
+  }
 }
 
 TEST(QuerySubsample, LimitBelowTheTargetIsRejected) {

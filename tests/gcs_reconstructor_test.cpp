@@ -276,6 +276,34 @@ TEST(GcsReconstructor, AnOperationSeesOnlyChangesSinceItsLastCall) {
   EXPECT_GT(partial, calls / 2);
 }
 
+// ReconstructOptions::batch_growth_vertices: from that many live vertices on, batches of
+// ceil(batch_splits x live / batch_growth_vertices) splits. Below it the mesh is the same as with
+// fixed batches; above it there are fewer, longer batches (each call still sees every change since
+// the last), and the result is still a valid closed mesh.
+TEST(GcsReconstructor, BatchesGrowWithTheMeshFromBatchGrowthVertices) {
+  const PointCloud cloud = cloud_of("icosphere", 3000);
+  gcs::ReconstructOptions fixed = small(400);
+  fixed.batch_growth_vertices = 0;
+  gcs::ReconstructOptions above = small(400);
+  above.batch_growth_vertices = 400;  // the target: never grows
+  const gcs::ReconstructResult a = gcs::reconstruct(cloud, fixed), b = gcs::reconstruct(cloud, above);
+  EXPECT_EQ(flat_points(a.mesh), flat_points(b.mesh));
+  EXPECT_EQ(flat_faces(a.mesh), flat_faces(b.mesh));
+  EXPECT_EQ(a.batches, b.batches);
+
+  fixed.batch_splits = 1;
+  gcs::ReconstructOptions grown = fixed;
+  grown.batch_growth_vertices = 10;  // from 10 vertices on: 10% growth per batch
+  const gcs::ReconstructResult c = gcs::reconstruct(cloud, fixed), d = gcs::reconstruct(cloud, grown);
+  EXPECT_GE(c.batches, c.splits);  // one split per batch (and the final call)
+  // 10 vertices to 400 at >= 10% per batch: at most ln(40) / ln(1.1) ~ 39 batches, plus those
+  // that collapses undo.
+  EXPECT_LT(d.batches, 80u);
+  EXPECT_GT(d.batches, 30u);
+  EXPECT_EQ(edgefront::compute_stats(d.mesh).border_loops, 0u);
+  expect_manifold(d.mesh, "grown batches");
+}
+
 TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
   using edgefront::InvalidInput;
   PointCloud three;

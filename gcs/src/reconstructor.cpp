@@ -200,9 +200,12 @@ struct Reconstructor::Impl {
   // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
   // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
   // subsample of it (ReconstructOptions::max_query_points), whose points and normals are then
-  // kept side by side in tree order (query_points, query_normals: no scattered reads in the cloud).
+  // kept side by side in tree order (query_points, subsample.normals: no scattered reads in the
+  // cloud).
   std::unique_ptr<PointIndex> tree;
-  std::vector<Vec3> query_normals;  // subsampled: the input normals of the tree's points; else empty
+  // Subsampled: the tree's points and their input normals (OperationContext::query_points); else
+  // empty.
+  edgefront::PointCloud subsample;
   const std::vector<Vec3>* query_points = nullptr;  // the tree's points: the cloud's or the subsample's
   std::vector<PointIndex::Neighbor> knn;  // query scratch
   // Faces whose centroid is at least this many mean edge lengths from the nearest sample are
@@ -368,13 +371,13 @@ struct Reconstructor::Impl {
   void build_subsampled_tree(size_t limit) {
     permute_cloud(detail::coarse_morton_order(cloud.points));
     const std::vector<size_t> ids = detail::stride_subsample(cloud.size(), limit, opt.seed);
-    std::vector<Vec3> sub(ids.size());
-    query_normals.resize(ids.size());
+    subsample.points.resize(ids.size());
+    subsample.normals.resize(ids.size());
     for (size_t k = 0; k < ids.size(); ++k) {
-      sub[k] = cloud.points[ids[k]];
-      query_normals[k] = cloud.normals[ids[k]];
+      subsample.points[k] = cloud.points[ids[k]];
+      subsample.normals[k] = cloud.normals[ids[k]];
     }
-    tree = std::make_unique<PointIndex>(std::move(sub));
+    tree = std::make_unique<PointIndex>(subsample.points);
     query_points = &tree->points();
   }
 
@@ -510,9 +513,11 @@ struct Reconstructor::Impl {
 
   // The normal of tree point k: point_normal (the input or the fitted one) for cloud_query,
   // oriented_normal for the others; both are the input normal in a subsample.
-  const Vec3& query_point_normal(size_t k) { return query_normals.empty() ? point_normal(k) : query_normals[k]; }
+  const Vec3& query_point_normal(size_t k) {
+    return subsample.empty() ? point_normal(k) : subsample.normals[k];
+  }
   const Vec3& query_oriented_normal(size_t k) const {
-    return query_normals.empty() ? oriented_normal(k) : query_normals[k];
+    return subsample.empty() ? oriented_normal(k) : subsample.normals[k];
   }
 
   detail::CloudHit cloud_query(const Vec3& p) {
@@ -523,10 +528,54 @@ struct Reconstructor::Impl {
   // The k samples nearest to p with their oriented normals (the film test of the border creation).
   std::vector<PointIndex::Neighbor> knn_oriented;  // its scratch (point_normal uses knn)
   void oriented_neighbors(const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
-    tree->k_nearest(p, k, knn_oriented);
+    const bool kept = face_queries.knn_valid && face_queries.knn_point == p && face_queries.knn_k == k;
+    if (!kept) tree->k_nearest(p, k, knn_oriented);
+    face_queries.knn_valid = false;
     out.clear();
     for (const PointIndex::Neighbor& nb : knn_oriented)
       out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index]});
+  }
+
+  // The border creation's tests query the samples at every face's centroid: the nearest sample
+  // (support), the film_samples nearest (film test) and, among the faces kept, the nearest again
+  // (opposed faces). One search serves them: with the film test on, the nearest is the first of
+  // the k nearest (kept for the film test's call at the same point), and the nearest found for
+  // each centroid is remembered in face order for the opposed-face test, which queries the same
+  // points (the centroids of the faces still there, in the same order, nothing moved in between):
+  // an exact match of the point returns the remembered sample, anything else is searched.
+  struct FaceQueries {
+    std::vector<std::pair<Vec3, PointIndex::Neighbor>> seen;  // (centroid, its nearest) in query order
+    size_t cursor = 0;
+    Vec3 knn_point{0, 0, 0};  // knn_oriented holds the knn_k samples nearest to this point
+    size_t knn_k = 0;
+    bool knn_valid = false;
+  } face_queries;
+
+  // The support query of remove_unsupported_faces (see FaceQueries); film_k = 0 without the film test.
+  detail::CloudHit support_query(const Vec3& p, size_t film_k) {
+    PointIndex::Neighbor nb;
+    if (film_k > 0) {
+      tree->k_nearest(p, film_k, knn_oriented);
+      face_queries.knn_point = p;
+      face_queries.knn_k = film_k;
+      face_queries.knn_valid = true;
+      nb = knn_oriented.front();
+    } else {
+      nb = tree->nearest(p);
+    }
+    face_queries.seen.emplace_back(p, nb);
+    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
+  }
+  // The sample nearest to p for the opposed-face test (see FaceQueries).
+  PointIndex::Neighbor remembered_nearest(const Vec3& p) {
+    for (size_t k = face_queries.cursor; k < face_queries.seen.size(); ++k) {
+      if (face_queries.seen[k].first == p) {
+        face_queries.cursor = k + 1;
+        return face_queries.seen[k].second;
+      }
+    }
+    face_queries.cursor = face_queries.seen.size();  // out of step: search from now on
+    return tree->nearest(p);
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -1107,8 +1156,8 @@ struct Reconstructor::Impl {
     snapshot_faces();
   }
 
-  void rebuild_grid_if_needed() {
-    const double target = mean_edge_length();
+  // `target`: mean_edge_length() of the mesh as it is.
+  void rebuild_grid_if_needed(double target) {
     if (target <= 0) return;
     const double ratio = grid.cell_size() / target;
     if (ratio > 0.5 && ratio < 2.0) return;
@@ -1129,14 +1178,15 @@ struct Reconstructor::Impl {
     return cs;
   }
 
-  void topology_pass(bool force) {
-    if (!opt.create_borders && !opt.merge_borders) return;
-    if (live < opt.topology_min_vertices) return;
+  // `ell`: mean_edge_length() of the mesh as it is. Returns false when the pass was not due (the
+  // mesh is then unchanged).
+  bool topology_pass(bool force, double ell) {
+    if (!opt.create_borders && !opt.merge_borders) return false;
+    if (live < opt.topology_min_vertices) return false;
     if (!force && topology_last_live > 0 && static_cast<double>(live) < 1.1 * static_cast<double>(topology_last_live))
-      return;
+      return false;
     const auto t0 = Clock::now();
     topology_last_live = live;
-    const double ell = mean_edge_length();
     const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
     // Faces added across a border (loop merges, slit zips, hole fills) may lie up to 1.5 times as
     // far from the samples as a face may before it is removed: a hysteresis, so that the strip
@@ -1149,6 +1199,7 @@ struct Reconstructor::Impl {
       total += n;
       changed = changed || n > 0;
     };
+    face_queries = {};
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
@@ -1156,16 +1207,20 @@ struct Reconstructor::Impl {
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
       bp.film_samples = encloses ? opt.film_samples : 0;
+      const size_t film_k = bp.film_samples;
       tally(faces_removed, detail::remove_unsupported_faces(
-                               mesh, dist, bp, [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
+                               mesh, [this, film_k](const Vec3& p) { return support_query(p, film_k); }, bp,
+                               [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
                                  oriented_neighbors(p, k, out);
                                }));
+      face_queries.knn_valid = false;
     }
     if (opt.create_borders && oriented)
       tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
-        const PointIndex::Neighbor nb = tree->nearest(p);
+        const PointIndex::Neighbor nb = remembered_nearest(p);
         return {std::sqrt(nb.distance2), query_oriented_normal(nb.index)};
       }, {.max_distance = support}));
+    face_queries = {};
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
@@ -1193,25 +1248,39 @@ struct Reconstructor::Impl {
     }
     if (changed) resync();
     seconds_topology += seconds_since(t0);
+    return true;
+  }
+
+  // Splits per batch at the current size (ReconstructOptions::batch_growth_vertices).
+  size_t batch_size() const {
+    const size_t g = opt.batch_growth_vertices;
+    if (g == 0 || live <= g) return opt.batch_splits;
+    return static_cast<size_t>(std::ceil(static_cast<double>(opt.batch_splits) * static_cast<double>(live) /
+                                         static_cast<double>(g)));
   }
 
   void end_batch(bool final_call) {
     ++batches;
     splits_in_batch = 0;
-    rebuild_grid_if_needed();
+    // The mean edge length (a pass over all edges) is computed again only where the mesh may
+    // have changed.
+    double ell = mean_edge_length();
+    rebuild_grid_if_needed(ell);
     snapshot_faces();
-    topology_pass(final_call);
-    run_operations(final_call);
+    if (topology_pass(final_call, ell)) ell = mean_edge_length();
+    ell = run_operations(final_call, ell);
     // The topology pass and the operations may change the mean edge length: with or without
     // operations registered, the grid is checked at the same point (an operation that changes
     // nothing leaves the run as it is without it).
-    rebuild_grid_if_needed();
+    rebuild_grid_if_needed(ell);
   }
 
-  void run_operations(bool final_call) {
-    if (ops.empty()) return;
+  // `ell`: mean_edge_length() of the mesh as it is; returns it after the operations.
+  double run_operations(bool final_call, double ell) {
+    if (ops.empty()) return ell;
     OperationContext ctx{cloud};
-    ctx.mean_edge_length = mean_edge_length();
+    ctx.query_points = subsample.empty() ? nullptr : &subsample;
+    ctx.mean_edge_length = ell;
     ctx.bbox_diagonal = bbox_diagonal;
     ctx.target_vertices = opt.target_vertices;
     ctx.basic_steps = steps;
@@ -1236,6 +1305,7 @@ struct Reconstructor::Impl {
       r.last = clock;
       ++clock;
     }
+    return ctx.mean_edge_length;
   }
 
   ReconstructResult make_result(double seconds) {
@@ -1323,7 +1393,7 @@ struct Reconstructor::Impl {
         }
       }
       split_most_active();
-      if (++splits_in_batch >= opt.batch_splits) end_batch(false);
+      if (++splits_in_batch >= batch_size()) end_batch(false);
       if (++splits_since_progress >= opt.progress_interval) {
         splits_since_progress = 0;
         if (!report()) {

@@ -38,8 +38,10 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   ++stats_.calls;
   if (!reference_checked_) {
     reference_checked_ = true;
-    if (options_.use_point_normals && context.points.has_normals()) {
-      reference_ = std::make_unique<twist::ReferenceNormals>(context.points);
+    // The loop's query subsample of a large cloud when it has one (OperationContext::query_points).
+    const edgefront::PointCloud& samples = context.query_points ? *context.query_points : context.points;
+    if (options_.use_point_normals && samples.has_normals()) {
+      reference_ = std::make_unique<twist::ReferenceNormals>(samples);
     }
   }
   if (!repairer_) {

@@ -81,6 +81,11 @@ struct MeshRenumbering {
 /// What an operation may read besides the mesh. Cheap to build; valid only during the call.
 struct OperationContext {
   const edgefront::PointCloud& points;  ///< the input samples (normals when the input had them)
+  /// For a large cloud with normals that the loop queries through a spatially even subsample
+  /// (ReconstructOptions::max_query_points): that subsample, points with their normals, in the
+  /// same coordinates as `points`; an operation that searches the samples may use it instead (a
+  /// k-d tree over it is cheaper to build and to query). nullptr when the loop uses the whole cloud.
+  const edgefront::PointCloud* query_points = nullptr;
   double mean_edge_length = 0;          ///< over the live edges of the mesh, at the call
   double bbox_diagonal = 0;             ///< of the input points
   std::size_t live_vertices = 0;        ///< live vertices of the mesh, at the call

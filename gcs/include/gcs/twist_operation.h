@@ -39,7 +39,9 @@ struct TwistOperationOptions {
   }
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
-  bool use_point_normals = true;     ///< use the input normals as reference when the cloud has them
+  /// Use the input normals as reference when the cloud has them (for a large cloud the loop
+  /// queries through a subsample, that subsample: OperationContext::query_points).
+  bool use_point_normals = true;
   /// Local detection after a batch: a face grid kept up to date across calls instead of a k-d
   /// tree over all face centroids per call (see `twist::TwistRepairer::repair_changed`).
   bool local = true;
