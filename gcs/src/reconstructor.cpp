@@ -153,15 +153,12 @@ size_t drop_repeated_points(edgefront::PointCloud& c) {
   return dropped;
 }
 
-void check_options(const ReconstructOptions& o, size_t n_points) {
+// The options' ranges; the target against the number of points is checked in init, after the
+// repeated points are dropped.
+void check_options(const ReconstructOptions& o) {
   auto fail = [](const std::string& m) { throw InvalidInput("gcs: " + m); };
   if (o.target_vertices < 4) fail("target_vertices must be at least 4 (got " + std::to_string(o.target_vertices) + ")");
   if (o.target_vertices > 50'000'000) fail("target_vertices above 50,000,000 is not supported");
-  // Each vertex needs samples that it wins: above one vertex per point the loop cannot hold the
-  // vertices it adds (it collapses them as inactive) and runs into the step limit.
-  if (o.target_vertices > n_points)
-    fail("target_vertices " + std::to_string(o.target_vertices) + " is more than the number of points (" +
-         std::to_string(n_points) + "): the samples cannot place that many vertices");
   if (o.steps_per_split < 1) fail("steps_per_split must be >= 1");
   if (!(o.winner_rate > 0 && o.winner_rate <= 1)) fail("winner_rate must be in (0, 1]");
   if (!(o.neighbor_rate >= 0 && o.neighbor_rate <= 1)) fail("neighbor_rate must be in [0, 1]");
@@ -268,7 +265,7 @@ struct Reconstructor::Impl {
     if (!points.normals.empty() && points.normals.size() != points.points.size())
       throw InvalidInput("gcs: the cloud has " + std::to_string(points.normals.size()) + " normals for " +
                          std::to_string(points.points.size()) + " points");
-    check_options(opt, points.size());
+    check_options(opt);
     Vec3 lo = points.points[0], hi = points.points[0];
     for (const Vec3& p : points.points) {
       lo.minimize(p);
@@ -279,12 +276,16 @@ struct Reconstructor::Impl {
     if (!(bbox_diagonal > 1e-12 * std::max(1.0, offset.norm())))
       throw InvalidInput("gcs: all points coincide: there is no surface to reconstruct");
     // Repeated points would weigh their place several times in every k-nearest query (a plane whose
-    // points were each written 3 times came out in 12 pieces): they are dropped, and the target must
-    // fit the distinct points.
-    if (const size_t repeated = drop_repeated_points(points); opt.target_vertices > points.size())
-      throw InvalidInput("gcs: target_vertices " + std::to_string(opt.target_vertices) +
-                         " is more than the number of distinct points (" + std::to_string(points.size()) + "; " +
-                         std::to_string(repeated) + " repeat an earlier one): the samples cannot place that many vertices");
+    // points were each written 3 times came out in 12 pieces): they are dropped. Each vertex needs
+    // samples that it wins: above one vertex per distinct point the loop cannot hold the vertices
+    // it adds (it collapses them as inactive) and runs into the step limit.
+    if (const size_t repeated = drop_repeated_points(points); opt.target_vertices > points.size()) {
+      const std::string count = repeated == 0 ? "number of points (" + std::to_string(points.size()) + ")"
+                                              : "number of distinct points (" + std::to_string(points.size()) + "; " +
+                                                    std::to_string(repeated) + " repeat an earlier one)";
+      throw InvalidInput("gcs: target_vertices " + std::to_string(opt.target_vertices) + " is more than the " + count +
+                         ": the samples cannot place that many vertices");
+    }
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
     // Collinear: the second principal extent vanishes.

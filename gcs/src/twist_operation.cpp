@@ -83,9 +83,8 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
   if (!context.final_call && (r.repairs > 0 || r.faces_removed > 0)) rejoin();
-  result.mesh_changed =
-      joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0 || r.turned_faces_collapsed > 0 ||
-                        r.turned_faces_straightened > 0;
+  result.mesh_changed = joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0 ||
+                        r.turned_faces_collapsed > 0 || r.turned_faces_straightened > 0;
   if (result.mesh_changed) {
     result.summary = std::to_string(r.repairs) + " twist(s) repaired (" + std::to_string(r.faces_flipped) + " faces flipped, " +
                      std::to_string(r.regions_cut_out) + " cut out), " + std::to_string(r.components_flipped) +

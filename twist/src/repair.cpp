@@ -446,9 +446,6 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     }
     if (group.size() <= o.drop_turned_patches) groups.push_back(std::move(group));
   }
-  // Moving interior vertex v to the centroid of its neighbours, when afterwards no face around
-  // it is degenerate or rejected (a face folded over its neighbours by one vertex pushed across
-  // them: the move straightens it and keeps the surface as it is).
   // Moving vertices `vs` (interior) to the centroids of their neighbours, all at once, up to
   // `rounds` times, until turned face f is right, no face around them is degenerate and fewer
   // are rejected than before (near a rim corner some bevelled faces around may stay rejected);
