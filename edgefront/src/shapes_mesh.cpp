@@ -136,6 +136,15 @@ void require_cells(const std::string& shape, long long nu, long long nv) {
                             std::to_string(kMaxCells));
 }
 
+// Cylinder and cone: counts around and along, positive radius and height, a sane cell count.
+void require_revolution(const std::string& shape, int around, int along, double radius, double height) {
+  detail::require_count(shape, "around", around, 3, kMaxCount);
+  detail::require_count(shape, "along", along, 1, kMaxCount);
+  detail::require_positive(shape, "radius", radius);
+  detail::require_positive(shape, "height", height);
+  require_cells(shape, around, along);
+}
+
 int clamp_count(double x, int lo) {
   const double r = std::round(x);
   if (!(r >= lo)) return lo;
@@ -364,12 +373,7 @@ Mesh bumpy_sphere(int subdivisions, double radius, double amplitude, double freq
 // ---- surfaces of revolution ------------------------------------------------------------
 
 Mesh open_cylinder(int around, int along, double radius, double height) {
-  const std::string shape = "cylinder";
-  detail::require_count(shape, "around", around, 3, kMaxCount);
-  detail::require_count(shape, "along", along, 1, kMaxCount);
-  detail::require_positive(shape, "radius", radius);
-  detail::require_positive(shape, "height", height);
-  require_cells(shape, around, along);
+  require_revolution("cylinder", around, along, radius, height);
   MeshBuilder b(weld_tolerance(std::max(radius, height)));
   b.grid(around, along, [&](int i, int j) {
     const auto f = unit_circle(i, around);
@@ -379,12 +383,7 @@ Mesh open_cylinder(int around, int along, double radius, double height) {
 }
 
 Mesh cone(int around, int along, double radius, double height) {
-  const std::string shape = "cone";
-  detail::require_count(shape, "around", around, 3, kMaxCount);
-  detail::require_count(shape, "along", along, 1, kMaxCount);
-  detail::require_positive(shape, "radius", radius);
-  detail::require_positive(shape, "height", height);
-  require_cells(shape, around, along);
+  require_revolution("cone", around, along, radius, height);
   MeshBuilder b(weld_tolerance(std::max(radius, height)));
   b.grid(around, along, [&](int i, int j) {
     const auto f = unit_circle(i, around);
