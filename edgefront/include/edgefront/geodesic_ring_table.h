@@ -1,0 +1,109 @@
+#pragma once
+/// \file geodesic_ring_table.h
+/// A per-mesh table of vertex rings for many fast distance queries (`DistanceOptions::fast`).
+///
+/// The fast mode settles vertices in distance order and, for each settled vertex x, lays x's ring
+/// out in the plane by its corner angles (polar coordinates around x). `GeodesicRingTable` does
+/// that layout once per mesh: per vertex, its neighbours in ring order (compressed sparse rows),
+/// each with the edge vector and length, the ring angle and its cosine and sine, and the corner
+/// angle to the next neighbour with its cosine and sine; per vertex the angle sum (with cosine and
+/// sine), whether the ring is closed, intrinsically flat or non-manifold. A query then does no
+/// halfedge walk and no `atan2` per neighbour.
+///
+///     edgefront::GeodesicRingTable table(mesh);      // once per mesh
+///     auto f = edgefront::geodesic_distance(mesh, table, edgefront::FrontSource::vertex(v));
+///     auto g = edgefront::geodesic_distance(mesh, table, points, {.max_distance = 0.1});
+///
+/// The table is a snapshot of the mesh's connectivity and positions: rebuild it whenever the mesh
+/// changes (points moved, elements added or deleted, garbage collected). A query compares the
+/// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
+/// differ; moved points or a different mesh with the same counts are not detected.
+///
+/// Memory: `memory_bytes()`, about 88 bytes per halfedge plus 56 per vertex (about 590 bytes per
+/// vertex of a closed triangle mesh). Built in O(halfedges), one `atan2` per corner.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+#include "edgefront/minimal_distance_front.h"
+
+namespace edgefront {
+
+class GeodesicRingTable {
+ public:
+  /// One neighbour v of a vertex x, in the ring walk order next(opposite(h)) (the same sense of
+  /// rotation at every vertex of an oriented mesh).
+  struct Ray {
+    Vec3 e;                       ///< the edge vector x -> v
+    double len = 0;               ///< |e|
+    double theta = 0;             ///< ring angle: the corner angles summed from the ring's first ray
+    double cos_theta = 1, sin_theta = 0;  ///< of theta, as the product of the corners' rotations
+    double cos_after = 1, sin_after = 0;  ///< of the corner angle between this ray and the next one
+    double angle_after = 0;       ///< that corner angle (0 when there is no face after this ray)
+    int v = -1;                   ///< the neighbour's index
+    bool face_after = false;      ///< a face lies between this ray and the next one in the walk
+  };
+  /// Per vertex: where its ring lies and its shape.
+  struct Ring {
+    Vec3 point;                   ///< the vertex's position
+    double total = 0;             ///< the angle sum (sum of corner angles)
+    double cos_total = 1, sin_total = 0;  ///< of `total`, as the product of the corners' rotations
+    std::uint32_t begin = 0;      ///< the first ray in `rays()`
+    std::uint32_t size = 0;       ///< the number of rays
+    std::uint32_t first = 0;      ///< where theta is 0: 0 on a closed ring, the ray after the border gap otherwise
+    bool closed = true;           ///< no border gap (isolated vertices too)
+    bool flat = false;            ///< closed and the angle sum is 2 pi within 1e-10
+    bool non_manifold = false;    ///< several fans meet at the vertex (a query refuses to settle it)
+  };
+
+  /// Builds the table. \throws InvalidInput for a mesh with more than 2^32 - 1 halfedges, and
+  /// InternalError when a vertex's ring does not close (corrupt connectivity).
+  explicit GeodesicRingTable(const Mesh& mesh);
+
+  size_t n_vertices() const { return rings_.size(); }
+  size_t n_faces() const { return n_faces_; }
+  size_t n_halfedges() const { return n_halfedges_; }
+  const Ring& ring(int v) const { return rings_[static_cast<size_t>(v)]; }
+  /// The rays of vertex v, in walk order (`ring(v).size` of them).
+  std::span<const Ray> rays(int v) const {
+    const Ring& r = rings_[static_cast<size_t>(v)];
+    return {rays_.data() + r.begin, r.size};
+  }
+  /// Bytes held by the table.
+  size_t memory_bytes() const { return rings_.capacity() * sizeof(Ring) + rays_.capacity() * sizeof(Ray); }
+
+  /// Whether the mesh has the vertex, face and halfedge counts the table was built with.
+  bool matches(const Mesh& mesh) const;
+  /// \throws InvalidInput naming the counts when `matches(mesh)` is false (rebuild the table).
+  void check(const Mesh& mesh) const;
+
+ private:
+  std::vector<Ring> rings_;
+  std::vector<Ray> rays_;
+  size_t n_faces_ = 0, n_halfedges_ = 0;
+};
+
+/// The fast mode (`DistanceOptions::fast`, documented there) on a prebuilt table: the same field
+/// as `geodesic_distance(mesh, source, {.fast = true})`, bit for bit, without the table's build.
+/// `options.fast` is implied, `windows` and `track_front` are ignored; a loop source runs the
+/// default mode (the table is not used). \throws InvalidInput for a bad source or options, or a
+/// table that does not match the mesh (`GeodesicRingTable::check`); TopologyError when a
+/// non-manifold vertex settles.
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
+                                const DistanceOptions& options = {});
+/// The same from surface points (see `MinimalDistanceFront::reset` for their checks).
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table,
+                                const std::vector<SurfacePoint>& points, const DistanceOptions& options = {});
+
+/// `dijkstra_distance` (binary heap over mesh edges) reading the edges from the table instead of
+/// the mesh's halfedges: the same distances, order and stop (directions to round-off). A loop
+/// source runs `dijkstra_distance(mesh, ...)`. \throws as `dijkstra_distance`, and InvalidInput for
+/// a table that does not match the mesh.
+DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
+                                const DistanceOptions& options = {});
+
+}  // namespace edgefront
