@@ -26,9 +26,10 @@ void expect_same_field(const DistanceField& a, const DistanceField& b, const std
   EXPECT_EQ(a.stop, b.stop) << what;
 }
 
-// The rays are the vertex's neighbours in the mesh's circulation order; the ring angles are the
-// corner angles summed from the first ray, with their cosines and sines; the angle sum is 2 pi at
-// interior vertices of a flat grid (flat), and a border ring starts after its gap.
+// The neighbours are the vertex's neighbours in the mesh's circulation order, with their edge
+// lengths; the corners are the angles between consecutive edges with their cosines and sines; the
+// angle sum is 2 pi at interior vertices of a flat grid (flat), and a border ring starts after its
+// gap.
 TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
   const Mesh meshes[] = {
       shapes::grid(shapes::GridOptions{.cells = 6, .variant = shapes::GridVariant::jittered, .seed = 2}),
@@ -37,49 +38,54 @@ TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
     const bool planar = &mesh == &meshes[0];
     const GeodesicRingTable table(mesh);
     ASSERT_EQ(table.n_vertices(), mesh.n_vertices());
-    size_t rays = 0;
+    size_t edges = 0;
     for (VertexHandle v : mesh.vertices()) {
-      const auto ring = table.rays(v.idx());
+      const auto nb = table.neighbours(v.idx());
+      const auto len = table.lengths(v.idx());
+      const auto corners = table.corners(v.idx());
       const GeodesicRingTable::Ring& info = table.ring(v.idx());
-      rays += ring.size();
+      const size_t m = info.size;
+      ASSERT_EQ(nb.size(), m);
+      ASSERT_EQ(len.size(), m);
+      ASSERT_EQ(corners.size(), m);
+      edges += m;
       EXPECT_EQ(info.point, mesh.point(v));
       size_t k = 0;
       for (VertexHandle y : mesh.vv_range(v)) {
-        ASSERT_LT(k, ring.size());
-        EXPECT_EQ(ring[k].v, y.idx());
-        EXPECT_NEAR(ring[k].len, (mesh.point(y) - mesh.point(v)).norm(), 1e-15);
+        ASSERT_LT(k, m);
+        EXPECT_EQ(nb[k], y.idx());
+        EXPECT_NEAR(len[k], (mesh.point(y) - mesh.point(v)).norm(), 1e-15);
+        EXPECT_EQ(corners[k].e, mesh.point(y) - mesh.point(v));
         ++k;
       }
-      EXPECT_EQ(k, ring.size());
+      EXPECT_EQ(k, m);
       EXPECT_EQ(info.closed, !mesh.is_boundary(v));
-      EXPECT_EQ(ring[info.first].theta, 0.0);
       double sum = 0;
-      for (size_t i = 0; i < ring.size(); ++i) {
-        const auto& r = ring[i];
-        EXPECT_NEAR(r.cos_theta, std::cos(r.theta), 1e-12);
-        EXPECT_NEAR(r.sin_theta, std::sin(r.theta), 1e-12);
-        if (r.face_after) {
-          const auto& nx = ring[(i + 1) % ring.size()];
-          EXPECT_NEAR(r.angle_after, std::acos(OpenMesh::dot(r.e, nx.e) / (r.len * nx.len)), 1e-12);
-          EXPECT_NEAR(r.cos_after, std::cos(r.angle_after), 1e-12);
-          EXPECT_NEAR(r.sin_after, std::sin(r.angle_after), 1e-12);
-          sum += r.angle_after;
+      for (size_t i = 0; i < m; ++i) {
+        const auto& c = corners[i];
+        const size_t nx = (i + 1) % m;
+        if (c.face_after) {
+          EXPECT_NEAR(c.angle_after, std::acos(OpenMesh::dot(c.e, corners[nx].e) / (len[i] * len[nx])), 1e-12);
+          EXPECT_NEAR(c.cos_after, std::cos(c.angle_after), 1e-12);
+          EXPECT_NEAR(c.sin_after, std::sin(c.angle_after), 1e-12);
+          sum += c.angle_after;
         } else {
           EXPECT_FALSE(info.closed);
-          EXPECT_EQ(&ring[(i + 1) % ring.size()], &ring[info.first]);  // the gap is just before the first ray
+          EXPECT_EQ(nx, info.first);  // the gap is just before the first edge
         }
       }
       EXPECT_NEAR(info.total, sum, 1e-12);
       EXPECT_NEAR(info.cos_total, std::cos(sum), 1e-12);
+      EXPECT_NEAR(info.sin_total, std::sin(sum), 1e-12);
       if (planar && info.closed) {
-        EXPECT_TRUE(info.flat) << v.idx();  // the grid
+        EXPECT_TRUE(info.flat) << v.idx();
       }
       if (!info.closed) {
         EXPECT_FALSE(info.flat);
       }
     }
-    EXPECT_EQ(rays, mesh.n_halfedges());
-    EXPECT_GE(table.memory_bytes(), rays * sizeof(GeodesicRingTable::Ray));
+    EXPECT_EQ(edges, mesh.n_halfedges());
+    EXPECT_GE(table.memory_bytes(), edges * (sizeof(int) + sizeof(double) + sizeof(GeodesicRingTable::Corner)));
   }
   EXPECT_FALSE(GeodesicRingTable(shapes::icosphere(1)).ring(0).flat);  // a sphere's vertex is not flat
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <queue>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -137,7 +138,9 @@ DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table
   return dij.run(
       options,
       [&](int v, auto&& f) {
-        for (const GeodesicRingTable::Ray& ray : table.rays(v)) f(ray.v, ray.len);
+        const std::span<const int> nb = table.neighbours(v);
+        const std::span<const double> len = table.lengths(v);
+        for (size_t i = 0; i < nb.size(); ++i) f(nb[i], len[i]);
       },
       [&](int v) -> const Vec3& { return table.ring(v).point; });
 }

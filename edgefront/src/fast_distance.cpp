@@ -54,7 +54,15 @@ struct FastSeed {
   FastRec rec;
 };
 
-using Ray = GeodesicRingTable::Ray;
+// One edge of the ring of the vertex being settled, in walk order: the table's entries with the
+// ring angle summed from the ring's first edge.
+struct Ray {
+  int v;
+  double len;
+  double theta;                 // ring angle
+  double cos_theta, sin_theta;  // of theta, as the product of the corners' rotations (no cos/sin calls)
+  const GeodesicRingTable::Corner* c;  // e, the corner after this edge (cos, sin, angle), face_after
+};
 using Rays = std::span<const Ray>;
 
 // Ring angle of a direction given relative to ray j (components along it and across it).
@@ -76,15 +84,15 @@ Vec3 fast_direction(Rays ring, size_t first, double phi, double cos_phi, double 
   size_t i = first;
   for (size_t k = 0; k + 1 < m; ++k) {
     const size_t nx = i + 1 == m ? 0 : i + 1;
-    if (!ring[i].face_after || ring[nx].theta > phi || nx == first) break;
+    if (!ring[i].c->face_after || ring[nx].theta > phi || nx == first) break;
     i = nx;
   }
   const size_t nx = i + 1 == m ? 0 : i + 1;
   if (!(ring[i].len > 0)) return Vec3(0, 0, 0);
-  const Vec3 u = ring[i].e / ring[i].len;
-  Vec3 w = ring[nx].e - OpenMesh::dot(ring[nx].e, u) * u;
+  const Vec3 u = ring[i].c->e / ring[i].len;
+  Vec3 w = ring[nx].c->e - OpenMesh::dot(ring[nx].c->e, u) * u;
   const double lw = w.norm();
-  if (!ring[i].face_after || !(lw > 0)) return u;
+  if (!ring[i].c->face_after || !(lw > 0)) return u;
   w /= lw;
   // cos and sin of phi - theta_i.
   const Ray& ri = ring[i];
@@ -109,6 +117,7 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
   if (o.directions) out.direction.assign(n, Vec3(0, 0, 0));
   out.stop = DistanceStop::Exhausted;
   size_t peak = heap.size();
+  std::vector<Ray> ring;  // the ring of the vertex being settled
   while (!heap.empty()) {
     const auto [d, x] = heap.top();
     heap.pop();
@@ -128,11 +137,28 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
       throw TopologyError("distance: vertex " + std::to_string(x) +
                           " is non-manifold (several fans meet there); split it before computing distances");
     }
-    const Rays ring = table.rays(x);
     const Vec3& px = info.point;
-    const size_t m = ring.size();
+    const size_t m = info.size;
     const bool closed = info.closed, flat = info.flat;
     const size_t first = info.first;
+    {
+      const std::span<const int> nb = table.neighbours(x);
+      const std::span<const double> len = table.lengths(x);
+      const std::span<const GeodesicRingTable::Corner> corners = table.corners(x);
+      ring.resize(m);
+      double theta = 0, cos_theta = 1, sin_theta = 0;
+      for (size_t k = 0, i = first; k < m; ++k) {
+        const GeodesicRingTable::Corner& c = corners[i];
+        ring[i] = Ray{nb[i], len[i], theta, cos_theta, sin_theta, &c};
+        if (c.face_after) {
+          theta += c.angle_after;
+          const double c2 = cos_theta * c.cos_after - sin_theta * c.sin_after;
+          sin_theta = sin_theta * c.cos_after + cos_theta * c.sin_after;
+          cos_theta = c2;
+        }
+        i = i + 1 == m ? 0 : i + 1;
+      }
+    }
     const double total = info.total, cos_total = info.cos_total, sin_total = info.sin_total;
     // The source's ring angle (none at a source vertex or when the parent is not in the ring).
     double phi = 0;
@@ -193,13 +219,13 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
       }
       for (int sgn = 1; sgn >= -1; sgn -= 2) {
         const Ray& corner = sgn > 0 ? ry : ring[prev];
-        if (!corner.face_after) continue;
+        if (!corner.c->face_after) continue;
         const Ray& fy = sgn > 0 ? ring[next] : ring[prev];
         const FastRec& yr = rec[fy.v];
         if (!yr.settled || yr.origin != rx.origin || !(fy.len > 0)) continue;
         const double r_y = yr.parent >= 0 ? yr.r : 0.0;
         if (std::abs((yr.d - r_y) - before) > 1e-9 * d) continue;
-        const double ly = fy.len, cg = corner.cos_after, sg = corner.sin_after;
+        const double ly = fy.len, cg = corner.c->cos_after, sg = corner.c->sin_after;
         // x's own source must lie beyond the line x-y (the circles also meet at its mirror image).
         if (r > 0 && !(lit && sgn * sin_a * cg - cos_a * sg > -1e-9)) continue;
         const double u = (r * r - r_y * r_y + ly * ly) / (2 * ly);
@@ -226,12 +252,12 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
         cb = -r * sin_a;
         // The line from c toward the source must leave c through the face between c and the ring
         // neighbour y on the source's side (the corner x-c-y): y not on x's side of it.
-        const Ray* fy = alpha >= 0 ? (ry.face_after ? &ring[next] : nullptr)
-                                       : (ring[prev].face_after ? &ring[prev] : nullptr);
+        const Ray* fy = alpha >= 0 ? (ry.c->face_after ? &ring[next] : nullptr)
+                                       : (ring[prev].c->face_after ? &ring[prev] : nullptr);
         if (fy) {
           const Ray& corner = alpha >= 0 ? ry : ring[prev];
           // In x's development, c on the x axis, the source side up: S - c = (-ca, |cb|).
-          const double yx = fy->len * corner.cos_after - ry.len, yy = fy->len * corner.sin_after;
+          const double yx = fy->len * corner.c->cos_after - ry.len, yy = fy->len * corner.c->sin_after;
           const double side = -ca * yy - std::abs(cb) * yx;
           bool inside = side <= 1e-12 * (std::abs(ca) + std::abs(cb)) * (std::abs(yx) + yy);
           // When the line from c to the source passes an edge of x beyond its end p, the shortest
@@ -249,14 +275,14 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
           for (size_t steps = flat ? m : 0; inside && steps < m; ++steps) {
             const size_t kc = alpha >= 0 ? k : (k == 0 ? m - 1 : k - 1);  // the corner crossed
             const Ray& cr_ray = ring[kc];
-            if (!cr_ray.face_after) {
+            if (!cr_ray.c->face_after) {
               inside = false;
               break;
             }
-            t += cr_ray.angle_after;
+            t += cr_ray.c->angle_after;
             if (t >= std::abs(alpha)) break;
-            const double c2 = ct * cr_ray.cos_after - st * cr_ray.sin_after;
-            st = st * cr_ray.cos_after + ct * cr_ray.sin_after;
+            const double c2 = ct * cr_ray.c->cos_after - st * cr_ray.c->sin_after;
+            st = st * cr_ray.c->cos_after + ct * cr_ray.c->sin_after;
             ct = c2;
             k = alpha >= 0 ? (k + 1 == m ? 0 : k + 1) : kc;
             const double den = ct * std::abs(cb) + st * ca;  // cross(ray, S - c), S - c = (-ca, |cb|)
@@ -286,7 +312,7 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
       // Never below the straight line from the source, nor below x's own distance: vertices settle
       // in non-decreasing order, so every neighbour nearer than d + edge length settles first and
       // its bound holds (never above Dijkstra).
-      const double straight2 = (px + ry.e - origin).sqrnorm();  // no square root when cd is above it
+      const double straight2 = (px + ry.c->e - origin).sqrnorm();  // no square root when cd is above it
       if (!(cd * cd >= straight2)) cd = std::max(cd, std::sqrt(straight2));
       cd = std::max(cd, d);
       if (d + ry.len < rc.bound) rc.bound = d + ry.len;
@@ -312,7 +338,8 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
     peak = std::max(peak, heap.size());
   }
   out.peak_front = 0;
-  out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(detail::MinHeap4<double>::Entry);
+  out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(detail::MinHeap4<double>::Entry) +
+                                  ring.capacity() * sizeof(Ray);
   return out;
 }
 

@@ -21,13 +21,15 @@ GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
   }
   const size_t n = mesh.n_vertices();
   rings_.resize(n);
-  rays_.reserve(mesh.n_halfedges());
+  neighbours_.reserve(mesh.n_halfedges());
+  lengths_.reserve(mesh.n_halfedges());
+  corners_.reserve(mesh.n_halfedges());
   const size_t max_ring = mesh.n_halfedges();
   for (size_t x = 0; x < n; ++x) {
     const VertexHandle vx(static_cast<int>(x));
     Ring& info = rings_[x];
     info.point = mesh.point(vx);
-    info.begin = static_cast<std::uint32_t>(rays_.size());
+    info.begin = static_cast<std::uint32_t>(corners_.size());
     // The ring, in the walk order of next(opposite(h)).
     size_t gap = 0;
     int gaps = 0;
@@ -37,48 +39,47 @@ GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
       do {
         const VertexHandle y = mesh.to_vertex_handle(h);
         const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
-        Ray ray;
-        ray.e = mesh.point(y) - info.point;
-        ray.len = ray.e.norm();
-        ray.v = y.idx();
-        ray.face_after = mesh.face_handle(g).is_valid();
-        if (!ray.face_after) {
-          gap = rays_.size() - info.begin;
+        Corner c;
+        c.e = mesh.point(y) - info.point;
+        c.face_after = mesh.face_handle(g).is_valid();
+        if (!c.face_after) {
+          gap = corners_.size() - info.begin;
           ++gaps;
         }
-        rays_.push_back(ray);
+        neighbours_.push_back(y.idx());
+        lengths_.push_back(c.e.norm());
+        corners_.push_back(c);
         h = mesh.next_halfedge_handle(g);
-        if (rays_.size() - info.begin > max_ring) {
+        if (corners_.size() - info.begin > max_ring) {
           throw InternalError("ring table: the ring of vertex " + std::to_string(x) + " does not close");
         }
       } while (h != h0);
     }
-    const size_t m = rays_.size() - info.begin;
+    const size_t m = corners_.size() - info.begin;
     info.size = static_cast<std::uint32_t>(m);
     info.non_manifold = gaps > 1;
     info.closed = gaps == 0;
     info.first = static_cast<std::uint32_t>(info.closed || m == 0 ? 0 : (gap + 1) % m);
-    // The layout: ring angles from the first ray on, and the rotations as running products.
-    Ray* ring = rays_.data() + info.begin;
+    // The corners, and the angle sum with its rotation as a running product (in the order a query
+    // sums the ring angles, from the first edge on).
+    Corner* ring = corners_.data() + info.begin;
+    const double* len = lengths_.data() + info.begin;
     double total = 0, cos_total = 1, sin_total = 0;
     for (size_t k = 0, i = info.first; k < m; ++k) {
-      Ray& ry = ring[i];
-      ry.theta = total;
-      ry.cos_theta = cos_total;
-      ry.sin_theta = sin_total;
+      Corner& cy = ring[i];
       const size_t nx = i + 1 == m ? 0 : i + 1;
-      if (ry.face_after) {
+      if (cy.face_after) {
         const Vec3& f = ring[nx].e;
-        const double sn = OpenMesh::cross(ry.e, f).norm(), cs = OpenMesh::dot(ry.e, f);
-        ry.angle_after = std::atan2(sn, cs);
-        total += ry.angle_after;
-        const double ll = ry.len * ring[nx].len;
+        const double sn = OpenMesh::cross(cy.e, f).norm(), cs = OpenMesh::dot(cy.e, f);
+        cy.angle_after = std::atan2(sn, cs);
+        total += cy.angle_after;
+        const double ll = len[i] * len[nx];
         if (ll > 0) {
-          ry.cos_after = cs / ll;
-          ry.sin_after = sn / ll;
+          cy.cos_after = cs / ll;
+          cy.sin_after = sn / ll;
         }
-        const double c2 = cos_total * ry.cos_after - sin_total * ry.sin_after;
-        sin_total = sin_total * ry.cos_after + cos_total * ry.sin_after;
+        const double c2 = cos_total * cy.cos_after - sin_total * cy.sin_after;
+        sin_total = sin_total * cy.cos_after + cos_total * cy.sin_after;
         cos_total = c2;
       }
       i = nx;

@@ -4,11 +4,13 @@
 ///
 /// The fast mode settles vertices in distance order and, for each settled vertex x, lays x's ring
 /// out in the plane by its corner angles (polar coordinates around x). `GeodesicRingTable` does
-/// that layout once per mesh: per vertex, its neighbours in ring order (compressed sparse rows),
-/// each with the edge vector and length, the ring angle and its cosine and sine, and the corner
-/// angle to the next neighbour with its cosine and sine; per vertex the angle sum (with cosine and
-/// sine), whether the ring is closed, intrinsically flat or non-manifold. A query then does no
-/// halfedge walk and no `atan2` per neighbour.
+/// that layout once per mesh: per vertex, its neighbours in ring order (compressed sparse rows,
+/// three arrays: neighbour, edge length, corner), each corner with the edge vector and the corner
+/// angle to the next neighbour with its cosine and sine; per vertex its position, the angle sum
+/// (with cosine and sine), whether the ring is closed, intrinsically flat or non-manifold. A query
+/// then does no halfedge walk and no `atan2` or `acos` per corner: when a vertex settles, its ring
+/// angles are the corner angles summed and their cosines and sines the corners' rotations
+/// multiplied (4 multiplications per neighbour).
 ///
 ///     edgefront::GeodesicRingTable table(mesh);      // once per mesh
 ///     auto f = edgefront::geodesic_distance(mesh, table, edgefront::FrontSource::vertex(v));
@@ -19,8 +21,8 @@
 /// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
 /// differ; moved points or a different mesh with the same counts are not detected.
 ///
-/// Memory: `memory_bytes()`, about 88 bytes per halfedge plus 56 per vertex (about 590 bytes per
-/// vertex of a closed triangle mesh). Built in O(halfedges), one `atan2` per corner.
+/// Memory: `memory_bytes()`, 68 bytes per halfedge (4 + 8 + 56) plus 72 per vertex: about 480
+/// bytes per vertex of a closed triangle mesh. Built in O(halfedges), one `atan2` per corner.
 
 #include <cstddef>
 #include <cstdint>
@@ -35,26 +37,22 @@ namespace edgefront {
 
 class GeodesicRingTable {
  public:
-  /// One neighbour v of a vertex x, in the ring walk order next(opposite(h)) (the same sense of
-  /// rotation at every vertex of an oriented mesh).
-  struct Ray {
+  /// The corner after one neighbour v of a vertex x, in the ring walk order next(opposite(h))
+  /// (the same sense of rotation at every vertex of an oriented mesh).
+  struct Corner {
     Vec3 e;                       ///< the edge vector x -> v
-    double len = 0;               ///< |e|
-    double theta = 0;             ///< ring angle: the corner angles summed from the ring's first ray
-    double cos_theta = 1, sin_theta = 0;  ///< of theta, as the product of the corners' rotations
-    double cos_after = 1, sin_after = 0;  ///< of the corner angle between this ray and the next one
-    double angle_after = 0;       ///< that corner angle (0 when there is no face after this ray)
-    int v = -1;                   ///< the neighbour's index
-    bool face_after = false;      ///< a face lies between this ray and the next one in the walk
+    double cos_after = 1, sin_after = 0;  ///< of the corner angle between this edge and the next one
+    double angle_after = 0;       ///< that corner angle (0 when there is no face after this edge)
+    bool face_after = false;      ///< a face lies between this edge and the next one in the walk
   };
   /// Per vertex: where its ring lies and its shape.
   struct Ring {
     Vec3 point;                   ///< the vertex's position
     double total = 0;             ///< the angle sum (sum of corner angles)
     double cos_total = 1, sin_total = 0;  ///< of `total`, as the product of the corners' rotations
-    std::uint32_t begin = 0;      ///< the first ray in `rays()`
-    std::uint32_t size = 0;       ///< the number of rays
-    std::uint32_t first = 0;      ///< where theta is 0: 0 on a closed ring, the ray after the border gap otherwise
+    std::uint32_t begin = 0;      ///< the ring's first entry in the per-edge arrays
+    std::uint32_t size = 0;       ///< the number of neighbours
+    std::uint32_t first = 0;      ///< where the ring angle is 0: 0 on a closed ring, the edge after the border gap otherwise
     bool closed = true;           ///< no border gap (isolated vertices too)
     bool flat = false;            ///< closed and the angle sum is 2 pi within 1e-10
     bool non_manifold = false;    ///< several fans meet at the vertex (a query refuses to settle it)
@@ -68,13 +66,16 @@ class GeodesicRingTable {
   size_t n_faces() const { return n_faces_; }
   size_t n_halfedges() const { return n_halfedges_; }
   const Ring& ring(int v) const { return rings_[static_cast<size_t>(v)]; }
-  /// The rays of vertex v, in walk order (`ring(v).size` of them).
-  std::span<const Ray> rays(int v) const {
-    const Ring& r = rings_[static_cast<size_t>(v)];
-    return {rays_.data() + r.begin, r.size};
-  }
+  /// Vertex v's neighbours in walk order (`ring(v).size` of them), the edge lengths and the
+  /// corners; the three arrays are separate so that a walk over edges reads only what it needs.
+  std::span<const int> neighbours(int v) const { return span_of(neighbours_, v); }
+  std::span<const double> lengths(int v) const { return span_of(lengths_, v); }
+  std::span<const Corner> corners(int v) const { return span_of(corners_, v); }
   /// Bytes held by the table.
-  size_t memory_bytes() const { return rings_.capacity() * sizeof(Ring) + rays_.capacity() * sizeof(Ray); }
+  size_t memory_bytes() const {
+    return rings_.capacity() * sizeof(Ring) + neighbours_.capacity() * sizeof(int) +
+           lengths_.capacity() * sizeof(double) + corners_.capacity() * sizeof(Corner);
+  }
 
   /// Whether the mesh has the vertex, face and halfedge counts the table was built with.
   bool matches(const Mesh& mesh) const;
@@ -82,8 +83,15 @@ class GeodesicRingTable {
   void check(const Mesh& mesh) const;
 
  private:
+  template <class T>
+  std::span<const T> span_of(const std::vector<T>& a, int v) const {
+    const Ring& r = rings_[static_cast<size_t>(v)];
+    return {a.data() + r.begin, r.size};
+  }
   std::vector<Ring> rings_;
-  std::vector<Ray> rays_;
+  std::vector<int> neighbours_;
+  std::vector<double> lengths_;
+  std::vector<Corner> corners_;
   size_t n_faces_ = 0, n_halfedges_ = 0;
 };
 
