@@ -99,9 +99,42 @@ Vec3 fast_direction(Rays ring, size_t first, double phi, double cos_phi, double 
   return (cos_phi * ri.cos_theta + sin_phi * ri.sin_theta) * u + (sin_phi * ri.cos_theta - cos_phi * ri.sin_theta) * w;
 }
 
-DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
+// A vertex's ring: its shape and its edges (neighbour, length, corner) in walk order.
+struct RingView {
+  const GeodesicRingTable::Ring& info;
+  std::span<const int> neighbours;
+  std::span<const double> lengths;
+  std::span<const GeodesicRingTable::Corner> corners;
+};
+
+// Rings read from a prebuilt table.
+struct TableRings {
+  const GeodesicRingTable& table;
+  size_t n_vertices() const { return table.n_vertices(); }
+  RingView operator()(int x) const { return {table.ring(x), table.neighbours(x), table.lengths(x), table.corners(x)}; }
+};
+
+// Rings laid out from the mesh when their vertex settles (the per-call mode: no table to build).
+struct MeshRings {
+  const Mesh& mesh;
+  GeodesicRingTable::Ring info;
+  std::vector<int> neighbours;
+  std::vector<double> lengths;
+  std::vector<GeodesicRingTable::Corner> corners;
+  size_t n_vertices() const { return mesh.n_vertices(); }
+  RingView operator()(int x) {
+    neighbours.clear();
+    lengths.clear();
+    corners.clear();
+    info = detail::layout_ring(mesh, x, neighbours, lengths, corners);
+    return {info, neighbours, lengths, corners};
+  }
+};
+
+template <class Rings>
+DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
                          const DistanceOptions& o) {
-  const size_t n = table.n_vertices();
+  const size_t n = rings.n_vertices();
   std::vector<FastRec> rec(n);
   detail::MinHeap4<double> heap;
   for (const FastSeed& s : seeds) {
@@ -131,8 +164,9 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
     out.distance[x] = d;
     out.order.push_back(VertexHandle(x));
 
-    // x's ring, laid out once per mesh by the table.
-    const GeodesicRingTable::Ring& info = table.ring(x);
+    // x's ring (laid out once per mesh by a table, or now), its ring angles summed from its first edge.
+    const RingView view = rings(x);
+    const GeodesicRingTable::Ring& info = view.info;
     if (info.non_manifold) {
       throw TopologyError("distance: vertex " + std::to_string(x) +
                           " is non-manifold (several fans meet there); split it before computing distances");
@@ -142,14 +176,11 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
     const bool closed = info.closed, flat = info.flat;
     const size_t first = info.first;
     {
-      const std::span<const int> nb = table.neighbours(x);
-      const std::span<const double> len = table.lengths(x);
-      const std::span<const GeodesicRingTable::Corner> corners = table.corners(x);
       ring.resize(m);
       double theta = 0, cos_theta = 1, sin_theta = 0;
       for (size_t k = 0, i = first; k < m; ++k) {
-        const GeodesicRingTable::Corner& c = corners[i];
-        ring[i] = Ray{nb[i], len[i], theta, cos_theta, sin_theta, &c};
+        const GeodesicRingTable::Corner& c = view.corners[i];
+        ring[i] = Ray{view.neighbours[i], view.lengths[i], theta, cos_theta, sin_theta, &c};
         if (c.face_after) {
           theta += c.angle_after;
           const double c2 = cos_theta * c.cos_after - sin_theta * c.sin_after;
@@ -343,18 +374,12 @@ DistanceField fast_field(const GeodesicRingTable& table, const std::vector<FastS
   return out;
 }
 
-}  // namespace
-
-DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
-                                const DistanceOptions& options) {
-  if (source.is_loop()) {
-    DistanceOptions o = options;
-    o.fast = false;  // a loop source runs the default mode
-    return geodesic_distance(mesh, source, o);
-  }
+// The field from vertices (not a loop), after the checks (`table`: null for the per-call mode).
+DistanceField from_vertices(const Mesh& mesh, const GeodesicRingTable* table, const FrontSource& source,
+                            const DistanceOptions& options) {
   validate_source(mesh, source);
   check_distance_options(mesh, options);
-  table.check(mesh);
+  if (table) table->check(mesh);
   std::vector<Vec3> origins;
   std::vector<FastSeed> seeds;
   for (VertexHandle v : source.vertices) {
@@ -364,14 +389,16 @@ DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table
     seeds.push_back(FastSeed{v.idx(), r});
     origins.push_back(mesh.point(v));
   }
-  return fast_field(table, seeds, origins, options);
+  return table ? fast_field(TableRings{*table}, seeds, origins, options)
+               : fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
 }
 
-DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table,
-                                const std::vector<SurfacePoint>& points, const DistanceOptions& options) {
+// The field from surface points, after the checks.
+DistanceField from_points(const Mesh& mesh, const GeodesicRingTable* table, const std::vector<SurfacePoint>& points,
+                          const DistanceOptions& options) {
   check_distance_options(mesh, options);
   check_points(mesh, points);
-  table.check(mesh);
+  if (table) table->check(mesh);
   std::vector<Vec3> origins;
   std::vector<FastSeed> seeds;
   for (const SurfacePoint& p : points) {
@@ -394,7 +421,34 @@ DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table
     }
     origins.push_back(x);
   }
-  return fast_field(table, seeds, origins, options);
+  return table ? fast_field(TableRings{*table}, seeds, origins, options)
+               : fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
+}
+
+}  // namespace
+
+namespace detail {
+DistanceField fast_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
+  return from_vertices(mesh, nullptr, source, options);
+}
+DistanceField fast_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points, const DistanceOptions& options) {
+  return from_points(mesh, nullptr, points, options);
+}
+}  // namespace detail
+
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
+                                const DistanceOptions& options) {
+  if (source.is_loop()) {
+    DistanceOptions o = options;
+    o.fast = false;  // a loop source runs the default mode
+    return geodesic_distance(mesh, source, o);
+  }
+  return from_vertices(mesh, &table, source, options);
+}
+
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table,
+                                const std::vector<SurfacePoint>& points, const DistanceOptions& options) {
+  return from_points(mesh, &table, points, options);
 }
 
 }  // namespace edgefront

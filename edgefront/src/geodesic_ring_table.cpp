@@ -13,6 +13,79 @@ namespace edgefront {
 using detail::kFlatDefect;
 using detail::kTwoPi;
 
+namespace detail {
+
+GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& neighbours,
+                                    std::vector<double>& lengths, std::vector<GeodesicRingTable::Corner>& corners) {
+  using Corner = GeodesicRingTable::Corner;
+  const VertexHandle vx(x);
+  GeodesicRingTable::Ring info;
+  info.point = mesh.point(vx);
+  info.begin = static_cast<std::uint32_t>(corners.size());
+  // The ring, in the walk order of next(opposite(h)).
+  size_t gap = 0;
+  int gaps = 0;
+  const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
+  const size_t max_ring = mesh.n_halfedges();
+  if (h0.is_valid() && !mesh.status(vx).deleted()) {
+    HalfedgeHandle h = h0;
+    do {
+      const VertexHandle y = mesh.to_vertex_handle(h);
+      const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
+      Corner c;
+      c.e = mesh.point(y) - info.point;
+      c.face_after = mesh.face_handle(g).is_valid();
+      if (!c.face_after) {
+        gap = corners.size() - info.begin;
+        ++gaps;
+      }
+      neighbours.push_back(y.idx());
+      lengths.push_back(c.e.norm());
+      corners.push_back(c);
+      h = mesh.next_halfedge_handle(g);
+      if (corners.size() - info.begin > max_ring) {
+        throw InternalError("distance: the ring of vertex " + std::to_string(x) + " does not close");
+      }
+    } while (h != h0);
+  }
+  const size_t m = corners.size() - info.begin;
+  info.size = static_cast<std::uint32_t>(m);
+  info.non_manifold = gaps > 1;
+  info.closed = gaps == 0;
+  info.first = static_cast<std::uint32_t>(info.closed || m == 0 ? 0 : (gap + 1) % m);
+  // The corners, and the angle sum with its rotation as a running product (in the order a query
+  // sums the ring angles, from the first edge on).
+  Corner* ring = corners.data() + info.begin;
+  const double* len = lengths.data() + info.begin;
+  double total = 0, cos_total = 1, sin_total = 0;
+  for (size_t k = 0, i = info.first; k < m; ++k) {
+    Corner& cy = ring[i];
+    const size_t nx = i + 1 == m ? 0 : i + 1;
+    if (cy.face_after) {
+      const Vec3& f = ring[nx].e;
+      const double sn = OpenMesh::cross(cy.e, f).norm(), cs = OpenMesh::dot(cy.e, f);
+      cy.angle_after = std::atan2(sn, cs);
+      total += cy.angle_after;
+      const double ll = len[i] * len[nx];
+      if (ll > 0) {
+        cy.cos_after = cs / ll;
+        cy.sin_after = sn / ll;
+      }
+      const double c2 = cos_total * cy.cos_after - sin_total * cy.sin_after;
+      sin_total = sin_total * cy.cos_after + cos_total * cy.sin_after;
+      cos_total = c2;
+    }
+    i = nx;
+  }
+  info.total = total;
+  info.cos_total = cos_total;
+  info.sin_total = sin_total;
+  info.flat = info.closed && std::abs(total - kTwoPi) < kFlatDefect;
+  return info;
+}
+
+}  // namespace detail
+
 GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
     : n_faces_(mesh.n_faces()), n_halfedges_(mesh.n_halfedges()) {
   if (mesh.n_halfedges() >= std::numeric_limits<std::uint32_t>::max()) {
@@ -24,70 +97,8 @@ GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
   neighbours_.reserve(mesh.n_halfedges());
   lengths_.reserve(mesh.n_halfedges());
   corners_.reserve(mesh.n_halfedges());
-  const size_t max_ring = mesh.n_halfedges();
   for (size_t x = 0; x < n; ++x) {
-    const VertexHandle vx(static_cast<int>(x));
-    Ring& info = rings_[x];
-    info.point = mesh.point(vx);
-    info.begin = static_cast<std::uint32_t>(corners_.size());
-    // The ring, in the walk order of next(opposite(h)).
-    size_t gap = 0;
-    int gaps = 0;
-    const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
-    if (h0.is_valid() && !mesh.status(vx).deleted()) {
-      HalfedgeHandle h = h0;
-      do {
-        const VertexHandle y = mesh.to_vertex_handle(h);
-        const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
-        Corner c;
-        c.e = mesh.point(y) - info.point;
-        c.face_after = mesh.face_handle(g).is_valid();
-        if (!c.face_after) {
-          gap = corners_.size() - info.begin;
-          ++gaps;
-        }
-        neighbours_.push_back(y.idx());
-        lengths_.push_back(c.e.norm());
-        corners_.push_back(c);
-        h = mesh.next_halfedge_handle(g);
-        if (corners_.size() - info.begin > max_ring) {
-          throw InternalError("ring table: the ring of vertex " + std::to_string(x) + " does not close");
-        }
-      } while (h != h0);
-    }
-    const size_t m = corners_.size() - info.begin;
-    info.size = static_cast<std::uint32_t>(m);
-    info.non_manifold = gaps > 1;
-    info.closed = gaps == 0;
-    info.first = static_cast<std::uint32_t>(info.closed || m == 0 ? 0 : (gap + 1) % m);
-    // The corners, and the angle sum with its rotation as a running product (in the order a query
-    // sums the ring angles, from the first edge on).
-    Corner* ring = corners_.data() + info.begin;
-    const double* len = lengths_.data() + info.begin;
-    double total = 0, cos_total = 1, sin_total = 0;
-    for (size_t k = 0, i = info.first; k < m; ++k) {
-      Corner& cy = ring[i];
-      const size_t nx = i + 1 == m ? 0 : i + 1;
-      if (cy.face_after) {
-        const Vec3& f = ring[nx].e;
-        const double sn = OpenMesh::cross(cy.e, f).norm(), cs = OpenMesh::dot(cy.e, f);
-        cy.angle_after = std::atan2(sn, cs);
-        total += cy.angle_after;
-        const double ll = len[i] * len[nx];
-        if (ll > 0) {
-          cy.cos_after = cs / ll;
-          cy.sin_after = sn / ll;
-        }
-        const double c2 = cos_total * cy.cos_after - sin_total * cy.sin_after;
-        sin_total = sin_total * cy.cos_after + cos_total * cy.sin_after;
-        cos_total = c2;
-      }
-      i = nx;
-    }
-    info.total = total;
-    info.cos_total = cos_total;
-    info.sin_total = sin_total;
-    info.flat = info.closed && std::abs(total - kTwoPi) < kFlatDefect;
+    rings_[x] = detail::layout_ring(mesh, static_cast<int>(x), neighbours_, lengths_, corners_);
   }
 }
 

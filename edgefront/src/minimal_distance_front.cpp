@@ -1,7 +1,5 @@
 #include "edgefront/minimal_distance_front.h"
 
-#include "edgefront/geodesic_ring_table.h"
-
 #include <algorithm>
 #include <array>
 #include <optional>
@@ -1481,15 +1479,6 @@ void MinimalDistanceFront::validate() const {
 }
 
 namespace {
-// The fast mode per call: a ring table built for this query (its memory counts as working memory).
-template <class Source>
-DistanceField fast_per_call(const Mesh& mesh, const Source& source, const DistanceOptions& options) {
-  const GeodesicRingTable table(mesh);
-  DistanceField out = geodesic_distance(mesh, table, source, options);
-  out.peak_working_memory_bytes += table.memory_bytes();
-  return out;
-}
-
 DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const DistanceOptions& options) {
   DistanceField out;
   out.distance.assign(mesh.n_vertices(), kInf);
@@ -1508,7 +1497,7 @@ DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const Dista
 }  // namespace
 
 DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
-  if (options.fast && !source.is_loop()) return fast_per_call(mesh, source, options);
+  if (options.fast && !source.is_loop()) return detail::fast_distance(mesh, source, options);
   DistanceOptions o = options;
   o.fast = false;  // a loop source runs the default mode
   MinimalDistanceFront front(mesh);
@@ -1518,7 +1507,7 @@ DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, con
 
 DistanceField geodesic_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points,
                                 const DistanceOptions& options) {
-  if (options.fast) return fast_per_call(mesh, points, options);
+  if (options.fast) return detail::fast_distance(mesh, points, options);
   MinimalDistanceFront front(mesh);
   front.reset(points, options);
   return collect(mesh, front, options);

@@ -21,7 +21,7 @@
 /// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
 /// differ; moved points or a different mesh with the same counts are not detected.
 ///
-/// Memory: `memory_bytes()`, 68 bytes per halfedge (4 + 8 + 56) plus 72 per vertex: about 480
+/// Memory: `memory_bytes()`, 68 bytes per halfedge (4 + 8 + 56) plus 64 per vertex: about 470
 /// bytes per vertex of a closed triangle mesh. Built in O(halfedges), one `atan2` per corner.
 
 #include <cstddef>
@@ -96,7 +96,8 @@ class GeodesicRingTable {
 };
 
 /// The fast mode (`DistanceOptions::fast`, documented there) on a prebuilt table: the same field
-/// as `geodesic_distance(mesh, source, {.fast = true})`, bit for bit, without the table's build.
+/// as `geodesic_distance(mesh, source, {.fast = true})` (which lays out each ring when its vertex
+/// settles, with the same code), bit for bit.
 /// `options.fast` is implied, `windows` and `track_front` are ignored; a loop source runs the
 /// default mode (the table is not used). \throws InvalidInput for a bad source or options, or a
 /// table that does not match the mesh (`GeodesicRingTable::check`); TopologyError when a

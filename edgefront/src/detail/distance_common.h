@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "edgefront/geodesic_ring_table.h"
 #include "edgefront/mesh.h"
 #include "edgefront/minimal_distance_front.h"
 
@@ -19,5 +20,16 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& o);
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points);
 // The position of a surface point.
 Vec3 point_of(const Mesh& mesh, const SurfacePoint& p);
+
+// Lays out vertex x's ring (GeodesicRingTable's layout): appends its neighbours, edge lengths and
+// corners to the arrays and returns its Ring (begin: where it starts in them). \throws
+// InternalError when the ring does not close.
+GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& neighbours,
+                                    std::vector<double>& lengths, std::vector<GeodesicRingTable::Corner>& corners);
+
+// The fast mode per call: each settled vertex's ring is laid out when it settles (no table; the
+// same fields as with a GeodesicRingTable, bit for bit). Vertex sources (not loops) and points.
+DistanceField fast_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options);
+DistanceField fast_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points, const DistanceOptions& options);
 
 }  // namespace edgefront::detail
