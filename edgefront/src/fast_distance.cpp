@@ -374,12 +374,20 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
   return out;
 }
 
-// The field from vertices (not a loop), after the checks (`table`: null for the per-call mode).
+// The field from the seeds over the table's rings, or over rings laid out from the mesh (`table`
+// null: the per-call mode).
+DistanceField run(const Mesh& mesh, const GeodesicRingTable* table, const std::vector<FastSeed>& seeds,
+                  const std::vector<Vec3>& origins, const DistanceOptions& options) {
+  if (!table) return fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
+  table->check(mesh);
+  return fast_field(TableRings{*table}, seeds, origins, options);
+}
+
+// The field from vertices (not a loop), after the checks.
 DistanceField from_vertices(const Mesh& mesh, const GeodesicRingTable* table, const FrontSource& source,
                             const DistanceOptions& options) {
   validate_source(mesh, source);
   check_distance_options(mesh, options);
-  if (table) table->check(mesh);
   std::vector<Vec3> origins;
   std::vector<FastSeed> seeds;
   for (VertexHandle v : source.vertices) {
@@ -389,8 +397,7 @@ DistanceField from_vertices(const Mesh& mesh, const GeodesicRingTable* table, co
     seeds.push_back(FastSeed{v.idx(), r});
     origins.push_back(mesh.point(v));
   }
-  return table ? fast_field(TableRings{*table}, seeds, origins, options)
-               : fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
+  return run(mesh, table, seeds, origins, options);
 }
 
 // The field from surface points, after the checks.
@@ -398,7 +405,6 @@ DistanceField from_points(const Mesh& mesh, const GeodesicRingTable* table, cons
                           const DistanceOptions& options) {
   check_distance_options(mesh, options);
   check_points(mesh, points);
-  if (table) table->check(mesh);
   std::vector<Vec3> origins;
   std::vector<FastSeed> seeds;
   for (const SurfacePoint& p : points) {
@@ -421,8 +427,7 @@ DistanceField from_points(const Mesh& mesh, const GeodesicRingTable* table, cons
     }
     origins.push_back(x);
   }
-  return table ? fast_field(TableRings{*table}, seeds, origins, options)
-               : fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
+  return run(mesh, table, seeds, origins, options);
 }
 
 }  // namespace
