@@ -6,7 +6,6 @@
 #include <functional>
 #include <limits>
 #include <queue>
-#include <span>
 #include <utility>
 #include <vector>
 
@@ -138,9 +137,7 @@ DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table
   return dij.run(
       options,
       [&](int v, auto&& f) {
-        const std::span<const int> nb = table.neighbours(v);
-        const std::span<const double> len = table.lengths(v);
-        for (size_t i = 0; i < nb.size(); ++i) f(nb[i], len[i]);
+        for (const GeodesicRingTable::Edge& e : table.edges(v)) f(e.v, e.len);
       },
       [&](int v) -> const Vec3& { return table.ring(v).point; });
 }

@@ -102,8 +102,7 @@ Vec3 fast_direction(Rays ring, size_t first, double phi, double cos_phi, double 
 // A vertex's ring: its shape and its edges (neighbour, length, corner) in walk order.
 struct RingView {
   const GeodesicRingTable::Ring& info;
-  std::span<const int> neighbours;
-  std::span<const double> lengths;
+  std::span<const GeodesicRingTable::Edge> edges;
   std::span<const GeodesicRingTable::Corner> corners;
 };
 
@@ -111,23 +110,21 @@ struct RingView {
 struct TableRings {
   const GeodesicRingTable& table;
   size_t n_vertices() const { return table.n_vertices(); }
-  RingView operator()(int x) const { return {table.ring(x), table.neighbours(x), table.lengths(x), table.corners(x)}; }
+  RingView operator()(int x) const { return {table.ring(x), table.edges(x), table.corners(x)}; }
 };
 
 // Rings laid out from the mesh when their vertex settles (the per-call mode: no table to build).
 struct MeshRings {
   const Mesh& mesh;
   GeodesicRingTable::Ring info;
-  std::vector<int> neighbours;
-  std::vector<double> lengths;
+  std::vector<GeodesicRingTable::Edge> edges;
   std::vector<GeodesicRingTable::Corner> corners;
   size_t n_vertices() const { return mesh.n_vertices(); }
   RingView operator()(int x) {
-    neighbours.clear();
-    lengths.clear();
+    edges.clear();
     corners.clear();
-    info = detail::layout_ring(mesh, x, neighbours, lengths, corners);
-    return {info, neighbours, lengths, corners};
+    info = detail::layout_ring(mesh, x, edges, corners);
+    return {info, edges, corners};
   }
 };
 
@@ -180,7 +177,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       double theta = 0, cos_theta = 1, sin_theta = 0;
       for (size_t k = 0, i = first; k < m; ++k) {
         const GeodesicRingTable::Corner& c = view.corners[i];
-        ring[i] = Ray{view.neighbours[i], view.lengths[i], theta, cos_theta, sin_theta, &c};
+        ring[i] = Ray{view.edges[i].v, view.edges[i].len, theta, cos_theta, sin_theta, &c};
         if (c.face_after) {
           theta += c.angle_after;
           const double c2 = cos_theta * c.cos_after - sin_theta * c.sin_after;
@@ -378,7 +375,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
 // null: the per-call mode).
 DistanceField run(const Mesh& mesh, const GeodesicRingTable* table, const std::vector<FastSeed>& seeds,
                   const std::vector<Vec3>& origins, const DistanceOptions& options) {
-  if (!table) return fast_field(MeshRings{mesh, {}, {}, {}, {}}, seeds, origins, options);
+  if (!table) return fast_field(MeshRings{mesh, {}, {}, {}}, seeds, origins, options);
   table->check(mesh);
   return fast_field(TableRings{*table}, seeds, origins, options);
 }

@@ -15,8 +15,8 @@ using detail::kTwoPi;
 
 namespace detail {
 
-GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& neighbours,
-                                    std::vector<double>& lengths, std::vector<GeodesicRingTable::Corner>& corners) {
+GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<GeodesicRingTable::Edge>& edges,
+                                    std::vector<GeodesicRingTable::Corner>& corners) {
   using Corner = GeodesicRingTable::Corner;
   const VertexHandle vx(x);
   GeodesicRingTable::Ring info;
@@ -39,8 +39,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& n
         gap = corners.size() - info.begin;
         ++gaps;
       }
-      neighbours.push_back(y.idx());
-      lengths.push_back(c.e.norm());
+      edges.push_back(GeodesicRingTable::Edge{c.e.norm(), y.idx()});
       corners.push_back(c);
       h = mesh.next_halfedge_handle(g);
       if (corners.size() - info.begin > max_ring) {
@@ -56,7 +55,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& n
   // The corners, and the angle sum with its rotation as a running product (in the order a query
   // sums the ring angles, from the first edge on).
   Corner* ring = corners.data() + info.begin;
-  const double* len = lengths.data() + info.begin;
+  const GeodesicRingTable::Edge* edge = edges.data() + info.begin;
   double total = 0, cos_total = 1, sin_total = 0;
   for (size_t k = 0, i = info.first; k < m; ++k) {
     Corner& cy = ring[i];
@@ -66,7 +65,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& n
       const double sn = OpenMesh::cross(cy.e, f).norm(), cs = OpenMesh::dot(cy.e, f);
       cy.angle_after = std::atan2(sn, cs);
       total += cy.angle_after;
-      const double ll = len[i] * len[nx];
+      const double ll = edge[i].len * edge[nx].len;
       if (ll > 0) {
         cy.cos_after = cs / ll;
         cy.sin_after = sn / ll;
@@ -94,11 +93,10 @@ GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
   }
   const size_t n = mesh.n_vertices();
   rings_.resize(n);
-  neighbours_.reserve(mesh.n_halfedges());
-  lengths_.reserve(mesh.n_halfedges());
+  edges_.reserve(mesh.n_halfedges());
   corners_.reserve(mesh.n_halfedges());
   for (size_t x = 0; x < n; ++x) {
-    rings_[x] = detail::layout_ring(mesh, static_cast<int>(x), neighbours_, lengths_, corners_);
+    rings_[x] = detail::layout_ring(mesh, static_cast<int>(x), edges_, corners_);
   }
 }
 

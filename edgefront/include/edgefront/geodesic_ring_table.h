@@ -5,7 +5,7 @@
 /// The fast mode settles vertices in distance order and, for each settled vertex x, lays x's ring
 /// out in the plane by its corner angles (polar coordinates around x). `GeodesicRingTable` does
 /// that layout once per mesh: per vertex, its neighbours in ring order (compressed sparse rows,
-/// three arrays: neighbour, edge length, corner), each corner with the edge vector and the corner
+/// two arrays: neighbour with edge length, corner), each corner with the edge vector and the corner
 /// angle to the next neighbour with its cosine and sine; per vertex its position, the angle sum
 /// (with cosine and sine), whether the ring is closed, intrinsically flat or non-manifold. A query
 /// then does no halfedge walk and no `atan2` or `acos` per corner: when a vertex settles, its ring
@@ -21,7 +21,7 @@
 /// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
 /// differ; moved points or a different mesh with the same counts are not detected.
 ///
-/// Memory: `memory_bytes()`, 68 bytes per halfedge (4 + 8 + 56) plus 64 per vertex: about 470
+/// Memory: `memory_bytes()`, 72 bytes per halfedge (16 + 56) plus 64 per vertex: about 500
 /// bytes per vertex of a closed triangle mesh. Built in O(halfedges), one `atan2` per corner.
 
 #include <cstddef>
@@ -37,6 +37,11 @@ namespace edgefront {
 
 class GeodesicRingTable {
  public:
+  /// One edge x -> v: the neighbour and the edge length (what a walk over edges reads).
+  struct Edge {
+    double len = 0;
+    int v = -1;
+  };
   /// The corner after one neighbour v of a vertex x, in the ring walk order next(opposite(h))
   /// (the same sense of rotation at every vertex of an oriented mesh).
   struct Corner {
@@ -66,15 +71,13 @@ class GeodesicRingTable {
   size_t n_faces() const { return n_faces_; }
   size_t n_halfedges() const { return n_halfedges_; }
   const Ring& ring(int v) const { return rings_[static_cast<size_t>(v)]; }
-  /// Vertex v's neighbours in walk order (`ring(v).size` of them), the edge lengths and the
-  /// corners; the three arrays are separate so that a walk over edges reads only what it needs.
-  std::span<const int> neighbours(int v) const { return span_of(neighbours_, v); }
-  std::span<const double> lengths(int v) const { return span_of(lengths_, v); }
+  /// Vertex v's edges in walk order (`ring(v).size` of them) and their corners; two arrays, so
+  /// that a walk over edges reads 16 bytes per edge.
+  std::span<const Edge> edges(int v) const { return span_of(edges_, v); }
   std::span<const Corner> corners(int v) const { return span_of(corners_, v); }
   /// Bytes held by the table.
   size_t memory_bytes() const {
-    return rings_.capacity() * sizeof(Ring) + neighbours_.capacity() * sizeof(int) +
-           lengths_.capacity() * sizeof(double) + corners_.capacity() * sizeof(Corner);
+    return rings_.capacity() * sizeof(Ring) + edges_.capacity() * sizeof(Edge) + corners_.capacity() * sizeof(Corner);
   }
 
   /// Whether the mesh has the vertex, face and halfedge counts the table was built with.
@@ -89,8 +92,7 @@ class GeodesicRingTable {
     return {a.data() + r.begin, r.size};
   }
   std::vector<Ring> rings_;
-  std::vector<int> neighbours_;
-  std::vector<double> lengths_;
+  std::vector<Edge> edges_;
   std::vector<Corner> corners_;
   size_t n_faces_ = 0, n_halfedges_ = 0;
 };

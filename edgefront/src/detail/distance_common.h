@@ -21,11 +21,11 @@ std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<Surfa
 // The position of a surface point.
 Vec3 point_of(const Mesh& mesh, const SurfacePoint& p);
 
-// Lays out vertex x's ring (GeodesicRingTable's layout): appends its neighbours, edge lengths and
-// corners to the arrays and returns its Ring (begin: where it starts in them). \throws
+// Lays out vertex x's ring (GeodesicRingTable's layout): appends its edges and corners to the
+// arrays and returns its Ring (begin: where it starts in them). \throws
 // InternalError when the ring does not close.
-GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<int>& neighbours,
-                                    std::vector<double>& lengths, std::vector<GeodesicRingTable::Corner>& corners);
+GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<GeodesicRingTable::Edge>& edges,
+                                    std::vector<GeodesicRingTable::Corner>& corners);
 
 // The fast mode per call: each settled vertex's ring is laid out when it settles (no table; the
 // same fields as with a GeodesicRingTable, bit for bit). Vertex sources (not loops) and points.
