@@ -8,6 +8,7 @@
 
 #include "detail/distance_common.h"
 #include "detail/min_heap.h"
+#include "detail/prefetch.h"
 #include "edgefront/error.h"
 #include "edgefront/geodesic_ring_table.h"
 
@@ -111,6 +112,15 @@ struct TableRings {
   const GeodesicRingTable& table;
   size_t n_vertices() const { return table.n_vertices(); }
   RingView operator()(int x) const { return {table.ring(x), table.edges(x), table.corners(x)}; }
+  // Look-ahead: the next vertex's ring header, then (once that is in the cache) its edges and corners.
+  void prefetch_header(int x) const { detail::prefetch(&table.ring(x)); }
+  void prefetch_edges(int x) const {
+    const GeodesicRingTable::Ring& r = table.ring(x);
+    if (r.size == 0) return;
+    detail::prefetch(table.edges(x).data());
+    const GeodesicRingTable::Corner* c = table.corners(x).data();
+    for (size_t b = 0; b < r.size * sizeof(GeodesicRingTable::Corner); b += 64) detail::prefetch(reinterpret_cast<const char*>(c) + b);
+  }
 };
 
 // Rings laid out from the mesh when their vertex settles (the per-call mode: no table to build).
@@ -126,6 +136,8 @@ struct MeshRings {
     info = detail::layout_ring(mesh, x, edges, corners);
     return {info, edges, corners};
   }
+  void prefetch_header(int) const {}
+  void prefetch_edges(int) const {}
 };
 
 template <class Rings>
@@ -151,6 +163,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
   while (!heap.empty()) {
     const auto [d, x] = heap.top();
     heap.pop();
+    if (!heap.empty()) rings.prefetch_header(heap.top().second);
     FastRec& rx = rec[x];
     if (rx.settled || d != rx.d) continue;
     if (d > o.max_distance) {
@@ -364,6 +377,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       heap.push(cd, ry.v);
     }
     peak = std::max(peak, heap.size());
+    if (!heap.empty()) rings.prefetch_edges(heap.top().second);
   }
   out.peak_front = 0;
   out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(detail::MinHeap4<double>::Entry) +
