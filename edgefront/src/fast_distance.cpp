@@ -136,8 +136,15 @@ struct MeshRings {
     info = detail::layout_ring(mesh, x, edges, corners);
     return {info, edges, corners};
   }
-  void prefetch_header(int) const {}
-  void prefetch_edges(int) const {}
+  // Look-ahead: the next vertex's record and position, then its first outgoing halfedge.
+  void prefetch_header(int x) const {
+    detail::prefetch(&mesh.vertex(VertexHandle(x)));
+    detail::prefetch(&mesh.point(VertexHandle(x)));
+  }
+  void prefetch_edges(int x) const {
+    const HalfedgeHandle h = mesh.halfedge_handle(VertexHandle(x));
+    if (h.is_valid()) detail::prefetch(&mesh.halfedge(h));
+  }
 };
 
 template <class Rings>
