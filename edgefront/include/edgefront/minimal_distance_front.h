@@ -83,7 +83,7 @@ struct DistanceOptions {
   /// coordinates) when it settles, or read from a prebuilt `GeodesicRingTable`
   /// (geodesic_ring_table.h) passed to `geodesic_distance(mesh, table, ...)`: the same fields bit
   /// for bit, about 40% less time per query once the table is built (the build costs about 1.1
-  /// Dijkstras; worth it from the second query on a mesh). x keeps its distance to its virtual
+  /// Dijkstras: worth it from the second query on a mesh). x keeps its distance to its virtual
   /// source and the source's ring angle. c takes the distance from the virtual source found, in a
   /// face x-c-y whose corner y is settled too, where the circles of x's and y's source distances
   /// meet (when the line to c crosses x-y); otherwise
@@ -95,8 +95,8 @@ struct DistanceOptions {
   /// on planar convex regions, open cylinders and cones (vertex or point sources); on CGAL's six
   /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
   /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
-  /// 416K-vertex armadillo: per call about 2.2x `dijkstra_distance` (a binary heap over OpenMesh's
-  /// halfedges; the default mode: 5-6x); on a table about 1.3x `dijkstra_distance` and 2.5x
+  /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
+  /// halfedges; the default mode: 5-6x); on a table about 1.2x `dijkstra_distance` and 2.5x
   /// `dijkstra_distance(mesh, table, ...)` (bench/results/geodesic-speed.md, "Session 10
   /// (mdf12)"). Not provided: the edge front (`peak_front` is 0), the
   /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
