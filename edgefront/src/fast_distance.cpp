@@ -1,4 +1,5 @@
-// The fast mode (DistanceOptions::fast) on a GeodesicRingTable.
+// The fast mode (DistanceOptions::fast): one rule over the rings of a GeodesicRingTable, or over
+// rings laid out from the mesh as their vertices settle (the per-call mode).
 
 #include <algorithm>
 #include <cmath>
