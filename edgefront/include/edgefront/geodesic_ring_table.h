@@ -19,7 +19,8 @@
 /// The table is a snapshot of the mesh's connectivity and positions: rebuild it whenever the mesh
 /// changes (points moved, elements added or deleted, garbage collected). A query compares the
 /// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
-/// differ; moved points or a different mesh with the same counts are not detected.
+/// differ; moved points or a different mesh with the same counts are not detected. Queries only
+/// read the table: several threads may query one table at once.
 ///
 /// Memory: `memory_bytes()`, 72 bytes per halfedge (16 + 56) plus 64 per vertex: about 500
 /// bytes per vertex of a closed triangle mesh. Built in O(halfedges), one `atan2` per corner.
