@@ -22,9 +22,11 @@
 //    contrast, the free functions geodesic_distance and dijkstra_distance with max_distance.
 //
 // --windows: the MDF runs with DistanceOptions::windows (windows per edge).
-// --fast-only: part 1 times only dijkstra_distance and the fast mode (both with directions),
-//    alternately, 2R runs each per source, by thread CPU time (medians), with the same bounds
-//    check; for profiling the fast mode and for its ratio under load.
+// --fast-only: part 1 times only the fast mode and Dijkstra (directions on), by thread CPU time
+//    (medians of 2R runs each per source, the order rotated every repetition): Dijkstra over the
+//    mesh's halfedges, the GeodesicRingTable's build, the fast mode on the table, Dijkstra on the
+//    table, and the per-call fast mode (build + query); ratios, the same bounds check, whether the
+//    query equals the per-call field, the table's and the query's memory.
 //
 // Output: markdown on stdout, progress on stderr. Exit codes: 0 done, 1 error, 2 usage.
 
@@ -43,6 +45,7 @@
 #include <iostream>
 #include <limits>
 #include <new>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -50,6 +53,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
+#include "edgefront/geodesic_ring_table.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
@@ -370,46 +374,79 @@ void full_field(const Args& a) {
             << "**.\n";
 }
 
-// Dijkstra and the fast mode only, alternately, by thread CPU time.
+// Dijkstra and the fast mode only, by thread CPU time: the five runs of each source rotate their
+// order every repetition (2R repetitions); medians.
 void fast_only(const Mesh& mesh, const std::vector<int>& sources, const Args& a) {
   const size_t n = mesh.n_vertices();
   DistanceOptions dij_opt, fast_opt;
   fast_opt.fast = true;
-  std::cout << "Thread CPU time, median of " << 2 * a.reps << " alternating runs each (wall clock in brackets).\n\n"
-            << "| source | Dijkstra | fast | **fast / Dijkstra (CPU)** | fast / Dijkstra (wall) | fast: below Euclidean / "
-               "above Dijkstra |\n|---|---|---|---|---|---|\n";
-  std::vector<double> ratios;
+  // The five runs: Dijkstra over the mesh's halfedges, the ring table's build, the fast mode on it,
+  // Dijkstra on it, and the per-call fast mode (build + query).
+  enum { kDij, kBuild, kQuery, kTableDij, kPerCall, kRuns };
+  std::cout << "Thread CPU time, median of " << 2 * a.reps
+            << " runs each, their order rotated every repetition. Dijkstra: binary heap over the mesh's "
+               "halfedges (`dijkstra_distance`); table: `GeodesicRingTable` build; query: the fast mode on the "
+               "table; table Dijkstra: `dijkstra_distance(mesh, table, ...)`; per call: `geodesic_distance(mesh, "
+               "source, {.fast = true})` (build + query).\n\n"
+            << "| source | Dijkstra | table build | query | table Dijkstra | per call | build / Dijkstra | **query / "
+               "table Dijkstra** | query / Dijkstra | table Dijkstra / Dijkstra | per call / Dijkstra | fast: below "
+               "Euclidean / above Dijkstra | query = per call |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::vector<std::vector<double>> ratio(5);
+  size_t table_bytes = 0, query_bytes = 0;
   for (const int s : sources) {
     std::cerr << "geodesic_speed: fast mode from " << s << "\n";
     const FrontSource src = FrontSource::vertex(VertexHandle(s));
-    std::vector<double> cd, cf, wd, wf;
-    DistanceField dij, fst;
+    std::vector<std::vector<double>> cpu(kRuns);
+    DistanceField dij, query, per_call, tdij;
+    std::optional<edgefront::GeodesicRingTable> table;
     for (int r = 0; r < 2 * a.reps; ++r) {
-      for (int k = 0; k < 2; ++k) {
-        const bool run_fast = (k == 0) == (r % 2 == 1);  // alternate which one goes first
+      for (int k = 0; k < kRuns; ++k) {
+        const int run = (k + r) % kRuns;
+        if (run != kBuild && !table) table.emplace(mesh);  // the first repetition may start with a query
         const double c = thread_cpu_seconds();
-        const auto t = Clock::now();
-        (run_fast ? fst : dij) = run_fast ? edgefront::geodesic_distance(mesh, src, fast_opt)
-                                          : edgefront::dijkstra_distance(mesh, src, dij_opt);
-        (run_fast ? wf : wd).push_back(seconds_since(t));
-        (run_fast ? cf : cd).push_back(thread_cpu_seconds() - c);
+        switch (run) {
+          case kDij: dij = edgefront::dijkstra_distance(mesh, src, dij_opt); break;
+          case kBuild: table.emplace(mesh); break;
+          case kQuery: query = edgefront::geodesic_distance(mesh, *table, src, fast_opt); break;
+          case kTableDij: tdij = edgefront::dijkstra_distance(mesh, *table, src, dij_opt); break;
+          default: per_call = edgefront::geodesic_distance(mesh, src, fast_opt); break;
+        }
+        cpu[run].push_back(thread_cpu_seconds() - c);
       }
     }
+    table_bytes = table->memory_bytes();
+    query_bytes = query.peak_working_memory_bytes;
     size_t below = 0, above = 0;
     const Vec3 ps = mesh.point(VertexHandle(s));
     for (size_t v = 0; v < n; ++v) {
-      const double df = fst.distance[v], dd = dij.distance[v];
+      const double df = query.distance[v], dd = dij.distance[v];
       if (std::isfinite(dd) != std::isfinite(df)) ++above;
       if (!std::isfinite(df) || !std::isfinite(dd)) continue;
       if (df < (mesh.point(VertexHandle(static_cast<int>(v))) - ps).norm() * (1 - 1e-9)) ++below;
       if (df > dd * (1 + 1e-9)) ++above;
     }
-    ratios.push_back(median(cf) / median(cd));
-    std::cout << "| " << s << " | " << secs(median(cd)) << " | " << secs(median(cf)) << " | **" << std::setprecision(3)
-              << ratios.back() << "** | " << median(wf) / median(wd) << " | " << below << " / " << above << " |\n";
+    const bool same = query.distance == per_call.distance && query.direction == per_call.direction &&
+                      query.order == per_call.order && tdij.distance == dij.distance && tdij.order == dij.order;
+    double med[kRuns];
+    for (int k = 0; k < kRuns; ++k) med[k] = median(cpu[k]);
+    const double rs[5] = {med[kBuild] / med[kDij], med[kQuery] / med[kTableDij], med[kQuery] / med[kDij],
+                          med[kTableDij] / med[kDij], med[kPerCall] / med[kDij]};
+    std::cout << "| " << s;
+    for (int k = 0; k < kRuns; ++k) std::cout << " | " << secs(med[k]);
+    std::cout << std::setprecision(3);
+    for (int k = 0; k < 5; ++k) {
+      ratio[k].push_back(rs[k]);
+      std::cout << (k == 1 ? " | **" : " | ") << rs[k] << (k == 1 ? "**" : "");
+    }
+    std::cout << " | " << below << " / " << above << " | " << (same ? "yes" : "NO") << " |\n";
   }
-  std::cout << "\nMedian fast / Dijkstra (thread CPU time) over the sources: **" << std::setprecision(3) << median(ratios)
-            << "**.\n";
+  std::cout << std::setprecision(3) << "\nMedians over the sources: table build / Dijkstra " << median(ratio[0])
+            << ", **query / table Dijkstra " << median(ratio[1]) << "**, query / Dijkstra " << median(ratio[2])
+            << ", table Dijkstra / Dijkstra " << median(ratio[3]) << ", per call / Dijkstra " << median(ratio[4])
+            << ".\nMemory: the table " << bytes(static_cast<long long>(table_bytes)) << " ("
+            << static_cast<double>(table_bytes) / static_cast<double>(n) << " B per vertex); a query's working memory "
+            << bytes(static_cast<long long>(query_bytes)) << " ("
+            << static_cast<double>(query_bytes) / static_cast<double>(n) << " B per vertex, the output arrays not counted).\n";
 }
 
 // ---- part 2: d_max queries -----------------------------------------------------------------

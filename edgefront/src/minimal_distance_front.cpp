@@ -7,12 +7,15 @@
 #include <queue>
 #include <string>
 
+#include "detail/distance_common.h"
 #include "detail/edge_front_core.h"
 #include "detail/min_heap.h"
 
 namespace edgefront {
 
 using detail::EdgeFrontCore;
+using detail::kFlatDefect;
+using detail::kTwoPi;
 using detail::VRec;
 
 namespace {
@@ -24,9 +27,6 @@ constexpr double kFlatDet = 1e-9;
 constexpr double kBracketTol = 1e-3;
 // Two virtual sources closer than this (relative to the distance) count as one.
 constexpr double kSameSourceTol = 1e-6;
-constexpr double kTwoPi = 6.283185307179586;
-// A vertex whose corner angles sum to a full turn within this (radians) is intrinsically flat.
-constexpr double kFlatDefect = 1e-10;
 
 // A distance offered to a vertex, with the virtual source it comes from (fields as in DRec).
 struct Candidate {
@@ -166,13 +166,13 @@ bool trim_against(Window& w, const Window& u) {
   w.b1 = keep1;
   return true;
 }
+}  // namespace
 
-
-std::string dname(double d) { return std::to_string(d); }
+namespace detail {
 
 void check_distance_options(const Mesh& mesh, const DistanceOptions& o) {
   if (std::isnan(o.max_distance) || o.max_distance < 0) {
-    throw InvalidInput("distance: max_distance must be a non-negative number, got " + dname(o.max_distance));
+    throw InvalidInput("distance: max_distance must be a non-negative number, got " + std::to_string(o.max_distance));
   }
   if (o.target && !is_live(mesh, *o.target)) {
     throw InvalidInput("distance: target vertex " + std::to_string(o.target->idx()) + " is not a vertex of the mesh");
@@ -197,7 +197,7 @@ std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<Surfa
       sum += b;
     }
     if (std::abs(sum - 1.0) > 1e-9) {
-      throw InvalidInput(which + ": barycentric coordinates sum to " + dname(sum) + ", not 1");
+      throw InvalidInput(which + ": barycentric coordinates sum to " + std::to_string(sum) + ", not 1");
     }
     for (VertexHandle v : mesh.fv_range(p.face)) {
       if (std::find(verts.begin(), verts.end(), v) == verts.end()) verts.push_back(v);
@@ -213,7 +213,11 @@ Vec3 point_of(const Mesh& mesh, const SurfacePoint& p) {
   return x;
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::check_distance_options;
+using detail::check_points;
+using detail::point_of;
 
 struct MinimalDistanceFront::Impl : EdgeFrontCore {
   detail::FlatMap<DRec> dt;
@@ -1475,400 +1479,6 @@ void MinimalDistanceFront::validate() const {
 }
 
 namespace {
-
-// ---- Fast mode (DistanceOptions::fast) ---------------------------------------------------------
-//
-// A Dijkstra over per-mesh arrays whose relaxation is one straight line in polar coordinates. The
-// ring of a settled vertex x is developed into the plane by its corner angles (ring angle theta,
-// 0 .. the angle sum). x keeps the distance r to its virtual source, the source's ring angle phi and
-// the distance already travelled before that source (d - r: 0 for the real source, more behind a
-// pseudo source). A neighbour c at ring angle theta_c and distance l from x takes, with
-// alpha = phi - theta_c (the shorter way round on a closed ring),
-//   d - r + sqrt(r^2 + l^2 - 2 r l cos alpha)           (law of cosines), or
-//   d + l with x as pseudo source when |alpha| >= pi    (the source is in x's shadow: a saddle
-//                                                        or a border corner),
-// clamped to at least the straight (3D) distance from the real source and at most d + l. c keeps
-// the direction toward the virtual source relative to its edge c -> x (two components); it becomes
-// c's own ring angle when c settles and walks its ring.
-
-struct FastRec {
-  double d = kInf;
-  double r = 0;        // distance to the virtual source (d - r travelled before it)
-  double a = 0, b = 0;  // toward the virtual source: along the edge to `parent` and across it
-  int parent = -1;     // -1: no direction (a vertex source)
-  double bound = kInf;  // the smallest d + edge length offered by a settled neighbour (Dijkstra's value)
-  int origin = -1;     // the real source the value comes from (index into the origins)
-  uint8_t settled = 0;
-  uint8_t by_face = 0;  // the value comes from a face with two settled corners (it overrides the others)
-};
-
-struct FastSeed {
-  int v;
-  FastRec rec;
-};
-
-// One edge of the ring of the vertex being settled, in walk order.
-struct FastRay {
-  int v;
-  Vec3 e;            // the edge vector x -> v
-  double len;
-  double theta;      // ring angle
-  double cos_theta, sin_theta;  // of theta, as the product of the corners' rotations (no cos/sin calls)
-  double cos_after, sin_after;  // the corner angle of the face after this edge
-  double angle_after;
-  bool face_after;   // a face between this edge and the next one in the walk
-};
-
-// Ring angle of a direction given relative to ray j (components along it and across it).
-double fast_angle(const std::vector<FastRay>& ring, size_t j, double a, double b, bool closed, double total) {
-  double phi = ring[j].theta + std::atan2(b, a);
-  if (closed) {
-    if (phi < 0) phi += total;
-    if (phi >= total) phi -= total;
-  } else {
-    phi = std::clamp(phi, 0.0, total);
-  }
-  return phi;
-}
-
-// The unit 3D vector at ring angle phi (inside the face whose corner contains it); cos_phi and
-// sin_phi are phi's cosine and sine.
-Vec3 fast_direction(const std::vector<FastRay>& ring, size_t first, double phi, double cos_phi, double sin_phi) {
-  const size_t m = ring.size();
-  size_t i = first;
-  for (size_t k = 0; k + 1 < m; ++k) {
-    const size_t nx = i + 1 == m ? 0 : i + 1;
-    if (!ring[i].face_after || ring[nx].theta > phi || nx == first) break;
-    i = nx;
-  }
-  const size_t nx = i + 1 == m ? 0 : i + 1;
-  if (!(ring[i].len > 0)) return Vec3(0, 0, 0);
-  const Vec3 u = ring[i].e / ring[i].len;
-  Vec3 w = ring[nx].e - OpenMesh::dot(ring[nx].e, u) * u;
-  const double lw = w.norm();
-  if (!ring[i].face_after || !(lw > 0)) return u;
-  w /= lw;
-  // cos and sin of phi - theta_i.
-  const FastRay& ri = ring[i];
-  return (cos_phi * ri.cos_theta + sin_phi * ri.sin_theta) * u + (sin_phi * ri.cos_theta - cos_phi * ri.sin_theta) * w;
-}
-
-DistanceField fast_field(const Mesh& mesh, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
-                         const DistanceOptions& o) {
-  const size_t n = mesh.n_vertices();
-  std::vector<FastRec> rec(n);
-  detail::MinHeap4<double> heap;
-  for (const FastSeed& s : seeds) {
-    FastRec& r = rec[s.v];
-    if (s.rec.d < r.d) {
-      r = s.rec;
-      heap.push(r.d, s.v);
-    }
-  }
-
-  DistanceField out;
-  out.distance.assign(n, kInf);
-  if (o.directions) out.direction.assign(n, Vec3(0, 0, 0));
-  out.stop = DistanceStop::Exhausted;
-  size_t peak = heap.size();
-  std::vector<FastRay> ring;
-  const size_t max_ring = mesh.n_halfedges();
-  while (!heap.empty()) {
-    const auto [d, x] = heap.top();
-    heap.pop();
-    FastRec& rx = rec[x];
-    if (rx.settled || d != rx.d) continue;
-    if (d > o.max_distance) {
-      out.stop = DistanceStop::MaxDistance;
-      break;
-    }
-    rx.settled = 1;
-    out.distance[x] = d;
-    out.order.push_back(VertexHandle(x));
-
-    // The ring, in the walk order of next(opposite(h)) (the same sense of rotation at every
-    // vertex of an oriented mesh).
-    const VertexHandle vx(x);
-    const Vec3 px = mesh.point(vx);
-    ring.clear();
-    size_t gap = 0;
-    int gaps = 0;
-    const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
-    if (h0.is_valid()) {
-      HalfedgeHandle h = h0;
-      do {
-        const VertexHandle y = mesh.to_vertex_handle(h);
-        const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
-        const Vec3 e = mesh.point(y) - px;
-        const bool face = mesh.face_handle(g).is_valid();
-        if (!face) {
-          gap = ring.size();
-          ++gaps;
-        }
-        ring.push_back(FastRay{y.idx(), e, e.norm(), 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, face});
-        h = mesh.next_halfedge_handle(g);
-        if (ring.size() > max_ring) {
-          throw InternalError("distance: the ring of vertex " + std::to_string(x) + " does not close");
-        }
-      } while (h != h0);
-    }
-    if (gaps > 1) {
-      throw TopologyError("distance: vertex " + std::to_string(x) +
-                          " is non-manifold (several fans meet there); split it before computing distances");
-    }
-    const size_t m = ring.size();
-    const bool closed = gaps == 0;
-    const size_t first = closed || m == 0 ? 0 : (gap + 1) % m;  // a border ring starts after its gap
-    double total = 0, cos_total = 1, sin_total = 0;  // the angle sum, its cosine and sine
-    for (size_t k = 0, i = first; k < m; ++k) {
-      FastRay& ry = ring[i];
-      ry.theta = total;
-      ry.cos_theta = cos_total;
-      ry.sin_theta = sin_total;
-      const size_t nx = i + 1 == m ? 0 : i + 1;
-      if (ry.face_after) {
-        const Vec3& f = ring[nx].e;
-        const double sn = OpenMesh::cross(ry.e, f).norm(), cs = OpenMesh::dot(ry.e, f);
-        ry.angle_after = std::atan2(sn, cs);
-        total += ry.angle_after;
-        const double ll = ry.len * ring[nx].len;
-        if (ll > 0) {
-          ry.cos_after = cs / ll;
-          ry.sin_after = sn / ll;
-        }
-        const double c2 = cos_total * ry.cos_after - sin_total * ry.sin_after;
-        sin_total = sin_total * ry.cos_after + cos_total * ry.sin_after;
-        cos_total = c2;
-      }
-      i = nx;
-    }
-    const bool flat = closed && std::abs(total - kTwoPi) < kFlatDefect;
-    // The source's ring angle (none at a source vertex or when the parent is not in the ring).
-    double phi = 0;
-    bool aimed = false;
-    if (rx.parent >= 0 && rx.r > 0) {
-      for (size_t j = 0; j < m; ++j) {
-        if (ring[j].v == rx.parent) {
-          phi = fast_angle(ring, j, rx.a, rx.b, closed, total);
-          aimed = true;
-          break;
-        }
-      }
-    }
-    // phi's cosine and sine: one call per settled vertex; the neighbours' angles to the source are
-    // rotations of it by their own ring angles.
-    double cos_phi = 1, sin_phi = 0;
-    if (aimed) {
-      cos_phi = std::cos(phi);
-      sin_phi = std::sin(phi);
-    }
-    if (o.directions && aimed) out.direction[x] = fast_direction(ring, first, phi, cos_phi, sin_phi);
-    if (o.target && o.target->idx() == x) {
-      out.stop = DistanceStop::TargetReached;
-      break;
-    }
-    const Vec3& origin = origins[static_cast<size_t>(rx.origin)];
-    const double r = aimed ? rx.r : 0.0;
-    const double before = d - r;
-    for (size_t i = 0; i < m; ++i) {
-      const FastRay& ry = ring[i];
-      FastRec& rc = rec[ry.v];
-      if (rc.settled) continue;
-      double alpha = phi - ry.theta;
-      double cos_a = cos_phi * ry.cos_theta + sin_phi * ry.sin_theta;  // of alpha, before the wrap
-      double sin_a = sin_phi * ry.cos_theta - cos_phi * ry.sin_theta;
-      if (closed) {
-        // The shorter way round: alpha -/+ the angle sum (a rotation by it).
-        const double turn = alpha > 0.5 * total ? -1.0 : alpha < -0.5 * total ? 1.0 : 0.0;
-        if (turn != 0) {
-          alpha += turn * total;
-          const double c2 = cos_a * cos_total - turn * sin_a * sin_total;
-          sin_a = sin_a * cos_total + turn * cos_a * sin_total;
-          cos_a = c2;
-        }
-      }
-      double cr = 0, ca = 0, cb = 0, cd = kInf;
-      double bent = kInf, bent_x = 0, bent_y = 0;  // the path bent at a ring vertex p: |S - p| + |p - c|, p - c
-      const size_t prev = i == 0 ? m - 1 : i - 1;
-      const size_t next = i + 1 == m ? 0 : i + 1;
-      // A face (x, c, y) whose corner y is settled too, from the same source and offset: the
-      // virtual source where the circles of radius r around x and y meet (on the side away from c),
-      // if the line from it to c crosses the edge x-y. No angle needed: the face's own layout.
-      bool by_face = false;
-      const bool lit = r > 0 && std::abs(alpha) < M_PI;  // a straight line from x's source
-      if (!lit) {
-        cos_a = 1;
-        sin_a = 0;
-      }
-      for (int sgn = 1; sgn >= -1; sgn -= 2) {
-        const FastRay& corner = sgn > 0 ? ry : ring[prev];
-        if (!corner.face_after) continue;
-        const FastRay& fy = sgn > 0 ? ring[next] : ring[prev];
-        const FastRec& yr = rec[fy.v];
-        if (!yr.settled || yr.origin != rx.origin || !(fy.len > 0)) continue;
-        const double r_y = yr.parent >= 0 ? yr.r : 0.0;
-        if (std::abs((yr.d - r_y) - before) > 1e-9 * d) continue;
-        const double ly = fy.len, cg = corner.cos_after, sg = corner.sin_after;
-        // x's own source must lie beyond the line x-y (the circles also meet at its mirror image).
-        if (r > 0 && !(lit && sgn * sin_a * cg - cos_a * sg > -1e-9)) continue;
-        const double u = (r * r - r_y * r_y + ly * ly) / (2 * ly);
-        const double h2 = r * r - u * u;
-        if (h2 < -1e-9 * (r * r + ly * ly)) continue;
-        const double hh = std::sqrt(std::max(h2, 0.0));
-        const double cn = ry.len * sg;  // c's distance from the line x-y
-        if (!(hh + cn > 0)) continue;
-        const double cross_at = u + hh / (hh + cn) * (ry.len * cg - u);
-        if (cross_at < -1e-9 * ly || cross_at > ly * (1 + 1e-9)) continue;
-        // The source in x's layout (c on the x axis, the walk's positive side up).
-        const double sx = u * cg - hh * sg, sy = sgn * (u * sg + hh * cg);
-        const double fa = ry.len - sx, fb = -sy, fr = std::sqrt(fa * fa + fb * fb);
-        if (before + fr < cd) {
-          cd = before + fr;
-          cr = fr;
-          ca = fa;
-          cb = fb;
-          by_face = true;
-        }
-      }
-      if (!by_face && lit) {
-        ca = ry.len - r * cos_a;
-        cb = -r * sin_a;
-        // The line from c toward the source must leave c through the face between c and the ring
-        // neighbour y on the source's side (the corner x-c-y): y not on x's side of it.
-        const FastRay* fy = alpha >= 0 ? (ry.face_after ? &ring[next] : nullptr)
-                                       : (ring[prev].face_after ? &ring[prev] : nullptr);
-        if (fy) {
-          const FastRay& corner = alpha >= 0 ? ry : ring[prev];
-          // In x's development, c on the x axis, the source side up: S - c = (-ca, |cb|).
-          const double yx = fy->len * corner.cos_after - ry.len, yy = fy->len * corner.sin_after;
-          const double side = -ca * yy - std::abs(cb) * yx;
-          bool inside = side <= 1e-12 * (std::abs(ca) + std::abs(cb)) * (std::abs(yx) + yy);
-          // When the line from c to the source passes an edge of x beyond its end p, the shortest
-          // path inside x's laid-out faces bends at p (p - c = (px_, py_) in this frame).
-          const auto bend = [&](double px_, double py_) {
-            bent_x = px_;
-            bent_y = py_;
-            const double sx = -ca - px_, sy = std::abs(cb) - py_;
-            bent = std::sqrt(sx * sx + sy * sy) + std::sqrt(px_ * px_ + py_ * py_);
-          };
-          // And, unless x is intrinsically flat, it must cross every edge of x between c and the
-          // source inside the edge (the ring is laid out exactly only up to its outer edges).
-          double t = 0, ct = 1, st = 0;
-          size_t k = i;
-          for (size_t steps = flat ? m : 0; inside && steps < m; ++steps) {
-            const size_t kc = alpha >= 0 ? k : (k == 0 ? m - 1 : k - 1);  // the corner crossed
-            const FastRay& cr_ray = ring[kc];
-            if (!cr_ray.face_after) {
-              inside = false;
-              break;
-            }
-            t += cr_ray.angle_after;
-            if (t >= std::abs(alpha)) break;
-            const double c2 = ct * cr_ray.cos_after - st * cr_ray.sin_after;
-            st = st * cr_ray.cos_after + ct * cr_ray.sin_after;
-            ct = c2;
-            k = alpha >= 0 ? (k + 1 == m ? 0 : k + 1) : kc;
-            const double den = ct * std::abs(cb) + st * ca;  // cross(ray, S - c), S - c = (-ca, |cb|)
-            if (!(den > 0) || ry.len * std::abs(cb) > ring[k].len * (1 + 1e-9) * den) {
-              inside = false;
-              bend(ring[k].len * ct - ry.len, ring[k].len * st);
-            }
-          }
-          if (inside) {
-            cr = std::sqrt(ca * ca + cb * cb);
-            cd = before + cr;
-          }
-        }
-      }
-      if (cd == kInf && before + bent < d + ry.len) {
-        // The ring vertex p as a pseudo source; c's direction toward it (the source side's sign).
-        cd = before + bent;
-        cr = std::sqrt(bent_x * bent_x + bent_y * bent_y);
-        ca = -bent_x;
-        cb = alpha >= 0 ? -bent_y : bent_y;
-      }
-      if (cd == kInf) {
-        cr = ca = ry.len;
-        cb = 0;
-        cd = d + ry.len;
-      }
-      // Never below the straight line from the source, nor below x's own distance: vertices settle
-      // in non-decreasing order, so every neighbour nearer than d + edge length settles first and
-      // its bound holds (never above Dijkstra).
-      const double straight2 = (px + ry.e - origin).sqrnorm();  // no square root when cd is above it
-      if (!(cd * cd >= straight2)) cd = std::max(cd, std::sqrt(straight2));
-      cd = std::max(cd, d);
-      if (d + ry.len < rc.bound) rc.bound = d + ry.len;
-      if (cd > rc.bound) {
-        cd = rc.bound;
-        if (cd == d + ry.len) {
-          cr = ca = ry.len;
-          cb = 0;
-        }
-      }
-      // A face value overrides the others; any value is taken when it is shorter and c's value is
-      // above the bound.
-      if (by_face ? (rc.by_face && !(cd < rc.d)) : (!(cd < rc.d) || (rc.by_face && !(rc.d > rc.bound)))) continue;
-      rc.by_face = by_face;
-      rc.d = cd;
-      rc.r = cr;
-      rc.a = ca;
-      rc.b = cb;
-      rc.parent = x;
-      rc.origin = rx.origin;
-      heap.push(cd, ry.v);
-    }
-    peak = std::max(peak, heap.size());
-  }
-  out.peak_front = 0;
-  out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(detail::MinHeap4<double>::Entry) +
-                                  ring.capacity() * sizeof(FastRay);
-  return out;
-}
-
-DistanceField fast_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
-  validate_source(mesh, source);
-  check_distance_options(mesh, options);
-  std::vector<Vec3> origins;
-  std::vector<FastSeed> seeds;
-  for (VertexHandle v : source.vertices) {
-    FastRec r;
-    r.d = 0;
-    r.origin = static_cast<int>(origins.size());
-    seeds.push_back(FastSeed{v.idx(), r});
-    origins.push_back(mesh.point(v));
-  }
-  return fast_field(mesh, seeds, origins, options);
-}
-
-DistanceField fast_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points, const DistanceOptions& options) {
-  check_distance_options(mesh, options);
-  check_points(mesh, points);
-  std::vector<Vec3> origins;
-  std::vector<FastSeed> seeds;
-  for (const SurfacePoint& p : points) {
-    const Vec3 x = point_of(mesh, p);
-    for (HalfedgeHandle h : mesh.fh_range(p.face)) {
-      // The face lies before h (v -> w) in the ring walk of v: the point is at a negative angle.
-      const VertexHandle v = mesh.from_vertex_handle(h);
-      const Vec3 ew = mesh.point(mesh.to_vertex_handle(h)) - mesh.point(v);
-      const Vec3 ep = x - mesh.point(v);
-      FastRec r;
-      r.d = r.r = ep.norm();
-      const double lw = ew.norm();
-      if (lw > 0) {
-        r.a = OpenMesh::dot(ep, ew) / lw;
-        r.b = -OpenMesh::cross(ew, ep).norm() / lw;
-        r.parent = mesh.to_vertex_handle(h).idx();
-      }
-      r.origin = static_cast<int>(origins.size());
-      seeds.push_back(FastSeed{v.idx(), r});
-    }
-    origins.push_back(x);
-  }
-  return fast_field(mesh, seeds, origins, options);
-}
-
 DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const DistanceOptions& options) {
   DistanceField out;
   out.distance.assign(mesh.n_vertices(), kInf);
@@ -1887,7 +1497,7 @@ DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const Dista
 }  // namespace
 
 DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
-  if (options.fast && !source.is_loop()) return fast_distance(mesh, source, options);
+  if (options.fast && !source.is_loop()) return detail::fast_distance(mesh, source, options);
   DistanceOptions o = options;
   o.fast = false;  // a loop source runs the default mode
   MinimalDistanceFront front(mesh);
@@ -1897,97 +1507,10 @@ DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, con
 
 DistanceField geodesic_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points,
                                 const DistanceOptions& options) {
-  if (options.fast) return fast_distance(mesh, points, options);
+  if (options.fast) return detail::fast_distance(mesh, points, options);
   MinimalDistanceFront front(mesh);
   front.reset(points, options);
   return collect(mesh, front, options);
-}
-
-DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
-  validate_source(mesh, source);
-  check_distance_options(mesh, options);
-  DistanceField out;
-  const size_t n = mesh.n_vertices();
-  out.distance.assign(n, kInf);
-  std::vector<int> via(n, -1);
-  std::vector<uint8_t> done(n, 0);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
-  if (source.is_loop()) {
-    for (HalfedgeHandle h : source.loop) {
-      const int v = mesh.to_vertex_handle(h).idx();
-      out.distance[v] = 0;
-      heap.emplace(0.0, v);
-    }
-    // First step only into the ahead wedges; loop vertices are never re-entered.
-    const size_t m = source.loop.size();
-    for (size_t i = 0; i < m; ++i) {
-      const int x = mesh.to_vertex_handle(source.loop[i]).idx();
-      done[x] = 1;
-      HalfedgeHandle g = mesh.next_halfedge_handle(source.loop[i]);
-      while (true) {
-        const int y = mesh.to_vertex_handle(g).idx();
-        const double d = (mesh.point(VertexHandle(y)) - mesh.point(VertexHandle(x))).norm();
-        if (!done[y] && d < out.distance[y]) {
-          out.distance[y] = d;
-          via[y] = x;
-          heap.emplace(d, y);
-        }
-        if (g == source.loop[(i + 1) % m]) break;
-        g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
-      }
-    }
-    for (HalfedgeHandle h : source.loop) out.order.push_back(mesh.to_vertex_handle(h));
-  } else {
-    for (VertexHandle v : source.vertices) {
-      out.distance[v.idx()] = 0;
-      heap.emplace(0.0, v.idx());
-    }
-  }
-  out.stop = DistanceStop::Exhausted;
-  size_t peak = 0;
-  while (!heap.empty()) {
-    const auto [d, v] = heap.top();
-    heap.pop();
-    if (done[v] || d != out.distance[v]) continue;
-    if (d > options.max_distance) {
-      out.distance[v] = kInf;
-      out.stop = DistanceStop::MaxDistance;
-      break;
-    }
-    done[v] = 1;
-    out.order.push_back(VertexHandle(v));
-    if (options.target && options.target->idx() == v) {
-      out.stop = DistanceStop::TargetReached;
-      break;
-    }
-    const Vec3& pv = mesh.point(VertexHandle(v));
-    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
-      const double nd = d + (mesh.point(y) - pv).norm();
-      if (!done[y.idx()] && nd < out.distance[y.idx()]) {
-        out.distance[y.idx()] = nd;
-        via[y.idx()] = v;
-        heap.emplace(nd, y.idx());
-      }
-    }
-    peak = std::max(peak, heap.size());
-  }
-  // Unsettled tentative values are not answers.
-  for (size_t v = 0; v < n; ++v) {
-    if (!done[v]) out.distance[v] = kInf;
-  }
-  if (options.directions) {
-    out.direction.assign(n, Vec3(0, 0, 0));
-    for (size_t v = 0; v < n; ++v) {
-      if (via[v] >= 0 && done[v]) {
-        const Vec3 dv = mesh.point(VertexHandle(via[v])) - mesh.point(VertexHandle(static_cast<int>(v)));
-        const double l = dv.norm();
-        if (l > 0) out.direction[v] = dv / l;
-      }
-    }
-  }
-  out.peak_working_memory_bytes = n * (sizeof(double) + sizeof(int) + 1) + peak * sizeof(Entry);
-  return out;
 }
 
 }  // namespace edgefront

@@ -80,9 +80,13 @@ struct DistanceOptions {
   /// Fast mode, for `geodesic_distance` only (whole field, `max_distance`, `target`): a Dijkstra
   /// over per-mesh arrays (O(mesh) memory, no edge front) with one straight-line update per
   /// settled vertex x and neighbour c. x's ring is laid out by its corner angles (polar
-  /// coordinates); x keeps its distance to its virtual source and the source's ring angle. c takes
-  /// the distance from the virtual source found, in a face x-c-y whose corner y is settled too, where
-  /// the circles of x's and y's source distances meet (when the line to c crosses x-y); otherwise
+  /// coordinates) when it settles, or read from a prebuilt `GeodesicRingTable`
+  /// (geodesic_ring_table.h) passed to `geodesic_distance(mesh, table, ...)`: the same fields bit
+  /// for bit, about 40% less time per query once the table is built (the build costs about 1.1
+  /// Dijkstras: worth it from the second query on a mesh). x keeps its distance to its virtual
+  /// source and the source's ring angle. c takes the distance from the virtual source found, in a
+  /// face x-c-y whose corner y is settled too, where the circles of x's and y's source distances
+  /// meet (when the line to c crosses x-y); otherwise
   /// from x's source by the law of cosines (when the line crosses x's edges inside them, or x is
   /// intrinsically flat); when it passes an edge of x beyond its far end p, along the path bent
   /// at p (p becomes c's pseudo source); otherwise d + edge length (x a pseudo source: saddles,
@@ -90,9 +94,11 @@ struct DistanceOptions {
   /// Dijkstra bound, and vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact
   /// on planar convex regions, open cylinders and cones (vertex or point sources); on CGAL's six
   /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
-  /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%, at about
-  /// 2.2x a binary-heap Dijkstra (the default: 5-6x); bench/results/geodesic-speed.md, "Session 9
-  /// (mdf10)". Not provided: the edge front (`peak_front` is 0), the
+  /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
+  /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
+  /// halfedges; the default mode: 5-6x); on a table about 1.2x `dijkstra_distance` and 2.5x
+  /// `dijkstra_distance(mesh, table, ...)` (bench/results/geodesic-speed.md, "Session 10
+  /// (mdf12)"). Not provided: the edge front (`peak_front` is 0), the
   /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
   /// sources (they run the default mode). A vertex nearer the source than all its neighbours gets
   /// its first settled neighbour's distance.

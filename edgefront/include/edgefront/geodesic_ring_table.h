@@ -1,0 +1,121 @@
+#pragma once
+/// \file geodesic_ring_table.h
+/// A per-mesh table of vertex rings for many fast distance queries (`DistanceOptions::fast`).
+///
+/// The fast mode settles vertices in distance order and, for each settled vertex x, lays x's ring
+/// out in the plane by its corner angles (polar coordinates around x). `GeodesicRingTable` does
+/// that layout once per mesh: per vertex, its neighbours in ring order (compressed sparse rows,
+/// two arrays: neighbour with edge length, corner), each corner with the edge vector and the corner
+/// angle to the next neighbour with its cosine and sine; per vertex its position, the angle sum
+/// (with cosine and sine), whether the ring is closed, intrinsically flat or non-manifold. A query
+/// then does no halfedge walk and no `atan2` or `acos` per corner: when a vertex settles, its ring
+/// angles are the corner angles summed and their cosines and sines the corners' rotations
+/// multiplied (4 multiplications per neighbour).
+///
+///     edgefront::GeodesicRingTable table(mesh);      // once per mesh
+///     auto f = edgefront::geodesic_distance(mesh, table, edgefront::FrontSource::vertex(v));
+///     auto g = edgefront::geodesic_distance(mesh, table, points, {.max_distance = 0.1});
+///
+/// The table is a snapshot of the mesh's connectivity and positions: rebuild it whenever the mesh
+/// changes (points moved, elements added or deleted, garbage collected). A query compares the
+/// mesh's vertex, face and halfedge counts with the table's and throws `InvalidInput` when they
+/// differ; moved points or a different mesh with the same counts are not detected. Queries only
+/// read the table: several threads may query one table at once.
+///
+/// Memory: `memory_bytes()`, 72 bytes per halfedge (16 + 56) plus 64 per vertex: about 500
+/// bytes per vertex of a closed triangle mesh. Built in O(halfedges), one `atan2` per corner.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "edgefront/front_source.h"
+#include "edgefront/mesh.h"
+#include "edgefront/minimal_distance_front.h"
+
+namespace edgefront {
+
+class GeodesicRingTable {
+ public:
+  /// One edge x -> v: the neighbour and the edge length (what a walk over edges reads).
+  struct Edge {
+    double len = 0;
+    int v = -1;
+  };
+  /// The corner after one neighbour v of a vertex x, in the ring walk order next(opposite(h))
+  /// (the same sense of rotation at every vertex of an oriented mesh).
+  struct Corner {
+    Vec3 e;                       ///< the edge vector x -> v
+    double cos_after = 1, sin_after = 0;  ///< of the corner angle between this edge and the next one
+    double angle_after = 0;       ///< that corner angle (0 when there is no face after this edge)
+    bool face_after = false;      ///< a face lies between this edge and the next one in the walk
+  };
+  /// Per vertex: where its ring lies and its shape.
+  struct Ring {
+    Vec3 point;                   ///< the vertex's position
+    double total = 0;             ///< the angle sum (sum of corner angles)
+    double cos_total = 1, sin_total = 0;  ///< of `total`, as the product of the corners' rotations
+    std::uint32_t begin = 0;      ///< the ring's first entry in the per-edge arrays
+    std::uint32_t size = 0;       ///< the number of neighbours
+    std::uint32_t first = 0;      ///< where the ring angle is 0: 0 on a closed ring, the edge after the border gap otherwise
+    bool closed = true;           ///< no border gap (isolated vertices too)
+    bool flat = false;            ///< closed and the angle sum is 2 pi within 1e-10
+    bool non_manifold = false;    ///< several fans meet at the vertex (a query refuses to settle it)
+  };
+
+  /// Builds the table. \throws InvalidInput for a mesh with more than 2^32 - 1 halfedges, and
+  /// InternalError when a vertex's ring does not close (corrupt connectivity).
+  explicit GeodesicRingTable(const Mesh& mesh);
+
+  size_t n_vertices() const { return rings_.size(); }
+  size_t n_faces() const { return n_faces_; }
+  size_t n_halfedges() const { return n_halfedges_; }
+  const Ring& ring(int v) const { return rings_[static_cast<size_t>(v)]; }
+  /// Vertex v's edges in walk order (`ring(v).size` of them) and their corners; two arrays, so
+  /// that a walk over edges reads 16 bytes per edge.
+  std::span<const Edge> edges(int v) const { return span_of(edges_, v); }
+  std::span<const Corner> corners(int v) const { return span_of(corners_, v); }
+  /// Bytes held by the table.
+  size_t memory_bytes() const {
+    return rings_.capacity() * sizeof(Ring) + edges_.capacity() * sizeof(Edge) + corners_.capacity() * sizeof(Corner);
+  }
+
+  /// Whether the mesh has the vertex, face and halfedge counts the table was built with.
+  bool matches(const Mesh& mesh) const;
+  /// \throws InvalidInput naming the counts when `matches(mesh)` is false (rebuild the table).
+  void check(const Mesh& mesh) const;
+
+ private:
+  template <class T>
+  std::span<const T> span_of(const std::vector<T>& a, int v) const {
+    const Ring& r = rings_[static_cast<size_t>(v)];
+    return {a.data() + r.begin, r.size};
+  }
+  std::vector<Ring> rings_;
+  std::vector<Edge> edges_;
+  std::vector<Corner> corners_;
+  size_t n_faces_ = 0, n_halfedges_ = 0;
+};
+
+/// The fast mode (`DistanceOptions::fast`, documented there) on a prebuilt table: the same field
+/// as `geodesic_distance(mesh, source, {.fast = true})` (which lays out each ring when its vertex
+/// settles, with the same code), bit for bit.
+/// `options.fast` is implied, `windows` and `track_front` are ignored; a loop source runs the
+/// default mode (the table is not used). \throws InvalidInput for a bad source or options, or a
+/// table that does not match the mesh (`GeodesicRingTable::check`); TopologyError when a
+/// non-manifold vertex settles.
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
+                                const DistanceOptions& options = {});
+/// The same from surface points (see `MinimalDistanceFront::reset` for their checks).
+DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table,
+                                const std::vector<SurfacePoint>& points, const DistanceOptions& options = {});
+
+/// `dijkstra_distance` (binary heap over mesh edges) reading the edges from the table instead of
+/// the mesh's halfedges: the same distances, order and stop (directions to round-off). A loop
+/// source runs `dijkstra_distance(mesh, ...)`. \throws as `dijkstra_distance`, and InvalidInput for
+/// a table that does not match the mesh.
+DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
+                                const DistanceOptions& options = {});
+
+}  // namespace edgefront

@@ -1,0 +1,116 @@
+#include "edgefront/geodesic_ring_table.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "detail/distance_common.h"
+#include "edgefront/error.h"
+
+namespace edgefront {
+
+using detail::kFlatDefect;
+using detail::kTwoPi;
+
+namespace detail {
+
+GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<GeodesicRingTable::Edge>& edges,
+                                    std::vector<GeodesicRingTable::Corner>& corners) {
+  using Corner = GeodesicRingTable::Corner;
+  const VertexHandle vx(x);
+  GeodesicRingTable::Ring info;
+  info.point = mesh.point(vx);
+  info.begin = static_cast<std::uint32_t>(corners.size());
+  // The ring, in the walk order of next(opposite(h)).
+  size_t gap = 0;
+  int gaps = 0;
+  const HalfedgeHandle h0 = mesh.halfedge_handle(vx);
+  const size_t max_ring = mesh.n_halfedges();
+  if (h0.is_valid() && !mesh.status(vx).deleted()) {
+    HalfedgeHandle h = h0;
+    do {
+      const VertexHandle y = mesh.to_vertex_handle(h);
+      const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
+      Corner c;
+      c.e = mesh.point(y) - info.point;
+      c.face_after = mesh.face_handle(g).is_valid();
+      if (!c.face_after) {
+        gap = corners.size() - info.begin;
+        ++gaps;
+      }
+      edges.push_back(GeodesicRingTable::Edge{c.e.norm(), y.idx()});
+      corners.push_back(c);
+      h = mesh.next_halfedge_handle(g);
+      if (corners.size() - info.begin > max_ring) {
+        throw InternalError("distance: the ring of vertex " + std::to_string(x) + " does not close");
+      }
+    } while (h != h0);
+  }
+  const size_t m = corners.size() - info.begin;
+  info.size = static_cast<std::uint32_t>(m);
+  info.non_manifold = gaps > 1;
+  info.closed = gaps == 0;
+  info.first = static_cast<std::uint32_t>(info.closed || m == 0 ? 0 : (gap + 1) % m);
+  // The corners, and the angle sum with its rotation as a running product (in the order a query
+  // sums the ring angles, from the first edge on).
+  Corner* ring = corners.data() + info.begin;
+  const GeodesicRingTable::Edge* edge = edges.data() + info.begin;
+  double total = 0, cos_total = 1, sin_total = 0;
+  for (size_t k = 0, i = info.first; k < m; ++k) {
+    Corner& cy = ring[i];
+    const size_t nx = i + 1 == m ? 0 : i + 1;
+    if (cy.face_after) {
+      const Vec3& f = ring[nx].e;
+      const double sn = OpenMesh::cross(cy.e, f).norm(), cs = OpenMesh::dot(cy.e, f);
+      cy.angle_after = std::atan2(sn, cs);
+      total += cy.angle_after;
+      const double ll = edge[i].len * edge[nx].len;
+      if (ll > 0) {
+        cy.cos_after = cs / ll;
+        cy.sin_after = sn / ll;
+      }
+      const double c2 = cos_total * cy.cos_after - sin_total * cy.sin_after;
+      sin_total = sin_total * cy.cos_after + cos_total * cy.sin_after;
+      cos_total = c2;
+    }
+    i = nx;
+  }
+  info.total = total;
+  info.cos_total = cos_total;
+  info.sin_total = sin_total;
+  info.flat = info.closed && std::abs(total - kTwoPi) < kFlatDefect;
+  return info;
+}
+
+}  // namespace detail
+
+GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
+    : n_faces_(mesh.n_faces()), n_halfedges_(mesh.n_halfedges()) {
+  if (mesh.n_halfedges() >= std::numeric_limits<std::uint32_t>::max()) {
+    throw InvalidInput("ring table: the mesh has " + std::to_string(mesh.n_halfedges()) +
+                       " halfedges, more than the table's 32-bit offsets hold");
+  }
+  const size_t n = mesh.n_vertices();
+  rings_.resize(n);
+  edges_.reserve(mesh.n_halfedges());
+  corners_.reserve(mesh.n_halfedges());
+  for (size_t x = 0; x < n; ++x) {
+    rings_[x] = detail::layout_ring(mesh, static_cast<int>(x), edges_, corners_);
+  }
+}
+
+bool GeodesicRingTable::matches(const Mesh& mesh) const {
+  return mesh.n_vertices() == rings_.size() && mesh.n_faces() == n_faces_ && mesh.n_halfedges() == n_halfedges_;
+}
+
+void GeodesicRingTable::check(const Mesh& mesh) const {
+  if (matches(mesh)) return;
+  throw InvalidInput("ring table: built for a mesh with " + std::to_string(rings_.size()) + " vertices, " +
+                     std::to_string(n_faces_) + " faces, " + std::to_string(n_halfedges_) +
+                     " halfedges, but this mesh has " + std::to_string(mesh.n_vertices()) + ", " +
+                     std::to_string(mesh.n_faces()) + ", " + std::to_string(mesh.n_halfedges()) +
+                     ": rebuild the table after changing the mesh");
+}
+
+}  // namespace edgefront
