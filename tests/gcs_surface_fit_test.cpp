@@ -117,6 +117,32 @@ TEST(GcsSurfaceFit, NoFaceTurnsPastTheBoundAndNoSelfIntersectionAppears) {
   for (auto v : m.vertices()) EXPECT_LE(std::abs(m.point(v).norm() - 1.0), 0.5 + 1e-12);  // max_move
 }
 
+// Nine samples in ten on the sphere of radius 1.05, one in ten far outside (1.35): the least-squares
+// fit is pulled outward by the outliers; with l1_weights (the default) the later rounds weight them
+// down, so the vertices end nearer the 1.05 sphere and the mean sample distance is smaller.
+TEST(GcsSurfaceFit, L1WeightsResistOutliers) {
+  std::vector<Vec3> samples = sphere_samples(4000, 1.05);
+  for (std::size_t i = 0; i < samples.size(); i += 10) samples[i] *= 1.35 / 1.05;
+  gcs::detail::SurfaceFitParams p = params_for(0.2);
+  p.max_sample_distance = 0.6;
+  p.rounds = 4;
+  ASSERT_TRUE(p.l1_weights);
+  Mesh l1 = edgefront::shapes::icosphere(3, 1.0);
+  Mesh l2 = l1;
+  const gcs::detail::SurfaceFitReport r1 = gcs::detail::fit_to_samples(l1, samples, {}, p);
+  p.l1_weights = false;
+  const gcs::detail::SurfaceFitReport r2 = gcs::detail::fit_to_samples(l2, samples, {}, p);
+  EXPECT_EQ(r1.samples_used, samples.size());
+  EXPECT_EQ(r2.samples_used, samples.size());
+  EXPECT_LT(r1.mean_distance_after, 0.9 * r2.mean_distance_after);
+  double off1 = 0, off2 = 0;
+  for (auto v : l1.vertices()) {
+    off1 += std::abs(l1.point(v).norm() - 1.05);
+    off2 += std::abs(l2.point(v).norm() - 1.05);
+  }
+  EXPECT_LT(off1, 0.5 * off2);
+}
+
 // A sample whose normal is perpendicular to its closest face (another layer) is ignored.
 TEST(GcsSurfaceFit, SamplesFacingSidewaysAreIgnored) {
   Mesh m = edgefront::shapes::icosphere(2, 1.05);

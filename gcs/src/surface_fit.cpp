@@ -173,6 +173,12 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
 
   std::vector<Vec3> offset(nv, Vec3(0, 0, 0));  // pos - start
   std::vector<std::size_t> used;       // the samples of the first round
+  struct Row {  // one sample's equation: sum_k a[k] t_{v[k]} = r
+    int v[3];
+    double a[3];
+    double r;
+  };
+  std::vector<Row> rows;
   Foot foot;
   for (int round = 0; round < params.rounds; ++round) {
     const std::vector<Vec3> vn = unit_vertex_normals(mesh);
@@ -180,6 +186,7 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
     std::vector<Eigen::Triplet<double>> triplets;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nv));
     double dist_sum = 0;
+    rows.clear();
     for (std::size_t i = 0; i < samples.size(); i += stride) {
       const Vec3& p = samples[i];
       if (!finder.find(p, foot) || !(foot.distance <= params.max_sample_distance)) continue;
@@ -193,12 +200,24 @@ SurfaceFitReport fit_to_samples(Mesh& mesh, const std::vector<Vec3>& samples, co
         used.push_back(i);
         dist_sum += foot.distance;
       }
-      double a[3];
-      for (int k = 0; k < 3; ++k) a[k] = foot.b[k] * (vn[static_cast<std::size_t>(foot.v[k])] | foot.unit_normal);
-      const double r = (p - foot.point) | foot.unit_normal;
+      Row row;
       for (int k = 0; k < 3; ++k) {
-        rhs[foot.v[k]] += a[k] * r;
-        for (int j = 0; j < 3; ++j) triplets.emplace_back(foot.v[k], foot.v[j], a[k] * a[j]);
+        row.v[k] = foot.v[k];
+        row.a[k] = foot.b[k] * (vn[static_cast<std::size_t>(foot.v[k])] | foot.unit_normal);
+      }
+      row.r = (p - foot.point) | foot.unit_normal;
+      rows.push_back(row);
+    }
+    // Iteratively reweighted least squares (l1_weights): weights mean|r| / max(|r|, 0.1 mean|r|).
+    double mean_abs = 0;
+    for (const Row& row : rows) mean_abs += std::abs(row.r);
+    mean_abs = rows.empty() ? 0.0 : mean_abs / static_cast<double>(rows.size());
+    const bool reweight = params.l1_weights && round > 0 && mean_abs > 0;
+    for (const Row& row : rows) {
+      const double w = reweight ? mean_abs / std::max(std::abs(row.r), 0.1 * mean_abs) : 1.0;
+      for (int k = 0; k < 3; ++k) {
+        rhs[row.v[k]] += w * row.a[k] * row.r;
+        for (int j = 0; j < 3; ++j) triplets.emplace_back(row.v[k], row.v[j], w * row.a[k] * row.a[j]);
       }
     }
     if (round == 0) {

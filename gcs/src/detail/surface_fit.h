@@ -10,7 +10,11 @@
 //   sum_k b_k (n_k . m) t_k = (p - q) . m.
 // These equations, a smoothness term (t_u - t_v)^2 per edge and a small pull toward t = 0 are
 // solved in the least-squares sense (conjugate gradients), a few rounds with the closest points
-// recomputed. Tangential positions do not change (angles and valences stay as the loop made them).
+// recomputed. With l1_weights, every round after the first weights each sample's equation by
+// mean|r| / max(|r|, 0.1 mean|r|) (r: its residual at the start of the round, the mean over the
+// round's samples): iteratively reweighted least squares toward the smallest mean distance (the
+// evaluation's Chamfer-L1) instead of the smallest mean squared distance, so a few far samples
+// (noise, the other side of a crease) pull less and the many near ones are met more closely. Tangential positions do not change (angles and valences stay as the loop made them).
 // Guards: a vertex moves at most max_move in total; a face whose normal would turn by more than
 // acos(min_face_cos) from where the fit started has its vertices' moves halved (up to 8 times,
 // then dropped); both faces of every self-intersecting pair that the moves created have their
@@ -34,6 +38,7 @@ struct SurfaceFitParams {
   /// ignored when its normal points against its closest face's (the other side of a thin shell).
   bool oriented_normals = false;
   bool measure_after = true;  ///< fill SurfaceFitReport::mean_distance_after (one more search pass)
+  bool l1_weights = true;     ///< rounds after the first reweight the samples (see the file comment)
 };
 
 struct SurfaceFitReport {
