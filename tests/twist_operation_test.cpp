@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <vector>
 
+#include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
 #include "gcs/reconstructor.h"
@@ -95,6 +97,40 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   EXPECT_GE(with, without + 0.12);
   EXPECT_GT(op->stats().repairs, 0u);
   EXPECT_EQ(edgefront::compute_stats(r.mesh).nonmanifold_vertices, 0u);
+}
+
+// Without point normals the loop leaves scattered regions alone (max_border_ratio_without_normals);
+// with normals that limit does not apply. A ratio low enough to call the flipped disk's region
+// scattered shows both sides; the default ratio repairs it without normals (test above).
+TEST(TwistOperation, ScatteredLimitAppliesOnlyWithoutNormals) {
+  gcs::TwistOperationOptions opt;
+  opt.max_border_ratio_without_normals = 0.1;
+  {
+    twist::TwistedShape s = twist::flipped_disk_plate();
+    const edgefront::PointCloud no_points;
+    gcs::OperationContext ctx{no_points};
+    ctx.live_vertices = s.mesh.n_vertices();
+    gcs::TwistOperation op(opt);
+    EXPECT_FALSE(op.apply(s.mesh, all_faces(s.mesh), ctx).mesh_changed);
+    EXPECT_EQ(op.stats().repairs, 0u);
+    EXPECT_GE(op.stats().regions_scattered, 1u);
+  }
+  {
+    twist::TwistedShape s = twist::flipped_disk_plate();
+    const edgefront::PointCloud cloud = twist::truth_points(s);
+    gcs::OperationContext ctx{cloud};
+    ctx.live_vertices = s.mesh.n_vertices();
+    gcs::TwistOperation op(opt);
+    EXPECT_TRUE(op.apply(s.mesh, all_faces(s.mesh), ctx).mesh_changed);
+    EXPECT_EQ(op.stats().regions_scattered, 0u);
+    s.mesh.garbage_collection();
+    EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0);
+  }
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    gcs::TwistOperationOptions o;
+    o.max_border_ratio_without_normals = bad;
+    EXPECT_THROW(gcs::TwistOperation{o}, edgefront::InvalidInput) << bad;
+  }
 }
 
 }  // namespace

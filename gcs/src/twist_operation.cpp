@@ -7,10 +7,16 @@
 #include <limits>
 #include <string>
 
+#include "edgefront/error.h"
+
 namespace gcs {
 
 TwistOperation::TwistOperation(TwistOperationOptions options) : options_(std::move(options)) {
   options_.repair.garbage_collect = false;  // the loop's handles are indices
+  if (!(options_.max_border_ratio_without_normals >= 0) || !std::isfinite(options_.max_border_ratio_without_normals)) {
+    throw edgefront::InvalidInput("twist operation: max_border_ratio_without_normals must be finite and >= 0, got " +
+                                  std::to_string(options_.max_border_ratio_without_normals));
+  }
 }
 
 TwistOperation::~TwistOperation() = default;
@@ -47,6 +53,7 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   if (!repairer_) {
     twist::RepairOptions o = options_.repair;
     o.detect.reference = reference_.get();
+    if (!reference_) o.max_border_ratio = options_.max_border_ratio_without_normals;
     repairer_ = std::make_unique<twist::TwistRepairer>(o, options_.max_retwists);
   }
   if (context.live_vertices < options_.min_vertices && !context.final_call) return result;

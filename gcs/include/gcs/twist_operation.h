@@ -22,7 +22,8 @@ namespace gcs {
 
 struct TwistOperationOptions {
   /// Detection and repair settings (garbage collection is forced off). Defaults here: no limit
-  /// on the border of a region (`max_border_ratio` = 0): in the loop, cutting scattered regions
+  /// on the border of a region (`max_border_ratio` = 0; for a cloud with normals, see
+  /// `max_border_ratio_without_normals` for one without): in the loop, cutting scattered regions
   /// too gives higher orientation consistency on the vault shells, at the price of more
   /// components (bench/results/twist-vaults.md has both); and the final call peels border flaps
   /// (`peel_flaps` = 3: faces at a border lying over another layer with the same orientation),
@@ -37,6 +38,14 @@ struct TwistOperationOptions {
     o.drop_turned_patches = 4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
     return o;
   }
+  /// `repair.max_border_ratio` for a cloud without normals. Without normals the detector's
+  /// evidence is geometric only (facing layers, folded edges, self-intersections), and on a noisy
+  /// cloud whose noise is about an edge length the loop's crumpled surface shows such evidence all
+  /// over: CGAL's sphere_20k at 10K vertices came out in 31 pieces with 40 holes when every such
+  /// region was cut (5,695 regions found). So without normals a region whose cut border is longer
+  /// than this ratio times the square root of its face count (plus 16 edges) is left alone as
+  /// scattered evidence (see `twist::RepairOptions::max_border_ratio`). 0 = no limit; finite, >= 0.
+  double max_border_ratio_without_normals = 4.0;
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
   /// Use the input normals as reference when the cloud has them (for a large cloud the loop
