@@ -47,6 +47,10 @@ bool listed(const std::vector<std::pair<int, int>>& keys, VertexHandle a, Vertex
   return std::binary_search(keys.begin(), keys.end(), pair_key(a, b));
 }
 
+// Half-width (radians) of the near-Delaunay band of opposite-angle sums in which the valences
+// decide (see delaunay_flips).
+constexpr double kValenceSlack = 30.0 * std::numbers::pi / 180.0;
+
 // One run of Delaunay flips (see delaunay_flips), skipping the edges whose end pairs are in
 // `frozen`; returns the flipped edges in order and flags (by face index, in `changed`) the faces
 // whose triangle a flip replaced (a flip keeps the two face handles of its edge).
@@ -65,7 +69,20 @@ std::vector<edgefront::EdgeHandle> flip_pass(Mesh& mesh, double min_dihedral_cos
       const auto too_low = [&](VertexHandle x) { return mesh.valence(x) <= (mesh.is_boundary(x) ? 2u : 3u); };
       if (too_low(p) || too_low(q) || listed(frozen, p, q)) continue;
       const Vec3 &xp = mesh.point(p), &xq = mesh.point(q), &xr = mesh.point(r), &xt = mesh.point(t);
-      if (angle_at(xr, xp, xq) + angle_at(xt, xq, xp) <= std::numbers::pi + 1e-9) continue;
+      const double opposite = angle_at(xr, xp, xq) + angle_at(xt, xq, xp);
+      if (opposite <= std::numbers::pi - kValenceSlack) continue;
+      if (opposite <= std::numbers::pi + kValenceSlack) {
+        // Near-Delaunay, the valences decide (sum of the four squared deviations from 6, 4 on a
+        // border): a non-Delaunay edge is flipped unless that worsens them, a Delaunay one when it
+        // improves them by at least 2. Neither rule flips the new edge back: its opposite angles sum
+        // to at most pi + slack, and flipping it back would undo the gain or cross pi the wrong way.
+        const auto dev = [&](VertexHandle x, int change) {
+          const int d = static_cast<int>(mesh.valence(x)) + change - (mesh.is_boundary(x) ? 4 : 6);
+          return d * d;
+        };
+        const int gain = dev(p, 0) + dev(q, 0) + dev(r, 0) + dev(t, 0) - dev(p, -1) - dev(q, -1) - dev(r, 1) - dev(t, 1);
+        if (!(gain >= 2 || (gain >= 0 && opposite > std::numbers::pi + 1e-9))) continue;
+      }
       const Vec3 n0 = unit_normal_of(xp, xq, xr), n1 = unit_normal_of(xq, xp, xt);
       if ((n0 | n1) < min_dihedral_cos) continue;
       const Vec3 m0 = unit_normal_of(xp, xt, xr), m1 = unit_normal_of(xt, xq, xr);

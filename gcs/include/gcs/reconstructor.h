@@ -132,7 +132,9 @@ struct ReconstructOptions {
   bool project_to_samples = true;
   /// Post-processing of the returned mesh, after project_to_samples and before the fit: interior
   /// edges whose two opposite angles sum to more than 180 degrees are flipped (toward a Delaunay
-  /// triangulation on the surface) where the two faces and the two new faces are within about 25
+  /// triangulation on the surface) unless, within 30 degrees of 180, the flip takes the four
+  /// vertices' valences farther from 6 (4 on a border); edges within 30 degrees below 180 are
+  /// flipped when that brings the valences nearer 6; all where the two faces and the two new faces are within about 25
   /// degrees of each other (creases stay) and no end drops below valence 3 (2 on a border); flips that would create
   /// a self-intersecting face pair are not made. Vertex positions do not change. It removes most
   /// of the loop's thin faces (on the kitten at 5K vertices the smallest angle goes from about

@@ -22,8 +22,11 @@ namespace gcs::detail {
 std::size_t project_to_samples(edgefront::Mesh& mesh, const CloudQuery& nearest, double max_move,
                                double min_face_cos = 0.5);
 
-/// Flips interior edges toward a Delaunay triangulation on the surface: an edge whose two
-/// opposite angles sum to more than pi is flipped when both its faces and both new faces are
+/// Flips interior edges toward a Delaunay triangulation on the surface with even valences: an
+/// edge whose two opposite angles sum to more than pi + 30 degrees is flipped; within 30 degrees
+/// of pi the valences of its four vertices decide (sum of squared deviations from 6, 4 on a
+/// border): an edge above pi is flipped unless that raises the sum, one below when that lowers it
+/// by at least 2; either only when both its faces and both new faces are
 /// nearly coplanar (every pair of their unit normals has a cosine >= min_dihedral_cos, so creases
 /// stay) and both its ends keep valence >= 3 (>= 2 on a border); passes over all edges until
 /// none flips (at most max_passes). If a face whose triangle a flip replaced is in a
