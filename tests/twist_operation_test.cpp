@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
 #include "gcs/reconstructor.h"
@@ -95,6 +97,27 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   EXPECT_GE(with, without + 0.12);
   EXPECT_GT(op->stats().repairs, 0u);
   EXPECT_EQ(edgefront::compute_stats(r.mesh).nonmanifold_vertices, 0u);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {
+  edgefront::shapes::SampleOptions so;
+  so.points = 500;
+  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", so);
+  gcs::ReconstructOptions ro;
+  ro.target_vertices = 100;
+  for (int rounds : {-1, 17}) {
+    ro.stacked_layer_rounds = rounds;
+    try {
+      gcs::Reconstructor rec(cloud, ro);
+      FAIL() << "no exception for " << rounds;
+    } catch (const edgefront::InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("stacked_layer_rounds"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -873,6 +873,8 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
   return out;
 }
 
+void validate_detect_options(const Mesh& mesh, const DetectOptions& options) { validate_options(mesh, options); }
+
 size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options, LayerRule rule) {
   return same_orientation_pairs(mesh, options, rule).size();
 }

@@ -776,6 +776,90 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   return repair_impl(mesh, options, nullptr, dups);
 }
 
+StackedLayerReport remove_stacked_layers(Mesh& mesh, const StackedLayerOptions& options) {
+  detail::check_mesh(mesh, "twist::remove_stacked_layers");
+  if (options.rounds < 1 || options.rounds > 16) throw InvalidInput("twist::remove_stacked_layers: option rounds must lie in [1, 16]");
+  if (options.max_group_faces < 1 || options.max_group_faces > 1000) {
+    throw InvalidInput("twist::remove_stacked_layers: option max_group_faces must lie in [1, 1000]");
+  }
+  if (options.min_component_faces < 1) throw InvalidInput("twist::remove_stacked_layers: option min_component_faces must be >= 1");
+  DetectOptions d = options.detect;
+  d.reference = nullptr;
+  d.restrict_to.reset();
+  d.face_grid = nullptr;
+  d.mean_edge_length = 0;
+  validate_detect_options(mesh, d);
+  StackedLayerReport report;
+  auto has_border = [&] {
+    for (HalfedgeHandle h : mesh.halfedges()) {
+      if (mesh.is_boundary(h)) return true;
+    }
+    return false;
+  };
+  if (!has_border()) return report;  // nothing a removal could take (and no scan)
+  for (int round = 0;; ++round) {
+    const auto pairs = mesh.faces().begin() == mesh.faces().end()
+                           ? std::vector<std::pair<FaceHandle, FaceHandle>>{}
+                           : same_orientation_pairs(mesh, d, LayerRule::Stacked);
+    if (round == 0) report.pairs_before = pairs.size();
+    report.pairs_after = pairs.size();
+    if (pairs.empty() || round == options.rounds) break;
+    std::unordered_set<int> stacked;
+    for (const auto& [f, g] : pairs) {
+      stacked.insert(f.idx());
+      stacked.insert(g.idx());
+    }
+    // Is the edge-connected group of stacked faces around f small? (explored with a budget)
+    std::unordered_map<int, bool> small;
+    auto in_small_group = [&](FaceHandle f) {
+      const auto it = small.find(f.idx());
+      if (it != small.end()) return it->second;
+      std::vector<FaceHandle> group{f};
+      std::unordered_set<int> seen{f.idx()};
+      for (size_t q = 0; q < group.size() && group.size() <= options.max_group_faces; ++q) {
+        for (FaceHandle g : mesh.ff_range(group[q])) {
+          if (stacked.count(g.idx()) && seen.insert(g.idx()).second) group.push_back(g);
+        }
+      }
+      const bool is_small = group.size() <= options.max_group_faces;
+      if (is_small) {
+        for (FaceHandle g : group) small.emplace(g.idx(), true);
+      }
+      return small.emplace(f.idx(), is_small).first->second;
+    };
+    // (border edges, border vertices) of a face; (0, 0) away from the border.
+    auto border_rank = [&](FaceHandle f) {
+      int edges = 0, vertices = 0;
+      for (HalfedgeHandle h : mesh.fh_range(f)) edges += mesh.is_boundary(mesh.opposite_halfedge_handle(h));
+      for (VertexHandle v : mesh.fv_range(f)) vertices += mesh.is_boundary(v);
+      return std::pair<int, int>(edges, vertices);
+    };
+    std::vector<FaceHandle> doomed;
+    for (const auto& [f, g] : pairs) {
+      FaceHandle victim;
+      std::pair<int, int> best(0, 0);
+      double best_area = 0;
+      for (FaceHandle x : {f, g}) {
+        const std::pair<int, int> rank = border_rank(x);
+        if (rank.second == 0 || !in_small_group(x)) continue;
+        const double a = mesh.calc_face_area(x);
+        if (!victim.is_valid() || rank > best || (rank == best && (a < best_area || (a == best_area && x.idx() > victim.idx())))) {
+          victim = x;
+          best = rank;
+          best_area = a;
+        }
+      }
+      if (victim.is_valid()) doomed.push_back(victim);
+    }
+    if (doomed.empty()) break;
+    std::sort(doomed.begin(), doomed.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+    doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
+    report.faces_removed += remove_faces(mesh, doomed, options.min_component_faces);
+    ++report.rounds;
+  }
+  return report;
+}
+
 TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
     : options_(std::move(options)), max_retwists_(max_retwists) {}
 
