@@ -46,9 +46,10 @@
 /// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
 /// `--stacked-rounds N` the rounds of the reconstructor's last post-processing step, the removal of
 /// small stacked double layers at borders (`ReconstructOptions::stacked_layer_rounds`, 0 = off;
-/// column "stacked before the removal / removed": the faces with a stacked partner it found on
-/// the post-processed mesh, before it removed any (0 when it did not scan: off, or no border),
-/// and the faces it removed, for the plain and the repair run).
+/// column "stacked before the removal / removed / pleats flattened": the faces with a stacked
+/// partner it found on the post-processed mesh, before it changed anything (0 when it did not
+/// scan: off, or no border), the faces it removed and the pleats it smoothed flat, for the plain
+/// and the repair run).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
@@ -479,7 +480,7 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | stacked before the removal / removed: plain, repair | twist time share | twist CPU share |\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | stacked before the removal / removed / pleats flattened: plain, repair | twist time share | twist CPU share |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
@@ -511,7 +512,7 @@ int main(int argc, char** argv) {
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
-      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0}, stacked_removed[2] = {0, 0}, stacked_found[2] = {0, 0};
+      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0}, stacked_removed[2] = {0, 0}, stacked_found[2] = {0, 0}, pleats[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0, cpu_share = 0;
       for (int with = only_repair ? 1 : 0; with < 2; ++with) {
@@ -541,6 +542,7 @@ int main(int argc, char** argv) {
         const double run_cpu = cpu_seconds() - c0;
         stacked_removed[with] = r.stacked_faces_removed;
         stacked_found[with] = r.stacked_faces_found;
+        pleats[with] = r.stacked_pleats_flattened;
         cons[with] = consistency(r.mesh, truth);
         cover[with] = coverage(r.mesh, dense_cloud);
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
@@ -564,11 +566,11 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu / %zu, %zu / %zu | %.1f%% | %.1f%% |\n",
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu / %zu / %zu, %zu / %zu / %zu | %.1f%% | %.1f%% |\n",
                   label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
                   cons[0].undecided, stacked[0], left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
                   cons[1].judged, cons[1].undecided, stacked[1], left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, stacked_found[0], stacked_removed[0], stacked_found[1], stacked_removed[1], 100 * share, 100 * cpu_share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, stacked_found[0], stacked_removed[0], pleats[0], stacked_found[1], stacked_removed[1], pleats[1], 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

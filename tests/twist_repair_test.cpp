@@ -614,6 +614,57 @@ TEST(TwistRepair, StackedLayersOfALargeOverlapOrAClosedMeshAreLeft) {
   EXPECT_EQ(tube.mesh.n_faces(), faces);
 }
 
+TEST(TwistRepair, PleatAroundAnOpenTubeIsSmoothedFlat) {
+  // An open tube along x (radius 1, 12 segments around) with a Z fold all around: the rings at
+  // x = 0, 1, 2, 3, then back to x = 2 (radius 1.03), then x = 3, 4, 5, 6 (radius 1.06). The
+  // tube's faces over 2 <= x <= 3 and the wider ones above them face out, stacked; the band
+  // between them faces in. The borders are the tube's ends, far from the fold.
+  constexpr int kAround = 12;
+  const double xs[] = {0, 1, 2, 3, 2, 3, 4, 5, 6};
+  const double rs[] = {1, 1, 1, 1, 1.03, 1.06, 1.06, 1.06, 1.06};
+  Mesh m;
+  std::vector<Mesh::VertexHandle> v;
+  for (int i = 0; i < 9; ++i) {
+    for (int k = 0; k < kAround; ++k) {
+      const double a = 2 * std::numbers::pi * k / kAround;
+      v.push_back(m.add_vertex(Vec3(xs[i], rs[i] * std::cos(a), rs[i] * std::sin(a))));
+    }
+  }
+  const auto at = [&](int i, int k) { return v[static_cast<size_t>(i * kAround + k % kAround)]; };
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < kAround; ++k) {
+      m.add_face(at(i, k), at(i, k + 1), at(i + 1, k + 1));
+      m.add_face(at(i, k), at(i + 1, k + 1), at(i + 1, k));
+    }
+  }
+  auto inward = [](const Mesh& mesh) {
+    size_t n = 0;
+    for (FaceHandle f : mesh.faces()) {
+      const Vec3 c = mesh.calc_face_centroid(f);
+      n += OpenMesh::dot(mesh.calc_face_normal(f), Vec3(0, c[1], c[2])) < 0;
+    }
+    return n;
+  };
+  ASSERT_EQ(inward(m), 2u * kAround) << "the turned band";
+  const size_t stacked = twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 4u * kAround) << "both outward layers over the band";
+  Mesh kept = m;
+  EXPECT_EQ(twist::remove_stacked_layers(kept).pleats_flattened, 0u) << "a fold all around is no small pleat";
+  EXPECT_EQ(inward(kept), 2u * kAround);
+  twist::StackedLayerOptions o;
+  o.max_group_faces = 1000;
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(m, o);
+  EXPECT_EQ(r.faces_removed, 0u) << "no face of the pairs touches a border";
+  EXPECT_GT(r.pleats_flattened, 0u);
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked), 0u);
+  EXPECT_EQ(inward(m), 0u) << "the band turned out with its neighbours";
+  const edgefront::MeshStats st = edgefront::compute_stats(m);
+  EXPECT_EQ(st.faces, 16u * kAround);
+  EXPECT_EQ(st.degenerate_faces, 0u);
+  EXPECT_EQ(st.border_loops, 2u);
+}
+
 TEST(TwistRepair, StackedLayerRemovalRejectsBadOptions) {
   Mesh m = spiral_ramp(1);
   Mesh empty;

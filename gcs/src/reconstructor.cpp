@@ -1350,6 +1350,7 @@ struct Reconstructor::Impl {
       const twist::StackedLayerReport layers = twist::remove_stacked_layers(r.mesh, so);
       r.stacked_faces_found = layers.pairs_before;
       r.stacked_faces_removed = layers.faces_removed;
+      r.stacked_pleats_flattened = layers.pleats_flattened;
       if (r.stacked_faces_removed > 0) r.mesh.garbage_collection();
       r.seconds_fit += seconds_since(t_layers);
     }

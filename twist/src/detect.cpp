@@ -257,10 +257,7 @@ class Detector {
   const Vec3& normal(FaceHandle f) { return geo(f).normal; }
   /// Do f and g (same orientation) cover each other along their mean normal (`LayerRule::Stacked`)?
   bool stacked_on(FaceHandle f, FaceHandle g) {
-    constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)
-    const Vec3 m = (normal(f) + normal(g)).normalized();
-    const double edge = std::min(geo(f).longest, geo(g).longest);
-    return detail::projected_overlap(points(f), points(g), m) > kStackedOverlap * edge;
+    return detail::stacked_layers(points(f), normal(f), geo(f).longest, points(g), normal(g), geo(g).longest);
   }
   const Vec3& center(FaceHandle f) { return geo(f).centre; }
 

@@ -85,6 +85,12 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
   return false;
 }
 
+bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
+                    const Vec3& nb, double lb) {
+  constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)
+  return projected_overlap(a, b, (na + nb).normalized()) > kStackedOverlap * std::min(la, lb);
+}
+
 double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction) {
   // An in-plane basis (u, v) perpendicular to the direction.
   const Vec3 helper = std::abs(direction[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);

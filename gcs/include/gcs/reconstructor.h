@@ -159,8 +159,10 @@ struct ReconstructOptions {
   /// place alone. Rims and hole borders of thin shells curl over the surface next to them (the
   /// loop's border operations, and the projection, flips and fit above move rim vertices), and
   /// two layers of one wall with the same orientation are what a twist looks like
-  /// (bench/results/twist-vaults.md). Layers of a wall twisted front to back (large groups) and
-  /// pleats inside the surface are left; a mesh without a border is not scanned. In [0, 16]; 0 = off.
+  /// (bench/results/twist-vaults.md). A small pair with no face on the border is a pleat (a Z
+  /// fold): it is smoothed flat where that works without new folds. Layers of a wall twisted
+  /// front to back (large groups) are left; a mesh without a border is not scanned (a closed
+  /// result keeps its bytes). In [0, 16]; 0 = off.
   int stacked_layer_rounds = 3;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
@@ -235,6 +237,7 @@ struct ReconstructResult {
   double seconds_fit = 0;         ///< of it: in the surface fit, Delaunay flips and stacked-layer removal of the returned mesh
   std::size_t stacked_faces_found = 0;    ///< faces with a stacked same-orientation partner before that removal
   std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (ReconstructOptions::stacked_layer_rounds)
+  std::size_t stacked_pleats_flattened = 0;  ///< stacked pairs inside the surface it smoothed apart
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
 };
 

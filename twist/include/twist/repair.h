@@ -155,8 +155,8 @@ struct StackedLayerOptions {
   /// How pairs are found (`same_orientation_pairs` with `LayerRule::Stacked`; `reference`,
   /// `restrict_to`, `face_grid` and `mean_edge_length` are ignored).
   DetectOptions detect;
-  /// Rounds of removal; each round finds the pairs again and removes at most one face per pair
-  /// (a face removed can leave its neighbour stacked on the same layer). In [1, 16].
+  /// Rounds; each round finds the pairs again, removes at most one face per pair (a face removed
+  /// can leave its neighbour stacked on the same layer) and flattens pleats. In [1, 16].
   int rounds = 3;
   /// A face is removed only when the edge-connected group of faces that have or are a stacked
   /// partner around it has at most this many faces: a small double layer at a rim or hole, not
@@ -172,7 +172,8 @@ struct StackedLayerReport {
   size_t pairs_before = 0;   ///< faces with a stacked same-orientation partner before
   size_t pairs_after = 0;    ///< and after
   size_t faces_removed = 0;  ///< border faces of stacked pairs, and the tiny pieces they left
-  size_t rounds = 0;         ///< rounds that removed something
+  size_t pleats_flattened = 0;  ///< pairs with no face on the border smoothed apart
+  size_t rounds = 0;         ///< rounds that removed or flattened something
 };
 
 /// Removes small double layers at borders: faces that have a same-orientation partner stacked
@@ -185,9 +186,13 @@ struct StackedLayerReport {
 /// (the mesh stays manifold). Such pairs are not twists (both faces usually agree with the
 /// surface) but overlaps of one wall's faces where a rim or a hole's border curls over the
 /// surface next to it, as a reconstructor's border operations and its post-processing
-/// (projection onto the samples, flips, surface fit) leave them. Pairs with no face on a border
-/// (a pleat inside the surface) and pairs in larger groups (`max_group_faces`) are left. A mesh
-/// without a border is not scanned (nothing to remove). Does not garbage-collect.
+/// (projection onto the samples, flips, surface fit) leave them. A pair with no face on a border
+/// is a pleat (a Z fold inside the surface: the layer between the two faces is turned over): the
+/// interior vertices of the two faces and their neighbours are smoothed together (moved to the
+/// centroids of their neighbours, up to 3 times) and kept so when the two faces then no longer
+/// overlap, no face around is degenerate and no more edges around fold (n.n < 0) than before;
+/// else put back. Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
+/// not scanned (nothing to remove; its pleats stay). Does not garbage-collect.
 /// \throws edgefront::InvalidInput for an empty mesh, non-finite coordinates or options out of
 ///         range (as `detect`, and `rounds`, `max_group_faces`, `min_component_faces`).
 StackedLayerReport remove_stacked_layers(edgefront::Mesh& mesh, const StackedLayerOptions& options = {});

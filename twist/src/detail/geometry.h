@@ -35,6 +35,12 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
 /// the overlap, a length), zero or negative when they only touch or are apart.
 double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction);
 
+/// `LayerRule::Stacked`'s overlap test for two triangles with the same orientation, given their
+/// unit normals and longest edges: projected along their mean normal, they overlap by more than
+/// 0.1 times the shorter longest edge.
+bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
+                    const Vec3& nb, double lb);
+
 /// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
 /// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`
 /// faces around it, so `side` becomes its own component(s). Faces are re-added in the given
