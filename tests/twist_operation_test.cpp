@@ -99,17 +99,10 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   EXPECT_EQ(edgefront::compute_stats(r.mesh).nonmanifold_vertices, 0u);
 }
 
-}  // namespace
-
-namespace {
-
 TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {
-  edgefront::shapes::SampleOptions so;
-  so.points = 500;
-  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", so);
-  gcs::ReconstructOptions ro;
-  ro.target_vertices = 100;
+  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", {});
   for (int rounds : {-1, 17}) {
+    gcs::ReconstructOptions ro;
     ro.stacked_layer_rounds = rounds;
     try {
       gcs::Reconstructor rec(cloud, ro);
