@@ -412,15 +412,18 @@ bool smooth_until(Mesh& mesh, const std::vector<VertexHandle>& vs, int rounds, c
   return false;
 }
 
-/// Flattens a pleat (see `remove_stacked_layers`): the interior vertices of stacked faces f and
-/// g smoothed together, up to 3 rounds, kept when f and g no longer overlap,
+/// Flattens a pleat (see `StackedLayerOptions`): the interior vertices of stacked faces f and g
+/// and their neighbours smoothed together, up to 3 rounds, kept when f and g no longer overlap,
 /// no face around is degenerate and no more edges around fold (n.n < 0) than before. Returns
 /// whether it was kept (false too when a face is gone or no vertex is interior).
 bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
   if (!edgefront::is_live(mesh, f) || !edgefront::is_live(mesh, g)) return false;
   std::vector<VertexHandle> vs;
   for (FaceHandle x : {f, g}) {
-    for (VertexHandle v : mesh.fv_range(x)) vs.push_back(v);
+    for (VertexHandle v : mesh.fv_range(x)) {
+      vs.push_back(v);
+      for (VertexHandle w : mesh.vv_range(v)) vs.push_back(w);
+    }
   }
   std::sort(vs.begin(), vs.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
   vs.erase(std::unique(vs.begin(), vs.end()), vs.end());

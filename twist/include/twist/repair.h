@@ -188,9 +188,8 @@ struct StackedLayerReport {
 /// surface next to it, as a reconstructor's border operations and its post-processing
 /// (projection onto the samples, flips, surface fit) leave them. A pair with no face on a border
 /// is a pleat (a Z fold inside the surface: the layer between the two faces is turned over): the
-/// interior vertices of the two faces are smoothed together (moved to the centroids of their
-/// neighbours, up to 3 times; with their neighbours too they moved up to 2 mean edges and turned
-/// right faces around wrong) and kept so when the two faces then no longer
+/// interior vertices of the two faces and their neighbours are smoothed together (moved to the
+/// centroids of their neighbours, up to 3 times) and kept so when the two faces then no longer
 /// overlap, no face around is degenerate and no more edges around fold (n.n < 0) than before;
 /// else put back. Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
 /// not scanned (nothing to remove; its pleats stay). Does not garbage-collect.
