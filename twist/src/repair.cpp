@@ -415,7 +415,8 @@ bool smooth_until(Mesh& mesh, const std::vector<VertexHandle>& vs, int rounds, c
 /// Flattens a pleat (see `StackedLayerOptions`): the interior vertices of stacked faces f and g
 /// and their neighbours smoothed together, up to 3 rounds, kept when f and g no longer overlap,
 /// no face around is degenerate and no more edges around fold (n.n < 0) than before. Returns
-/// whether it was kept (false too when a face is gone or no vertex is interior).
+/// whether it was kept (false too when a face is gone, no vertex is interior, or the other wall
+/// lies within the pleat's gap behind it).
 bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
   if (!edgefront::is_live(mesh, f) || !edgefront::is_live(mesh, g)) return false;
   std::vector<VertexHandle> vs;
@@ -444,6 +445,21 @@ bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
   };
   const std::optional<size_t> before = folds();
   if (!before) return false;
+  // A face turned against the pair right behind its lower face, closer than the gap between the
+  // two: the stacked faces are the walls of a shell thinner than the mesh resolves, interleaved
+  // (+ - + -), not a fold of one wall; smoothing would merge the walls. Left alone.
+  const FaceGeometry gf = face_geometry(mesh, f), gg = face_geometry(mesh, g);
+  const Vec3 m = (gf.normal + gg.normal).normalized();
+  const double gap = OpenMesh::dot(gg.centre - gf.centre, m);
+  const FaceHandle low = gap > 0 ? f : g;
+  const Vec3 from = gap > 0 ? gf.centre : gg.centre;
+  const Vec3 to = from - std::abs(gap) * m;
+  const double reach2 = std::pow(std::abs(gap) + std::max(gf.longest, gg.longest), 2);
+  for (FaceHandle h : mesh.faces()) {
+    if (h == low || (mesh.calc_face_centroid(h) - from).sqrnorm() > reach2) continue;
+    const auto p = detail::face_points(mesh, h);
+    if (OpenMesh::dot(detail::unit_normal(p), m) < 0 && detail::segment_crosses(from, to, p, 1e-9 * std::abs(gap))) return false;
+  }
   return smooth_until(mesh, vs, 3, [&] {
     const std::optional<size_t> now = folds();
     if (!now || *now > *before) return false;

@@ -191,7 +191,10 @@ struct StackedLayerReport {
 /// interior vertices of the two faces and their neighbours are smoothed together (moved to the
 /// centroids of their neighbours, up to 3 times) and kept so when the two faces then no longer
 /// overlap, no face around is degenerate and no more edges around fold (n.n < 0) than before;
-/// else put back. Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
+/// else put back. A pleat is left when a face turned against the pair lies right behind its
+/// lower face, closer than the gap between the two: the walls of a shell thinner than the mesh
+/// resolves, interleaved, not a fold of one wall (smoothing would merge the walls: vault shell
+/// t/R 0.02 at 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard). Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
 /// not scanned (nothing to remove; its pleats stay). Does not garbage-collect.
 /// \throws edgefront::InvalidInput for an empty mesh, non-finite coordinates or options out of
 ///         range (as `detect`, and `rounds`, `max_group_faces`, `min_component_faces`).

@@ -24,6 +24,10 @@ Vec3 unit_normal(const std::array<Vec3, 3>& p);
 double area(const std::array<Vec3, 3>& p);
 Vec3 centroid(const std::array<Vec3, 3>& p);
 
+/// Does the segment p-q cross the interior of triangle t (not merely touch it: its ends lie more
+/// than `eps` off t's plane on opposite sides, and the crossing more than `eps` inside every edge)?
+bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps);
+
 /// True when the two triangles (sharing no vertex) intersect properly: an edge of one crosses
 /// the interior of the other (touching at a border point within a relative tolerance does not
 /// count; coplanar overlaps are not detected).
