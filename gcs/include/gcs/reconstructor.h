@@ -160,7 +160,8 @@ struct ReconstructOptions {
   /// loop's border operations, and the projection, flips and fit above move rim vertices), and
   /// two layers of one wall with the same orientation are what a twist looks like
   /// (bench/results/twist-vaults.md). A small pair with no face on the border is a pleat (a Z
-  /// fold): it is smoothed flat where that works without new folds. Layers of a wall twisted
+  /// fold): it is smoothed flat where that works without new folds, unless the other wall lies
+  /// within the fold (a shell thinner than the mesh resolves). Layers of a wall twisted
   /// front to back (large groups) are left; a mesh without a border is not scanned (a closed
   /// result keeps its bytes). In [0, 16]; 0 = off.
   int stacked_layer_rounds = 3;
