@@ -5,7 +5,8 @@
 ///               [--thickness t] [--side-weight W] [--thin-wall E] [--margin M] [--max-retwists K] [--regrow]
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
-///               [--no-rejoin] [--peel N] [--turned N] [--no-post] [--only-repair] [--explain 1|2] [--trace] [--dump PREFIX]
+///               [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--only-repair] [--explain 1|2]
+///               [--trace] [--dump PREFIX]
 ///   bench_twist --explain-mesh MESH [--shapes S] [--thickness t] [--explain 2]
 ///                                     where the same-orientation pairs of a saved result lie
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
@@ -42,7 +43,13 @@
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
 /// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`),
 /// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
-/// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped").
+/// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
+/// `--stacked-rounds N` the rounds of the reconstructor's last post-processing step, the removal of
+/// small stacked double layers at borders (`ReconstructOptions::stacked_layer_rounds`, 0 = off;
+/// column "stacked before the removal / removed / pleats flattened": the faces with a stacked
+/// partner it found on the post-processed mesh, before it changed anything (0 when it did not
+/// scan: off, or no border), the faces it removed and the pleats it smoothed flat, for the plain
+/// and the repair run).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
@@ -377,7 +384,7 @@ int main(int argc, char** argv) {
   double thin_wall = twist::DetectOptions{}.thin_wall;
   int explain = 0;
   bool only_repair = false, trace = false, rejoin = gcs::TwistOperationOptions{}.rejoin_borders;
-  int peel = -1, turned = -1;
+  int peel = -1, turned = -1, stacked_rounds = -1;
   std::string dump;
   bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
@@ -415,6 +422,7 @@ int main(int argc, char** argv) {
     else if (a == "--rejoin") rejoin = true;
     else if (a == "--peel") peel = std::stoi(next());
     else if (a == "--turned") turned = std::stoi(next());
+    else if (a == "--stacked-rounds") stacked_rounds = std::stoi(next());
     else if (a == "--dump") dump = next();
     else if (a == "--explain-mesh") explain_mesh = next();
     else if (a == "--no-post") post = false;
@@ -425,7 +433,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--thin-wall E] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
       return 2;
     }
   }
@@ -472,8 +480,8 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | twist time share | twist CPU share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | stacked before the removal / removed / pleats flattened: plain, repair | twist time share | twist CPU share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
     std::string label = c.label;
@@ -500,10 +508,11 @@ int main(int argc, char** argv) {
       ro.seed = seed;
       ro.orient_winners = orient_winners;
       ro.project_to_samples = ro.fit_surface = post;
+      if (stacked_rounds >= 0) ro.stacked_layer_rounds = stacked_rounds;
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
-      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0};
+      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0}, stacked_removed[2] = {0, 0}, stacked_found[2] = {0, 0}, pleats[2] = {0, 0};
       gcs::TwistOperationStats stats;
       double share = 0, cpu_share = 0;
       for (int with = only_repair ? 1 : 0; with < 2; ++with) {
@@ -531,6 +540,9 @@ int main(int argc, char** argv) {
         const double c0 = cpu_seconds();
         const gcs::ReconstructResult r = rec.run();
         const double run_cpu = cpu_seconds() - c0;
+        stacked_removed[with] = r.stacked_faces_removed;
+        stacked_found[with] = r.stacked_faces_found;
+        pleats[with] = r.stacked_pleats_flattened;
         cons[with] = consistency(r.mesh, truth);
         cover[with] = coverage(r.mesh, dense_cloud);
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
@@ -554,11 +566,11 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %.1f%% | %.1f%% |\n",
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu / %zu / %zu, %zu / %zu / %zu | %.1f%% | %.1f%% |\n",
                   label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
                   cons[0].undecided, stacked[0], left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
                   cons[1].judged, cons[1].undecided, stacked[1], left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, 100 * share, 100 * cpu_share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, stacked_found[0], stacked_removed[0], pleats[0], stacked_found[1], stacked_removed[1], pleats[1], 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "edgefront/error.h"
@@ -130,6 +131,20 @@ TEST(TwistOperation, ScatteredLimitAppliesOnlyWithoutNormals) {
     gcs::TwistOperationOptions o;
     o.max_border_ratio_without_normals = bad;
     EXPECT_THROW(gcs::TwistOperation{o}, edgefront::InvalidInput) << bad;
+  }
+}
+
+TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {
+  const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", {});
+  for (int rounds : {-1, 17}) {
+    gcs::ReconstructOptions ro;
+    ro.stacked_layer_rounds = rounds;
+    try {
+      gcs::Reconstructor rec(cloud, ro);
+      FAIL() << "no exception for " << rounds;
+    } catch (const edgefront::InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("stacked_layer_rounds"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -513,6 +514,181 @@ TEST(TwistRepair, MobiusSoupIsCutOpenAndReportedNonOrientable) {
   EXPECT_EQ(a.faces_reversed, annulus.size() / 2);
   EXPECT_EQ(a.mesh.n_faces(), annulus.size());
   EXPECT_EQ(edgefront::compute_stats(a.mesh).border_loops, 2u);
+}
+
+/// A flat spiral ramp: the annulus 1 <= r <= 2 (2 segments across, 24 around a turn) wound
+/// through one turn plus `extra` segments, rising `pitch` per turn, facing +z. Its two ends
+/// overlap over `extra` segments: one wall's border curled over itself, two layers with the same
+/// orientation, close in space, a turn apart along the surface.
+Mesh spiral_ramp(int extra, double pitch = 0.05) {
+  Mesh m;
+  constexpr int kAround = 24;
+  const int columns = kAround + extra;
+  std::vector<Mesh::VertexHandle> v;
+  for (int i = 0; i <= columns; ++i) {
+    const double a = 2 * std::numbers::pi * i / kAround;
+    for (int k = 0; k <= 2; ++k) {
+      const double r = 1.0 + 0.5 * k;
+      v.push_back(m.add_vertex(Vec3(r * std::cos(a), r * std::sin(a), pitch * i / kAround)));
+    }
+  }
+  const auto at = [&](int i, int k) { return v[static_cast<size_t>(i * 3 + k)]; };
+  for (int i = 0; i < columns; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      m.add_face(at(i, k), at(i + 1, k), at(i + 1, k + 1));
+      m.add_face(at(i, k), at(i + 1, k + 1), at(i, k + 1));
+    }
+  }
+  return m;
+}
+
+/// Is the point (x, y) inside the xy projection of some face of `mesh`?
+bool covered_in_plan(const Mesh& mesh, double x, double y) {
+  for (FaceHandle f : mesh.faces()) {
+    std::array<Vec3, 3> p;
+    size_t i = 0;
+    for (auto v : mesh.fv_range(f)) p[i++] = mesh.point(v);
+    double s[3];
+    for (size_t e = 0; e < 3; ++e) {
+      const Vec3& a = p[e];
+      const Vec3& b = p[(e + 1) % 3];
+      s[e] = (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+    }
+    if ((s[0] >= -1e-12 && s[1] >= -1e-12 && s[2] >= -1e-12) || (s[0] <= 1e-12 && s[1] <= 1e-12 && s[2] <= 1e-12)) return true;
+  }
+  return false;
+}
+
+TEST(TwistRepair, StackedBorderLayerOfACurledRimIsRemoved) {
+  // The ramp's two ends overlap over one segment (4 faces each): each of them is stacked on a
+  // face of the other end, all touching the border.
+  Mesh m = spiral_ramp(1);
+  const Mesh before = m;
+  const size_t stacked = twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 8u) << "both ends' overlapping faces";
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(m);
+  EXPECT_EQ(r.pairs_before, stacked);
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked), 0u);
+  EXPECT_GE(r.faces_removed, 4u);
+  EXPECT_LE(r.faces_removed, 8u) << "no more than the overlap";
+  const edgefront::MeshStats st = edgefront::compute_stats(m);
+  EXPECT_EQ(st.components, 1u);
+  EXPECT_EQ(st.nonmanifold_vertices, 0u);
+  EXPECT_EQ(st.border_loops, 1u);
+  // No hole where the layers overlapped: every face centroid of the ramp (in plan) is still
+  // covered by a face.
+  for (FaceHandle f : before.faces()) {
+    const Vec3 c = before.calc_face_centroid(f);
+    EXPECT_TRUE(covered_in_plan(m, c[0], c[1])) << "uncovered at (" << c[0] << ", " << c[1] << ")";
+  }
+  // Rounds: the same result with more of them; the input without a curl is left as it is.
+  Mesh again = before;
+  twist::StackedLayerOptions o;
+  o.rounds = 16;
+  EXPECT_EQ(twist::remove_stacked_layers(again, o).faces_removed, r.faces_removed);
+  Mesh flat = spiral_ramp(0);
+  const twist::StackedLayerReport none = twist::remove_stacked_layers(flat);
+  EXPECT_EQ(none.pairs_before, 0u);
+  EXPECT_EQ(none.faces_removed, 0u);
+  EXPECT_EQ(flat.n_faces(), 96u);
+}
+
+TEST(TwistRepair, StackedLayersOfALargeOverlapOrAClosedMeshAreLeft) {
+  // Six overlapping segments (24 faces per end): a layer that large is not a curled rim.
+  Mesh m = spiral_ramp(6);
+  const size_t stacked = twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 40u);
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(m);
+  EXPECT_EQ(r.faces_removed, 0u);
+  EXPECT_EQ(r.pairs_after, stacked);
+  twist::StackedLayerOptions o;
+  o.max_group_faces = 1000;
+  EXPECT_GT(twist::remove_stacked_layers(m, o).faces_removed, 0u) << "unless the group limit allows it";
+  // A closed twisted tube has stacked layers but no border: nothing to remove, and no scan.
+  twist::TwistedShape tube = twist::twisted_tube();
+  ASSERT_GT(twist::count_same_orientation_layers(tube.mesh, {}, twist::LayerRule::Stacked), 0u);
+  const size_t faces = tube.mesh.n_faces();
+  const twist::StackedLayerReport closed = twist::remove_stacked_layers(tube.mesh);
+  EXPECT_EQ(closed.faces_removed, 0u);
+  EXPECT_EQ(tube.mesh.n_faces(), faces);
+}
+
+TEST(TwistRepair, PleatAroundAnOpenTubeIsSmoothedFlat) {
+  // An open tube along x (radius 1, 12 segments around) with a Z fold all around: the rings at
+  // x = 0, 1, 2, 3, then back to x = 2 (radius 1.03), then x = 3, 4, 5, 6 (radius 1.06). The
+  // tube's faces over 2 <= x <= 3 and the wider ones above them face out, stacked; the band
+  // between them faces in. The borders are the tube's ends, far from the fold.
+  constexpr int kAround = 12;
+  const double xs[] = {0, 1, 2, 3, 2, 3, 4, 5, 6};
+  const double rs[] = {1, 1, 1, 1, 1.03, 1.06, 1.06, 1.06, 1.06};
+  Mesh m;
+  std::vector<Mesh::VertexHandle> v;
+  for (int i = 0; i < 9; ++i) {
+    for (int k = 0; k < kAround; ++k) {
+      const double a = 2 * std::numbers::pi * k / kAround;
+      v.push_back(m.add_vertex(Vec3(xs[i], rs[i] * std::cos(a), rs[i] * std::sin(a))));
+    }
+  }
+  const auto at = [&](int i, int k) { return v[static_cast<size_t>(i * kAround + k % kAround)]; };
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < kAround; ++k) {
+      m.add_face(at(i, k), at(i, k + 1), at(i + 1, k + 1));
+      m.add_face(at(i, k), at(i + 1, k + 1), at(i + 1, k));
+    }
+  }
+  auto inward = [](const Mesh& mesh) {
+    size_t n = 0;
+    for (FaceHandle f : mesh.faces()) {
+      const Vec3 c = mesh.calc_face_centroid(f);
+      n += OpenMesh::dot(mesh.calc_face_normal(f), Vec3(0, c[1], c[2])) < 0;
+    }
+    return n;
+  };
+  ASSERT_EQ(inward(m), 2u * kAround) << "the turned band";
+  const size_t stacked = twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 4u * kAround) << "both outward layers over the band";
+  Mesh kept = m;
+  EXPECT_EQ(twist::remove_stacked_layers(kept).pleats_flattened, 0u) << "a fold all around is no small pleat";
+  EXPECT_EQ(inward(kept), 2u * kAround);
+  twist::StackedLayerOptions o;
+  o.max_group_faces = 1000;
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(m, o);
+  EXPECT_EQ(r.faces_removed, 0u) << "no face of the pairs touches a border";
+  EXPECT_GT(r.pleats_flattened, 0u);
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(m, {}, twist::LayerRule::Stacked), 0u);
+  EXPECT_EQ(inward(m), 0u) << "the band turned out with its neighbours";
+  const edgefront::MeshStats st = edgefront::compute_stats(m);
+  EXPECT_EQ(st.faces, 16u * kAround);
+  EXPECT_EQ(st.degenerate_faces, 0u);
+  EXPECT_EQ(st.border_loops, 2u);
+}
+
+TEST(TwistRepair, StackedLayerRemovalRejectsBadOptions) {
+  Mesh m = spiral_ramp(1);
+  Mesh empty;
+  EXPECT_THROW(twist::remove_stacked_layers(empty), InvalidInput);
+  twist::StackedLayerOptions o;
+  for (int rounds : {0, 17, -1}) {
+    o.rounds = rounds;
+    EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput) << rounds;
+  }
+  o = {};
+  for (size_t group : {size_t{0}, size_t{1001}}) {
+    o.max_group_faces = group;
+    EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput) << group;
+  }
+  o = {};
+  o.min_component_faces = 0;
+  EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput);
+  o = {};
+  o.detect.surface_factor = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput);
+  Mesh nan = spiral_ramp(1);
+  nan.set_point(*nan.vertices().begin(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  EXPECT_THROW(twist::remove_stacked_layers(nan), InvalidInput);
+  EXPECT_EQ(m.n_faces(), 100u) << "a refused call changes nothing";
 }
 
 TEST(TwistRepair, BadInputThrowsNamingTheProblem) {

@@ -30,6 +30,7 @@
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
+#include "twist/repair.h"
 
 namespace gcs {
 
@@ -176,6 +177,8 @@ void check_options(const ReconstructOptions& o) {
          std::to_string(o.target_vertices) + ": a subsample sparser than the mesh cannot support its faces (0 = automatic)");
   if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
   if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
+  if (o.stacked_layer_rounds < 0 || o.stacked_layer_rounds > 16)
+    fail("stacked_layer_rounds must be in [0, 16] (got " + std::to_string(o.stacked_layer_rounds) + ")");
 }
 
 }  // namespace
@@ -1339,6 +1342,17 @@ struct Reconstructor::Impl {
       const std::vector<Vec3> none;
       detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
       r.seconds_fit += seconds_since(t_fit);
+    }
+    if (opt.stacked_layer_rounds > 0 && r.mesh.n_faces() > 0) {
+      const auto t_layers = Clock::now();
+      twist::StackedLayerOptions so;
+      so.rounds = opt.stacked_layer_rounds;
+      const twist::StackedLayerReport layers = twist::remove_stacked_layers(r.mesh, so);
+      r.stacked_faces_found = layers.pairs_before;
+      r.stacked_faces_removed = layers.faces_removed;
+      r.stacked_pleats_flattened = layers.pleats_flattened;
+      if (r.stacked_faces_removed > 0) r.mesh.garbage_collection();
+      r.seconds_fit += seconds_since(t_layers);
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();

@@ -257,10 +257,7 @@ class Detector {
   const Vec3& normal(FaceHandle f) { return geo(f).normal; }
   /// Do f and g (same orientation) cover each other along their mean normal (`LayerRule::Stacked`)?
   bool stacked_on(FaceHandle f, FaceHandle g) {
-    constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)
-    const Vec3 m = (normal(f) + normal(g)).normalized();
-    const double edge = std::min(geo(f).longest, geo(g).longest);
-    return detail::projected_overlap(points(f), points(g), m) > kStackedOverlap * edge;
+    return detail::stacked_layers(points(f), normal(f), geo(f).longest, points(g), normal(g), geo(g).longest);
   }
   const Vec3& center(FaceHandle f) { return geo(f).centre; }
 
@@ -872,6 +869,8 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
   }
   return out;
 }
+
+void validate_detect_options(const Mesh& mesh, const DetectOptions& options) { validate_options(mesh, options); }
 
 size_t count_same_orientation_layers(const Mesh& mesh, const DetectOptions& options, LayerRule rule) {
   return same_orientation_pairs(mesh, options, rule).size();

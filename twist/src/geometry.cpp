@@ -36,9 +36,6 @@ double area(const std::array<Vec3, 3>& p) { return 0.5 * OpenMesh::cross(p[1] - 
 
 Vec3 centroid(const std::array<Vec3, 3>& p) { return (p[0] + p[1] + p[2]) / 3.0; }
 
-namespace {
-
-// Does segment p-q cross the interior of triangle t (not merely touch it)?
 bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps) {
   const Vec3 n = unit_normal(t);
   if (n.sqrnorm() == 0) return false;
@@ -58,8 +55,6 @@ bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t,
   }
   return true;
 }
-
-}  // namespace
 
 bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
   double scale = 0;
@@ -83,6 +78,12 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
     if (segment_crosses(b[i], b[(i + 1) % 3], a, eps)) return true;
   }
   return false;
+}
+
+bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
+                    const Vec3& nb, double lb) {
+  constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)
+  return projected_overlap(a, b, (na + nb).normalized()) > kStackedOverlap * std::min(la, lb);
 }
 
 double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction) {

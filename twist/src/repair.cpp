@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -389,6 +390,85 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   return removed;
 }
 
+/// Moves the vertices `vs` to the centroids of their neighbours, all at once, up to `rounds`
+/// times, until `accept()` holds after a round; else puts them back. Returns whether accepted.
+bool smooth_until(Mesh& mesh, const std::vector<VertexHandle>& vs, int rounds, const std::function<bool()>& accept) {
+  std::vector<Vec3> old, target(vs.size());
+  for (VertexHandle v : vs) old.push_back(mesh.point(v));
+  for (int round = 0; round < rounds; ++round) {
+    for (size_t i = 0; i < vs.size(); ++i) {
+      Vec3 sum(0, 0, 0);
+      size_t k = 0;
+      for (VertexHandle w : mesh.vv_range(vs[i])) {
+        sum += mesh.point(w);
+        ++k;
+      }
+      target[i] = k > 0 ? sum / static_cast<double>(k) : mesh.point(vs[i]);
+    }
+    for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], target[i]);
+    if (accept()) return true;
+  }
+  for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], old[i]);
+  return false;
+}
+
+/// Flattens a pleat (see `StackedLayerOptions`): the interior vertices of stacked faces f and g
+/// and their neighbours smoothed together, up to 3 rounds, kept when f and g no longer overlap,
+/// no face around is degenerate and no more edges around fold (n.n < 0) than before. Returns
+/// whether it was kept (false too when a face is gone, no vertex is interior, or the other wall
+/// lies within the pleat's gap behind it).
+bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
+  if (!edgefront::is_live(mesh, f) || !edgefront::is_live(mesh, g)) return false;
+  std::vector<VertexHandle> vs;
+  for (FaceHandle x : {f, g}) {
+    for (VertexHandle v : mesh.fv_range(x)) {
+      vs.push_back(v);
+      for (VertexHandle w : mesh.vv_range(v)) vs.push_back(w);
+    }
+  }
+  std::sort(vs.begin(), vs.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  vs.erase(std::remove_if(vs.begin(), vs.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), vs.end());
+  if (vs.empty()) return false;
+  // Folded edges around the moved vertices (each counted from both sides), or none when a face
+  // there is degenerate.
+  auto folds = [&]() -> std::optional<size_t> {
+    size_t n = 0;
+    for (VertexHandle v : vs) {
+      for (FaceHandle h : mesh.vf_range(v)) {
+        const Vec3 nh = detail::unit_normal(detail::face_points(mesh, h));
+        if (nh.sqrnorm() == 0) return std::nullopt;
+        for (FaceHandle k : mesh.ff_range(h)) n += OpenMesh::dot(nh, detail::unit_normal(detail::face_points(mesh, k))) < 0;
+      }
+    }
+    return n;
+  };
+  const std::optional<size_t> before = folds();
+  if (!before) return false;
+  // A face turned against the pair right behind its lower face, closer than the gap between the
+  // two: the stacked faces are the walls of a shell thinner than the mesh resolves, interleaved
+  // (+ - + -), not a fold of one wall; smoothing would merge the walls. Left alone.
+  const FaceGeometry gf = face_geometry(mesh, f), gg = face_geometry(mesh, g);
+  const Vec3 m = (gf.normal + gg.normal).normalized();
+  const double gap = OpenMesh::dot(gg.centre - gf.centre, m);
+  const FaceHandle low = gap > 0 ? f : g;
+  const Vec3 from = gap > 0 ? gf.centre : gg.centre;
+  const Vec3 to = from - std::abs(gap) * m;
+  const double reach2 = std::pow(std::abs(gap) + std::max(gf.longest, gg.longest), 2);
+  for (FaceHandle h : mesh.faces()) {
+    if (h == low || (mesh.calc_face_centroid(h) - from).sqrnorm() > reach2) continue;
+    const auto p = detail::face_points(mesh, h);
+    if (OpenMesh::dot(detail::unit_normal(p), m) < 0 && detail::segment_crosses(from, to, p, 1e-9 * std::abs(gap))) return false;
+  }
+  return smooth_until(mesh, vs, 3, [&] {
+    const std::optional<size_t> now = folds();
+    if (!now || *now > *before) return false;
+    const FaceGeometry a = face_geometry(mesh, f), b = face_geometry(mesh, g);
+    return !detail::stacked_layers(detail::face_points(mesh, f), a.normal, a.longest, detail::face_points(mesh, g), b.normal,
+                                   b.longest);
+  });
+}
+
 /// Removes or collapses small turned-over patches (see `RepairOptions::drop_turned_patches`).
 /// Runs after the global orientation (the reference verdicts are those of the final sides).
 void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
@@ -451,8 +531,6 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
   // are rejected than before (near a rim corner some bevelled faces around may stay rejected);
   // else they are put back.
   auto straighten = [&](FaceHandle f, const std::vector<VertexHandle>& vs, int rounds) {
-    std::vector<Vec3> old, target(vs.size());
-    for (VertexHandle v : vs) old.push_back(mesh.point(v));
     auto count_rejected = [&]() {
       size_t n = 0;
       for (VertexHandle v : vs) {
@@ -461,17 +539,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
       return n;
     };
     const size_t before = count_rejected();
-    for (int round = 0; round < rounds; ++round) {
-      for (size_t i = 0; i < vs.size(); ++i) {
-        Vec3 sum(0, 0, 0);
-        size_t k = 0;
-        for (VertexHandle w : mesh.vv_range(vs[i])) {
-          sum += mesh.point(w);
-          ++k;
-        }
-        target[i] = k > 0 ? sum / static_cast<double>(k) : mesh.point(vs[i]);
-      }
-      for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], target[i]);
+    const bool done = smooth_until(mesh, vs, rounds, [&] {
       bool ok = true;
       size_t now = 0;
       for (VertexHandle v : vs) {
@@ -481,15 +549,14 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
           now += rejects(p);
         }
       }
-      if (ok && now < before && !rejects(detail::face_points(mesh, f))) {
-        for (VertexHandle v : vs) {
-          for (FaceHandle g : mesh.vf_range(v)) verdict.erase(g.idx());
-        }
-        return true;
+      return ok && now < before && !rejects(detail::face_points(mesh, f));
+    });
+    if (done) {
+      for (VertexHandle v : vs) {
+        for (FaceHandle g : mesh.vf_range(v)) verdict.erase(g.idx());
       }
     }
-    for (size_t i = 0; i < vs.size(); ++i) mesh.set_point(vs[i], old[i]);
-    return false;
+    return done;
   };
   // A turned face with an edge shorter than half a mean edge is a sliver (inverted by the
   // smoothing among right neighbours, or bevelled over a rim): collapsing that edge removes it
@@ -774,6 +841,98 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
 RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   DupList dups;
   return repair_impl(mesh, options, nullptr, dups);
+}
+
+StackedLayerReport remove_stacked_layers(Mesh& mesh, const StackedLayerOptions& options) {
+  detail::check_mesh(mesh, "twist::remove_stacked_layers");
+  if (options.rounds < 1 || options.rounds > 16) throw InvalidInput("twist::remove_stacked_layers: option rounds must lie in [1, 16]");
+  if (options.max_group_faces < 1 || options.max_group_faces > 1000) {
+    throw InvalidInput("twist::remove_stacked_layers: option max_group_faces must lie in [1, 1000]");
+  }
+  if (options.min_component_faces < 1) throw InvalidInput("twist::remove_stacked_layers: option min_component_faces must be >= 1");
+  DetectOptions d = options.detect;
+  d.reference = nullptr;
+  d.restrict_to.reset();
+  d.face_grid = nullptr;
+  d.mean_edge_length = 0;
+  validate_detect_options(mesh, d);
+  StackedLayerReport report;
+  auto has_border = [&] {
+    for (HalfedgeHandle h : mesh.halfedges()) {
+      if (mesh.is_boundary(h)) return true;
+    }
+    return false;
+  };
+  if (!has_border()) return report;  // nothing a removal could take (and no scan)
+  for (int round = 0;; ++round) {
+    const auto pairs = mesh.faces().begin() == mesh.faces().end()
+                           ? std::vector<std::pair<FaceHandle, FaceHandle>>{}
+                           : same_orientation_pairs(mesh, d, LayerRule::Stacked);
+    if (round == 0) report.pairs_before = pairs.size();
+    report.pairs_after = pairs.size();
+    if (pairs.empty() || round == options.rounds) break;
+    std::unordered_set<int> stacked;
+    for (const auto& [f, g] : pairs) {
+      stacked.insert(f.idx());
+      stacked.insert(g.idx());
+    }
+    // Is the edge-connected group of stacked faces around f small? (explored with a budget)
+    std::unordered_map<int, bool> small;
+    auto in_small_group = [&](FaceHandle f) {
+      const auto it = small.find(f.idx());
+      if (it != small.end()) return it->second;
+      std::vector<FaceHandle> group{f};
+      std::unordered_set<int> seen{f.idx()};
+      for (size_t q = 0; q < group.size() && group.size() <= options.max_group_faces; ++q) {
+        for (FaceHandle g : mesh.ff_range(group[q])) {
+          if (stacked.count(g.idx()) && seen.insert(g.idx()).second) group.push_back(g);
+        }
+      }
+      const bool is_small = group.size() <= options.max_group_faces;
+      if (is_small) {
+        for (FaceHandle g : group) small.emplace(g.idx(), true);
+      }
+      return small.emplace(f.idx(), is_small).first->second;
+    };
+    // (border edges, border vertices) of a face; (0, 0) away from the border.
+    auto border_rank = [&](FaceHandle f) {
+      int edges = 0, vertices = 0;
+      for (HalfedgeHandle h : mesh.fh_range(f)) edges += mesh.is_boundary(mesh.opposite_halfedge_handle(h));
+      for (VertexHandle v : mesh.fv_range(f)) vertices += mesh.is_boundary(v);
+      return std::pair<int, int>(edges, vertices);
+    };
+    std::vector<FaceHandle> doomed;
+    std::vector<std::pair<FaceHandle, FaceHandle>> pleats;
+    for (const auto& [f, g] : pairs) {
+      if (border_rank(f).second == 0 && border_rank(g).second == 0) {
+        if (in_small_group(f) && in_small_group(g)) pleats.emplace_back(f, g);
+        continue;
+      }
+      FaceHandle victim;
+      std::pair<int, int> best(0, 0);
+      double best_area = 0;
+      for (FaceHandle x : {f, g}) {
+        const std::pair<int, int> rank = border_rank(x);
+        if (rank.second == 0 || !in_small_group(x)) continue;
+        const double a = mesh.calc_face_area(x);
+        if (!victim.is_valid() || rank > best || (rank == best && (a < best_area || (a == best_area && x.idx() > victim.idx())))) {
+          victim = x;
+          best = rank;
+          best_area = a;
+        }
+      }
+      if (victim.is_valid()) doomed.push_back(victim);
+    }
+    std::sort(doomed.begin(), doomed.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+    doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
+    report.faces_removed += remove_faces(mesh, doomed, options.min_component_faces);
+    size_t flattened = 0;
+    for (const auto& [f, g] : pleats) flattened += flatten_pleat(mesh, f, g);
+    report.pleats_flattened += flattened;
+    if (doomed.empty() && flattened == 0) break;
+    ++report.rounds;
+  }
+  return report;
 }
 
 TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)

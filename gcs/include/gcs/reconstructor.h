@@ -156,6 +156,19 @@ struct ReconstructOptions {
   /// Weight of the squared difference of two neighbours' moves, per edge, relative to one sample's
   /// squared residual. Finite, >= 0; larger is smoother and fits less.
   double fit_smoothness = 0.1;
+  /// Post-processing of the returned mesh, last (after the fit): rounds of removing small double
+  /// layers at borders (`twist::remove_stacked_layers`, its defaults otherwise): a face touching
+  /// the border that has a same-orientation partner stacked on it (close in space, far along the
+  /// surface), in a group of at most 8 such faces, is removed, so the other layer covers the
+  /// place alone. Rims and hole borders of thin shells curl over the surface next to them (the
+  /// loop's border operations, and the projection, flips and fit above move rim vertices), and
+  /// two layers of one wall with the same orientation are what a twist looks like
+  /// (bench/results/twist-vaults.md). A small pair with no face on the border is a pleat (a Z
+  /// fold): it is smoothed flat where that works without new folds, unless the other wall lies
+  /// within the fold (a shell thinner than the mesh resolves). Layers of a wall twisted
+  /// front to back (large groups) are left; a mesh without a border is not scanned (a closed
+  /// result keeps its bytes). In [0, 16]; 0 = off.
+  int stacked_layer_rounds = 3;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
@@ -226,7 +239,10 @@ struct ReconstructResult {
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
-  double seconds_fit = 0;         ///< of it: in the surface fit and Delaunay flips of the returned mesh
+  double seconds_fit = 0;         ///< of it: in the surface fit, Delaunay flips and stacked-layer removal of the returned mesh
+  std::size_t stacked_faces_found = 0;    ///< faces with a stacked same-orientation partner before that removal
+  std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (ReconstructOptions::stacked_layer_rounds)
+  std::size_t stacked_pleats_flattened = 0;  ///< stacked pairs inside the surface it smoothed apart
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
 };
 

@@ -259,6 +259,11 @@ size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOp
 std::vector<std::pair<edgefront::FaceHandle, edgefront::FaceHandle>> same_orientation_pairs(
     const edgefront::Mesh& mesh, const DetectOptions& options = {}, LayerRule rule = LayerRule::Facing);
 
+/// Checks `options` as `detect` does before it looks at the faces.
+/// \throws edgefront::InvalidInput naming the first option out of range (or a restricted face
+///         that is not a live face of `mesh`).
+void validate_detect_options(const edgefront::Mesh& mesh, const DetectOptions& options);
+
 /// `detect_regions(mesh, options).regions`.
 std::vector<TwistRegion> detect(const edgefront::Mesh& mesh, const DetectOptions& options = {});
 

@@ -24,6 +24,10 @@ Vec3 unit_normal(const std::array<Vec3, 3>& p);
 double area(const std::array<Vec3, 3>& p);
 Vec3 centroid(const std::array<Vec3, 3>& p);
 
+/// Does the segment p-q cross the interior of triangle t (not merely touch it: its ends lie more
+/// than `eps` off t's plane on opposite sides, and the crossing more than `eps` inside every edge)?
+bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps);
+
 /// True when the two triangles (sharing no vertex) intersect properly: an edge of one crosses
 /// the interior of the other (touching at a border point within a relative tolerance does not
 /// count; coplanar overlaps are not detected).
@@ -34,6 +38,12 @@ bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
 /// separating axes of two convex polygons). Positive when the projections overlap (the depth of
 /// the overlap, a length), zero or negative when they only touch or are apart.
 double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, const Vec3& direction);
+
+/// `LayerRule::Stacked`'s overlap test for two triangles with the same orientation, given their
+/// unit normals and longest edges: projected along their mean normal, they overlap by more than
+/// 0.1 times the shorter longest edge.
+bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
+                    const Vec3& nb, double lb);
 
 /// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
 /// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`
