@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -209,14 +210,7 @@ class Detector {
     radius_ = o.radius > 0 ? o.radius : 2.0 * mean_edge_;
     mdf_.set_settled_callback([this](VertexHandle v, double d, const Vec3&) {
       ++stats.vertices_settled;
-      const auto it = cand_of_vertex_.find(v.idx());
-      if (it == cand_of_vertex_.end()) return;
-      for (const auto& [i, limit] : it->second) {
-        if (d <= limit && !near_flag_[i]) {
-          near_flag_[i] = 1;
-          --unresolved_;
-        }
-      }
+      mark_near(v.idx(), d);
     });
   }
 
@@ -364,6 +358,46 @@ class Detector {
   /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
   /// -1: behind) that is far along the surface, or an invalid handle.
   /// `stacked` (with `same_orientation_only`): only partners stacked on f (`LayerRule::Stacked`).
+  /// Marks the candidate layers with vertex v that a path of length d reaches within their limit.
+  void mark_near(int v, double d) {
+    const auto it = cand_of_vertex_.find(v);
+    if (it == cand_of_vertex_.end()) return;
+    for (const auto& [i, limit] : it->second) {
+      if (d <= limit && !near_flag_[i]) {
+        near_flag_[i] = 1;
+        --unresolved_;
+      }
+    }
+  }
+
+  /// Shortest paths from f's centroid through one of its corners and then along edges (a bounded
+  /// Dijkstra), up to `reach`, marking candidate layers near; stops once none is unresolved.
+  void edge_paths(FaceHandle f, double reach) {
+    path_length_.clear();
+    path_heap_.clear();
+    const auto offer = [&](int v, double d) {
+      if (d > reach) return;
+      const auto [it, fresh] = path_length_.try_emplace(v, d);
+      if (!fresh) {
+        if (d >= it->second) return;
+        it->second = d;
+      }
+      path_heap_.emplace_back(d, v);
+      std::push_heap(path_heap_.begin(), path_heap_.end(), std::greater<>());
+    };
+    const Vec3 c = center(f);
+    for (int v : geo(f).vertices) offer(v, (mesh_.point(VertexHandle(v)) - c).norm());
+    while (unresolved_ > 0 && !path_heap_.empty()) {
+      std::pop_heap(path_heap_.begin(), path_heap_.end(), std::greater<>());
+      const auto [d, v] = path_heap_.back();
+      path_heap_.pop_back();
+      if (d > path_length_[v]) continue;  // a stale entry
+      mark_near(v, d);
+      const VertexHandle vh(v);
+      for (VertexHandle w : mesh_.vv_range(vh)) offer(w.idx(), d + (mesh_.point(w) - mesh_.point(vh)).norm());
+    }
+  }
+
   FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false, bool stacked = false) {
     const Vec3 nf = normal(f);
     const Vec3 cf = center(f);
@@ -398,30 +432,20 @@ class Detector {
     cand_of_vertex_.clear();
     near_flag_.assign(layers_.size(), 0);
     unresolved_ = layers_.size();
-    // A two-leg path on the surface first (f's centroid to one of its corners inside f, then
-    // along one edge) bounds the geodesic distance from above: a layer with a vertex reached
-    // within its limit that way is near, and needs no distance front.
-    const FaceGeometry& gf = geo(f);
     for (size_t i = 0; i < layers_.size(); ++i) {
       const double limit = o_.surface_factor * layers_[i].first + mean_edge_;
-      const std::array<int, 3>& gv = geo(layers_[i].second).vertices;
-      for (size_t k = 0; k < 3 && !near_flag_[i]; ++k) {
-        const VertexHandle v(gf.vertices[k]);
-        const double first = (mesh_.point(v) - cf).norm();
-        if (first >= limit) continue;
-        for (VertexHandle w : mesh_.vv_range(v)) {
-          if ((w.idx() == gv[0] || w.idx() == gv[1] || w.idx() == gv[2]) && first + (mesh_.point(w) - mesh_.point(v)).norm() <= limit) {
-            near_flag_[i] = 1;
-            --unresolved_;
-            break;
-          }
-        }
-      }
-      if (near_flag_[i]) continue;
       reach = std::max(reach, limit);
-      for (int v : gv) cand_of_vertex_[v].emplace_back(i, limit);
+      for (int v : geo(layers_[i].second).vertices) cand_of_vertex_[v].emplace_back(i, limit);
     }
+    // Paths along edges first (from f's centroid straight to a corner inside f, then along mesh
+    // edges) bound the geodesic distance from above: a layer with a vertex reached within its
+    // limit that way is near, and needs no distance front (which costs several times more).
+    edge_paths(f, reach);
     if (unresolved_ == 0) return FaceHandle();
+    reach = 0;
+    for (size_t i = 0; i < layers_.size(); ++i) {
+      if (!near_flag_[i]) reach = std::max(reach, o_.surface_factor * layers_[i].first + mean_edge_);
+    }
     ++stats.distance_queries;
     edgefront::DistanceOptions dopt;
     dopt.max_distance = reach;
@@ -494,6 +518,8 @@ class Detector {
   const Mesh& mesh_;
   const DetectOptions& o_;
   edgefront::MinimalDistanceFront mdf_;
+  std::unordered_map<int, double> path_length_;     // edge_paths: best length per vertex
+  std::vector<std::pair<double, int>> path_heap_;   // edge_paths: (length, vertex), a min-heap
   const FaceGrid* grid_;
   std::vector<FaceGeometry> geo_;  ///< without a face grid: by face index
   std::vector<char> has_geo_;
