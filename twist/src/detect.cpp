@@ -355,9 +355,6 @@ class Detector {
 
   bool ambiguous(FaceHandle f) const { return ambiguous_.count(f.idx()) > 0; }
 
-  /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
-  /// -1: behind) that is far along the surface, or an invalid handle.
-  /// `stacked` (with `same_orientation_only`): only partners stacked on f (`LayerRule::Stacked`).
   /// Marks the candidate layers with vertex v that a path of length d reaches within their limit.
   void mark_near(int v, double d) {
     const auto it = cand_of_vertex_.find(v);
@@ -398,6 +395,9 @@ class Detector {
     }
   }
 
+  /// The nearest roughly parallel face within the radius on the side `side` (+1: in front of f,
+  /// -1: behind) that is far along the surface, or an invalid handle.
+  /// `stacked` (with `same_orientation_only`): only partners stacked on f (`LayerRule::Stacked`).
   FaceHandle far_layer(FaceHandle f, double side, bool same_orientation_only = false, bool stacked = false) {
     const Vec3 nf = normal(f);
     const Vec3 cf = center(f);
@@ -432,10 +432,11 @@ class Detector {
     cand_of_vertex_.clear();
     near_flag_.assign(layers_.size(), 0);
     unresolved_ = layers_.size();
+    // A layer is near when the surface distance to one of its vertices is within this limit.
+    const auto limit_of = [&](size_t i) { return o_.surface_factor * layers_[i].first + mean_edge_; };
     for (size_t i = 0; i < layers_.size(); ++i) {
-      const double limit = o_.surface_factor * layers_[i].first + mean_edge_;
-      reach = std::max(reach, limit);
-      for (int v : geo(layers_[i].second).vertices) cand_of_vertex_[v].emplace_back(i, limit);
+      reach = std::max(reach, limit_of(i));
+      for (int v : geo(layers_[i].second).vertices) cand_of_vertex_[v].emplace_back(i, limit_of(i));
     }
     // Paths along edges first (from f's centroid straight to a corner inside f, then along mesh
     // edges) bound the geodesic distance from above: a layer with a vertex reached within its
@@ -444,7 +445,7 @@ class Detector {
     if (unresolved_ == 0) return FaceHandle();
     reach = 0;
     for (size_t i = 0; i < layers_.size(); ++i) {
-      if (!near_flag_[i]) reach = std::max(reach, o_.surface_factor * layers_[i].first + mean_edge_);
+      if (!near_flag_[i]) reach = std::max(reach, limit_of(i));
     }
     ++stats.distance_queries;
     edgefront::DistanceOptions dopt;
