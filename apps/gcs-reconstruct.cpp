@@ -1,7 +1,7 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
-///                   [--rejoin-borders] [--no-fit] [--fit-rounds R] [--fit-smoothness W]
+///                   [--rejoin-borders] [--keep-noise] [--no-fit] [--fit-rounds R] [--fit-smoothness W]
 ///                   [--no-delaunay-flips]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,10 @@ int main(int argc, char** argv) {
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
                "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
                "ending as a torn double layer)");
+  bool keep_noise = false;
+  app.add_flag("--keep-noise", keep_noise,
+               "do not smooth a noisy cloud before the loop (by default a cloud whose estimated noise exceeds 5% of "
+               "its point spacing is smoothed first, so that the mesh does not carry the noise)");
   bool no_fit = false;
   app.add_flag("--no-fit", no_fit,
                "do not fit the result to the samples (on by default: each vertex is moved along its normal so "
@@ -94,6 +99,7 @@ int main(int argc, char** argv) {
     options.create_borders = options.merge_borders = !no_borders;
     options.orient_winners = !no_orient;
     options.fit_surface = !no_fit;
+    if (keep_noise) options.smooth_noise_ratio = std::numeric_limits<double>::infinity();
     options.delaunay_flips = !no_flips;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
@@ -144,6 +150,7 @@ int main(int argc, char** argv) {
     std::cout << "gcs-reconstruct: " << s.vertices << " vertices, " << s.faces << " faces, " << s.components
               << " component(s), " << s.border_loops << " border loop(s), " << gcs::to_string(r.stop_reason) << ", "
               << r.seconds_total << " s -> " << output;
+    if (r.cloud_smoothed) std::cout << "; cloud smoothed first (noise " << r.noise_ratio << " of the point spacing)";
     if (twist_op) {  // on the same summary line
       const gcs::TwistOperationStats& t = twist_op->stats();
       std::cout << "; twist-repair: " << t.regions_found << " twisted region(s) found, " << t.repairs << " repaired ("

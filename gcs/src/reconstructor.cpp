@@ -30,6 +30,7 @@
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
+#include "gcs/cloud_noise.h"
 #include "twist/repair.h"
 
 namespace gcs {
@@ -177,6 +178,7 @@ void check_options(const ReconstructOptions& o) {
          std::to_string(o.target_vertices) + ": a subsample sparser than the mesh cannot support its faces (0 = automatic)");
   if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
   if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
+  if (!(o.smooth_noise_ratio >= 0)) fail("smooth_noise_ratio must be >= 0 (infinity turns the smoothing off)");
   if (o.stacked_layer_rounds < 0 || o.stacked_layer_rounds > 16)
     fail("stacked_layer_rounds must be in [0, 16] (got " + std::to_string(o.stacked_layer_rounds) + ")");
 }
@@ -196,6 +198,8 @@ struct Reconstructor::Impl {
   edgefront::PointCloud cloud;  // centred
   Vec3 offset{0, 0, 0};
   double bbox_diagonal = 0;
+  double noise_ratio = 0;  // estimated noise / spacing of the input (ReconstructOptions::smooth_noise_ratio)
+  bool cloud_smoothed = false;
   double sample_spacing = 0;
   // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
   // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
@@ -291,6 +295,11 @@ struct Reconstructor::Impl {
     }
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
+    if (std::isfinite(opt.smooth_noise_ratio) && cloud.size() >= 8) {
+      const NoiseEstimate noise = estimate_noise(cloud);
+      noise_ratio = noise.ratio();
+      if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud) > 0;
+    }
     // Collinear: the second principal extent vanishes.
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (const Vec3& p : cloud.points) {
@@ -1314,6 +1323,8 @@ struct Reconstructor::Impl {
 
   ReconstructResult make_result(double seconds) {
     ReconstructResult r;
+    r.noise_ratio = noise_ratio;
+    r.cloud_smoothed = cloud_smoothed;
     r.mesh = mesh;
     r.mesh.garbage_collection();
     // Post-processing of the copy only (the loop's own mesh stays as it is).

@@ -1,0 +1,261 @@
+#include "gcs/cloud_noise.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "edgefront/error.h"
+#include "edgefront/point_index.h"
+
+namespace gcs {
+
+using edgefront::InvalidInput;
+using edgefront::PointCloud;
+using edgefront::PointIndex;
+using edgefront::Vec3;
+
+namespace {
+
+constexpr std::size_t kMinNeighbours = 8;
+constexpr std::size_t kMaxNeighbours = 256;
+constexpr double kSameSideCos = 0.5;  // neighbours' normals within 60 degrees
+
+void check_cloud(const PointCloud& cloud, const char* who) {
+  if (cloud.size() < kMinNeighbours)
+    throw InvalidInput(std::string(who) + ": at least " + std::to_string(kMinNeighbours) + " points are needed (got " +
+                       std::to_string(cloud.size()) + ")");
+  if (!cloud.normals.empty() && cloud.normals.size() != cloud.points.size())
+    throw InvalidInput(std::string(who) + ": the cloud has " + std::to_string(cloud.normals.size()) + " normals for " +
+                       std::to_string(cloud.points.size()) + " points");
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3& p = cloud.points[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw InvalidInput(std::string(who) + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
+  }
+}
+
+void check_neighbours(std::size_t k, const char* who) {
+  if (k < kMinNeighbours || k > kMaxNeighbours)
+    throw InvalidInput(std::string(who) + ": neighbours must be in [" + std::to_string(kMinNeighbours) + ", " +
+                       std::to_string(kMaxNeighbours) + "] (got " + std::to_string(k) + ")");
+}
+
+// The quadric z = a x^2 + b xy + c y^2 + d x + e y + f fitted to a point's neighbours, in the frame
+// (origin, u, v, n) of their principal axes.
+struct LocalQuadric {
+  Eigen::Vector3d origin, u, v, n;
+  Eigen::Matrix<double, 6, 1> coef;
+  double residual = 0;  // standard deviation of the heights around the fit (6 parameters corrected)
+
+  double height(double x, double y) const {
+    return coef[0] * x * x + coef[1] * x * y + coef[2] * y * y + coef[3] * x + coef[4] * y + coef[5];
+  }
+};
+
+Eigen::Vector3d eig(const Vec3& p) { return {p[0], p[1], p[2]}; }
+
+class QuadricFitter {
+ public:
+  QuadricFitter(const PointCloud& cloud, std::size_t neighbours)
+      : cloud_(cloud), index_(cloud.points), k_(neighbours), normals_(cloud.has_normals()) {}
+
+  const PointIndex& index() const { return index_; }
+
+  // Fits to point i's nearest neighbours (on its side). False when the neighbourhood is too small
+  // or degenerate.
+  bool fit(std::size_t i, LocalQuadric& q) {
+    gather(i, k_);
+    if (normals_ && pts_.size() < k_) gather(i, 2 * k_);  // the other wall took some places
+    return fit_gathered(q);
+  }
+
+  // The same, with the neighbours taken among `candidates` (the nearest points of a point close
+  // to i: one k-d tree query serves the points around it); fewer than k of them on i's side: fit().
+  bool fit_from(std::size_t i, const std::vector<PointIndex::Neighbor>& candidates, LocalQuadric& q) {
+    near_.clear();
+    for (const PointIndex::Neighbor& h : candidates) {
+      if (normals_ && (cloud_.normals[h.index] | cloud_.normals[i]) < kSameSideCos) continue;
+      near_.push_back({h.index, (cloud_.points[h.index] - cloud_.points[i]).sqrnorm()});
+    }
+    if (near_.size() < k_) return fit(i, q);  // e.g. the other wall of a thin shell in the cell
+    const std::size_t m = std::min(k_, near_.size());
+    std::nth_element(near_.begin(), near_.begin() + static_cast<std::ptrdiff_t>(m), near_.end(),
+                     [](const PointIndex::Neighbor& a, const PointIndex::Neighbor& b) {
+                       return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
+                     });
+    pts_.clear();
+    for (std::size_t j = 0; j < m; ++j) pts_.push_back(eig(cloud_.points[near_[j].index]));
+    return fit_gathered(q);
+  }
+
+ private:
+  bool fit_gathered(LocalQuadric& q) {
+    const std::size_t m = pts_.size();
+    if (m < kMinNeighbours) return false;
+    q.origin.setZero();
+    for (const Eigen::Vector3d& p : pts_) q.origin += p;
+    q.origin /= static_cast<double>(m);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d& p : pts_) cov += (p - q.origin) * (p - q.origin).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    const Eigen::Vector3d ev = es.eigenvalues();  // ascending
+    if (!(ev[1] > 1e-12 * ev[2])) return false;    // collinear or coincident neighbours
+    q.n = es.eigenvectors().col(0);
+    q.v = es.eigenvectors().col(1);
+    q.u = es.eigenvectors().col(2);
+    // Least squares by the normal equations, in coordinates scaled to the neighbourhood's extent
+    // (well conditioned: every entry of a row is at most about 1).
+    const double scale = 1.0 / std::sqrt(ev[2] / static_cast<double>(m));
+    Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero(), row;
+    double btb = 0;
+    for (const Eigen::Vector3d& p : pts_) {
+      const Eigen::Vector3d d = (p - q.origin) * scale;
+      const double x = d.dot(q.u), y = d.dot(q.v), z = d.dot(q.n);
+      row << x * x, x * y, y * y, x, y, 1;
+      ata.selfadjointView<Eigen::Lower>().rankUpdate(row);
+      atb += z * row;
+      btb += z * z;
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata.selfadjointView<Eigen::Lower>());
+    if (ldlt.info() != Eigen::Success) return false;
+    Eigen::Matrix<double, 6, 1> c = ldlt.solve(atb);
+    if (!c.allFinite()) return false;
+    const double ss = std::max(0.0, btb - c.dot(atb)) / (scale * scale);
+    // Back to unscaled coordinates: z = s z', x' = s x.
+    q.coef << c[0] * scale, c[1] * scale, c[2] * scale, c[3], c[4], c[5] / scale;
+    q.residual = std::sqrt(ss / static_cast<double>(m - 6));
+    return std::isfinite(q.residual);
+  }
+
+  void gather(std::size_t i, std::size_t query) {
+    index_.k_nearest(cloud_.points[i], query, hits_);
+    pts_.clear();
+    for (const PointIndex::Neighbor& h : hits_) {
+      if (pts_.size() == k_) break;
+      if (normals_ && (cloud_.normals[h.index] | cloud_.normals[i]) < kSameSideCos) continue;
+      pts_.push_back(eig(cloud_.points[h.index]));
+    }
+  }
+
+  const PointCloud& cloud_;
+  PointIndex index_;
+  std::size_t k_;
+  bool normals_;
+  std::vector<PointIndex::Neighbor> hits_;
+  std::vector<PointIndex::Neighbor> near_;
+  std::vector<Eigen::Vector3d> pts_;
+};
+
+double median(std::vector<double>& v) {
+  if (v.empty()) return 0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// Median distance to the nearest other point, over up to max_points points (an even stride).
+double median_gap(const PointCloud& cloud, const PointIndex& index, std::size_t max_points) {
+  const std::size_t n = cloud.size(), m = std::min(n, max_points);
+  std::vector<double> gaps;
+  gaps.reserve(m);
+  std::vector<PointIndex::Neighbor> near;
+  for (std::size_t s = 0; s < m; ++s) {
+    index.k_nearest(cloud.points[s * n / m], kMinNeighbours, near);
+    for (const PointIndex::Neighbor& h : near) {
+      if (h.distance2 > 0) {
+        gaps.push_back(std::sqrt(h.distance2));
+        break;
+      }
+    }
+  }
+  return median(gaps);
+}
+
+
+}  // namespace
+
+NoiseEstimate estimate_noise(const PointCloud& cloud, const NoiseOptions& options) {
+  check_neighbours(options.neighbours, "estimate_noise");
+  if (options.max_points < 1) throw InvalidInput("estimate_noise: max_points must be >= 1");
+  check_cloud(cloud, "estimate_noise");
+  QuadricFitter fitter(cloud, options.neighbours);
+  const std::size_t n = cloud.size(), m = std::min(n, options.max_points);
+  std::vector<double> residuals;
+  residuals.reserve(m);
+  LocalQuadric q;
+  for (std::size_t s = 0; s < m; ++s) {
+    if (fitter.fit(s * n / m, q)) residuals.push_back(q.residual);
+  }
+  NoiseEstimate e;
+  e.points_used = residuals.size();
+  e.noise = median(residuals);
+  e.spacing = median_gap(cloud, fitter.index(), m);
+  return e;
+}
+
+std::size_t smooth_noise(PointCloud& cloud, const SmoothNoiseOptions& options) {
+  check_neighbours(options.neighbours, "smooth_noise");
+  check_cloud(cloud, "smooth_noise");
+  QuadricFitter fitter(cloud, options.neighbours);
+  // The k-d tree queries dominate the cost, so points share them: the cloud is binned into cells of
+  // 4 nearest-point gaps (a few points each); the point nearest a cell's middle is queried for 2k + 16 neighbours, and every point of the cell
+  // takes its k nearest among those (a point's k nearest lie within them unless the cell is
+  // much denser than the median).
+  std::vector<std::vector<std::size_t>> cells;
+  const double cell = 4 * median_gap(cloud, fitter.index(), 20000);
+  if (cell > 0) {
+    struct KeyHash {
+      std::size_t operator()(const std::array<std::int64_t, 3>& k) const {
+        return static_cast<std::size_t>(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+      }
+    };
+    std::unordered_map<std::array<std::int64_t, 3>, std::size_t, KeyHash> slot;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const Vec3& p = cloud.points[i];
+      const std::array<std::int64_t, 3> key = {static_cast<std::int64_t>(std::floor(p[0] / cell)),
+                                               static_cast<std::int64_t>(std::floor(p[1] / cell)),
+                                               static_cast<std::int64_t>(std::floor(p[2] / cell))};
+      const auto [it, fresh] = slot.try_emplace(key, cells.size());
+      if (fresh) cells.emplace_back();
+      cells[it->second].push_back(i);
+    }
+  } else {  // most points coincide
+    for (std::size_t i = 0; i < cloud.size(); ++i) cells.push_back({i});
+  }
+  const std::size_t query = std::min(cloud.size(), 2 * options.neighbours + 16);
+  std::vector<PointIndex::Neighbor> candidates;
+  std::vector<Vec3> moved = cloud.points;
+  std::size_t count = 0;
+  LocalQuadric q;
+  for (const std::vector<std::size_t>& members : cells) {
+    Vec3 middle(0, 0, 0);
+    for (std::size_t i : members) middle += cloud.points[i];
+    middle /= static_cast<double>(members.size());
+    const std::size_t centre = *std::min_element(members.begin(), members.end(), [&](std::size_t a, std::size_t b) {
+      const double da = (cloud.points[a] - middle).sqrnorm(), db = (cloud.points[b] - middle).sqrnorm();
+      return da != db ? da < db : a < b;
+    });
+    fitter.index().k_nearest(cloud.points[centre], query, candidates);
+    for (std::size_t i : members) {
+      if (!fitter.fit_from(i, candidates, q)) continue;
+      const Eigen::Vector3d p = eig(cloud.points[i]);
+      const Eigen::Vector3d d = p - q.origin;
+      const double lift = q.height(d.dot(q.u), d.dot(q.v)) - d.dot(q.n);
+      if (lift == 0) continue;
+      const Eigen::Vector3d to = p + lift * q.n;
+      moved[i] = Vec3(to[0], to[1], to[2]);
+      ++count;
+    }
+  }
+  cloud.points = std::move(moved);
+  return count;
+}
+
+}  // namespace gcs
