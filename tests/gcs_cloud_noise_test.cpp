@@ -52,9 +52,23 @@ TEST(CloudNoise, TheEstimateFindsTheAddedNoiseAndCleanCloudsAreClean) {
 
   const gcs::NoiseEstimate clean = gcs::estimate_noise(sphere_cloud(3000, 0.0));
   EXPECT_LT(clean.ratio(), 0.01);  // the quadric follows the curvature
-  gcs::NoiseOptions few;
-  few.max_points = 100;
-  EXPECT_EQ(gcs::estimate_noise(sphere_cloud(3000, sigma), few).points_used, 100u);
+}
+
+TEST(CloudNoise, ALargeCloudLookedAtInPatchesGivesTheSameEstimate) {
+  // 20,000 points: with max_points 20,000 every point is looked at; with 1,000 (a cloud of more
+  // than 4 times max_points) the estimate looks at patches of the cloud only.
+  const PointCloud cloud = sphere_cloud(20000, 0.004);
+  gcs::NoiseOptions whole, patches;
+  whole.max_points = 20000;
+  patches.max_points = 1000;
+  const gcs::NoiseEstimate a = gcs::estimate_noise(cloud, whole), b = gcs::estimate_noise(cloud, patches);
+  EXPECT_EQ(a.points_used, 20000u);
+  EXPECT_LE(b.points_used, 1000u);
+  EXPECT_GT(b.points_used, 500u);
+  EXPECT_NEAR(b.noise, a.noise, 0.1 * a.noise);
+  EXPECT_NEAR(b.spacing, a.spacing, 0.1 * a.spacing);
+  EXPECT_GT(a.noise, 0.7 * 0.004);
+  EXPECT_LT(a.noise, 1.3 * 0.004);
 }
 
 TEST(CloudNoise, TheOtherWallOfAThinShellIsNotNoiseWhenTheNormalsSayWhichSideIsWhich) {
