@@ -665,6 +665,45 @@ TEST(TwistRepair, PleatAroundAnOpenTubeIsSmoothedFlat) {
   EXPECT_EQ(st.border_loops, 2u);
 }
 
+TEST(TwistRepair, FaceTurnedUnderItsOwnNeighbourIsSmoothedFlat) {
+  // The slab's top plate (z = 0.5, facing up) with its vertex (3, 3) pushed across the edge
+  // (4, 3)-(4, 4) of its star and down to z = 0.3: one face turns over (facing down, like the
+  // bottom plate under it: a stacked same-orientation pair, no face on a border) and tucks under
+  // its neighbour across that edge, which then lies right behind it facing the other way. That
+  // neighbour shares two vertices with the turned face: it is the turned face's own wall, not a
+  // second wall interleaved with the pair, so the pleat is smoothed flat (vault shell t/R 0.1 at
+  // 1500 vertices, seed 1, repair: the one interior face left turned over the other wall).
+  Slab s = slab();
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.3));
+  ASSERT_EQ(turned_top_faces(s.mesh).size(), 1u);
+  const FaceHandle turned = turned_top_faces(s.mesh).front();
+  const size_t stacked = twist::count_same_orientation_layers(s.mesh, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 2u) << "the turned face and the bottom face under it";
+  // Right behind the turned face (from its centroid up through the top plate) lies the face
+  // across its moved edge, facing up.
+  const Vec3 c = s.mesh.calc_face_centroid(turned);
+  bool tucked = false;
+  for (FaceHandle h : s.mesh.faces()) {
+    if (h == turned || s.mesh.calc_face_normal(h)[2] < 0.9) continue;
+    std::vector<Vec3> p;
+    for (auto v : s.mesh.fv_range(h)) p.push_back(s.mesh.point(v));
+    auto side = [&](const Vec3& a, const Vec3& b) { return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]); };
+    tucked = tucked || (side(p[0], p[1]) > 0 && side(p[1], p[2]) > 0 && side(p[2], p[0]) > 0 && c[2] < p[0][2]);
+  }
+  ASSERT_TRUE(tucked);
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(s.mesh);
+  EXPECT_EQ(r.pairs_before, stacked);
+  EXPECT_GE(r.pleats_flattened, 1u);
+  EXPECT_EQ(r.faces_removed, 0u);
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(s.mesh, {}, twist::LayerRule::Stacked), 0u);
+  EXPECT_TRUE(turned_top_faces(s.mesh).empty()) << "the face turned back with its neighbours";
+  const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
+  EXPECT_EQ(st.faces, 144u);
+  EXPECT_EQ(st.degenerate_faces, 0u);
+  EXPECT_EQ(st.border_loops, 2u);
+}
+
 TEST(TwistRepair, StackedLayerRemovalRejectsBadOptions) {
   Mesh m = spiral_ramp(1);
   Mesh empty;

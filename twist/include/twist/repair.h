@@ -194,8 +194,11 @@ struct StackedLayerReport {
 /// else put back. A pleat is left when a face turned against the pair lies right behind its
 /// lower face, closer than the gap between the two: the walls of a shell thinner than the mesh
 /// resolves, interleaved, not a fold of one wall (smoothing would merge the walls: vault shell
-/// t/R 0.02 at 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard). Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
-/// not scanned (nothing to remove; its pleats stay). Does not garbage-collect.
+/// t/R 0.02 at 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard); a face
+/// sharing a vertex with the lower face does not count (the lower face is then one face of a
+/// wall turned over its own neighbours onto the other wall: smoothed like a pleat). Pairs in
+/// larger groups (`max_group_faces`) are left. A mesh without a border is not scanned (nothing to
+/// remove; its pleats stay). Does not garbage-collect.
 /// \throws edgefront::InvalidInput for an empty mesh, non-finite coordinates or options out of
 ///         range (as `detect`, and `rounds`, `max_group_faces`, `min_component_faces`).
 StackedLayerReport remove_stacked_layers(edgefront::Mesh& mesh, const StackedLayerOptions& options = {});
