@@ -665,14 +665,15 @@ TEST(TwistRepair, PleatAroundAnOpenTubeIsSmoothedFlat) {
   EXPECT_EQ(st.border_loops, 2u);
 }
 
-TEST(TwistRepair, FaceTurnedUnderItsOwnNeighbourIsSmoothedFlat) {
+TEST(TwistRepair, FaceTurnedOverItsOwnStarIsStraightenedAlone) {
   // The slab's top plate (z = 0.5, facing up) with its vertex (3, 3) pushed across the edge
   // (4, 3)-(4, 4) of its star and down to z = 0.3: one face turns over (facing down, like the
-  // bottom plate under it: a stacked same-orientation pair, no face on a border) and tucks under
-  // its neighbour across that edge, which then lies right behind it facing the other way. That
-  // neighbour shares two vertices with the turned face: it is the turned face's own wall, not a
-  // second wall interleaved with the pair, so the pleat is smoothed flat (vault shell t/R 0.1 at
-  // 1500 vertices, seed 1, repair: the one interior face left turned over the other wall).
+  // bottom plate under it: a stacked same-orientation pair, no face on a border; two of its
+  // edges fold against its neighbours) and tucks under its neighbour across that edge, which
+  // then lies right behind it facing the other way, so the pleat smoothing of both layers is
+  // refused (the interleaved-walls guard). The turned face is straightened alone: the bottom
+  // plate does not move (vault shell t/R 0.1 at 1500 vertices, seed 1, repair: one face of the
+  // outer wall turned over onto the inner one).
   Slab s = slab();
   s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.3));
   ASSERT_EQ(turned_top_faces(s.mesh).size(), 1u);
@@ -691,6 +692,8 @@ TEST(TwistRepair, FaceTurnedUnderItsOwnNeighbourIsSmoothedFlat) {
     tucked = tucked || (side(p[0], p[1]) > 0 && side(p[1], p[2]) > 0 && side(p[2], p[0]) > 0 && c[2] < p[0][2]);
   }
   ASSERT_TRUE(tucked);
+  std::vector<Vec3> bottom;
+  for (int i = 0; i < 49; ++i) bottom.push_back(s.mesh.point(Mesh::VertexHandle(i)));
   const twist::StackedLayerReport r = twist::remove_stacked_layers(s.mesh);
   EXPECT_EQ(r.pairs_before, stacked);
   EXPECT_GE(r.pleats_flattened, 1u);
@@ -698,6 +701,7 @@ TEST(TwistRepair, FaceTurnedUnderItsOwnNeighbourIsSmoothedFlat) {
   EXPECT_EQ(r.pairs_after, 0u);
   EXPECT_EQ(twist::count_same_orientation_layers(s.mesh, {}, twist::LayerRule::Stacked), 0u);
   EXPECT_TRUE(turned_top_faces(s.mesh).empty()) << "the face turned back with its neighbours";
+  for (int i = 0; i < 49; ++i) EXPECT_EQ(s.mesh.point(Mesh::VertexHandle(i)), bottom[static_cast<size_t>(i)]) << "bottom vertex " << i;
   const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
   EXPECT_EQ(st.faces, 144u);
   EXPECT_EQ(st.degenerate_faces, 0u);
