@@ -594,6 +594,36 @@ TEST(TwistRepair, StackedBorderLayerOfACurledRimIsRemoved) {
   EXPECT_EQ(flat.n_faces(), 96u);
 }
 
+TEST(TwistRepair, PairsRestrictedToFacesAreThoseOfTheWholeScan) {
+  // `same_orientation_pairs` with `restrict_to`: exactly the pairs of the whole scan in which the
+  // face or its partner is one of the given faces (the flap peeling and the turned-patch
+  // dropping look only around their candidates).
+  const Mesh m = spiral_ramp(1);
+  for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
+    const auto all = twist::same_orientation_pairs(m, {}, rule);
+    ASSERT_GE(all.size(), 8u);
+    // A face half a turn from the overlap (in no pair) and the first face of the first pair.
+    const FaceHandle middle(static_cast<int>(m.n_faces() / 2));
+    for (const auto& p : all) ASSERT_TRUE(p.first != middle && p.second != middle);
+    const std::vector<FaceHandle> some{middle, all.front().first};
+    twist::DetectOptions o;
+    o.restrict_to = some;
+    std::vector<std::pair<FaceHandle, FaceHandle>> expected;
+    for (const auto& p : all) {
+      if (std::find(some.begin(), some.end(), p.first) != some.end() || std::find(some.begin(), some.end(), p.second) != some.end()) {
+        expected.push_back(p);
+      }
+    }
+    ASSERT_GE(expected.size(), 1u);
+    ASSERT_LT(expected.size(), all.size());
+    EXPECT_EQ(twist::same_orientation_pairs(m, o, rule), expected);
+    o.restrict_to = std::vector<FaceHandle>{middle};
+    EXPECT_TRUE(twist::same_orientation_pairs(m, o, rule).empty());
+    o.restrict_to = std::vector<FaceHandle>{FaceHandle(static_cast<int>(m.n_faces()))};
+    EXPECT_THROW(twist::same_orientation_pairs(m, o, rule), InvalidInput);
+  }
+}
+
 TEST(TwistRepair, StackedLayersOfALargeOverlapOrAClosedMeshAreLeft) {
   // Six overlapping segments (24 faces per end): a layer that large is not a curled rim.
   Mesh m = spiral_ramp(6);

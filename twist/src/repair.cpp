@@ -30,7 +30,6 @@ using edgefront::VertexHandle;
 namespace {
 
 using DupList = std::vector<std::pair<VertexHandle, VertexHandle>>;
-using FacePairs = std::vector<std::pair<FaceHandle, FaceHandle>>;
 /// Decides, for a region about to be repaired, whether it is cut out instead (re-twist guard).
 using CutOutRule = std::function<bool(const Mesh&, const TwistRegion&)>;
 
@@ -350,11 +349,9 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
 
 /// Removes border flaps (see `RepairOptions::peel_flaps`): faces with a vertex on the border
 /// that have a same-orientation partner (`same_orientation_pairs`), in up to `peel_flaps`
-/// rounds, and the tiny pieces that leaves. Returns the number of faces removed. `pairs` gets
-/// the last round's pairs when that round removed nothing (they are then the current mesh's:
-/// `drop_turned_patches` takes them instead of scanning again), else it is reset.
-size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups, std::optional<FacePairs>& pairs) {
-  pairs.reset();
+/// rounds, and the tiny pieces that leaves. Returns the number of faces removed. Pairs are looked
+/// for only around the faces that could be flaps (`same_orientation_pairs` with `restrict_to`).
+size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   size_t removed = 0;
   // With `peel_from_cuts`, only flaps the cuts left: the first round peels faces at a vertex of a cut, each further
   // round faces at a vertex of a face peeled before (a flap of the loop's own border operations
@@ -379,15 +376,30 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups, std::
       }
       return border && reached;
     };
-    pairs = same_orientation_pairs(mesh, d);
-    for (const auto& [f, g] : *pairs) {
+    std::vector<FaceHandle> candidates;  // faces that can be flaps
+    if (o.peel_from_cuts) {
+      for (int v : reach) {
+        if (!edgefront::is_live(mesh, VertexHandle(v))) continue;
+        for (FaceHandle f : mesh.vf_range(VertexHandle(v))) {
+          if (on_border(f)) candidates.push_back(f);
+        }
+      }
+    } else {
+      for (FaceHandle f : mesh.faces()) {
+        if (on_border(f)) candidates.push_back(f);
+      }
+    }
+    std::sort(candidates.begin(), candidates.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    if (candidates.empty()) break;
+    d.restrict_to = std::move(candidates);
+    for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
       if (on_border(f)) flaps.push_back(f);
       if (on_border(g)) flaps.push_back(g);
     }
     std::sort(flaps.begin(), flaps.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
     flaps.erase(std::unique(flaps.begin(), flaps.end()), flaps.end());
     if (flaps.empty()) break;
-    pairs.reset();  // the mesh changes
     for (FaceHandle f : flaps) {
       for (VertexHandle v : mesh.fv_range(f)) reach.insert(v.idx());
     }
@@ -528,9 +540,10 @@ bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
 
 /// Removes or collapses small turned-over patches (see `RepairOptions::drop_turned_patches`).
 /// Runs after the global orientation (the reference verdicts are those of the final sides).
-/// `known`: the mesh's `same_orientation_pairs` under `o.detect` when the caller has them (the
-/// mesh unchanged since they were found), else null (scanned here).
-void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report, const FacePairs* known) {
+/// Pairs are looked for only around the faces the reference rejects (`same_orientation_pairs`
+/// with `restrict_to`): the reference's verdict costs a nearest-point query, a pair test a
+/// bounded front.
+void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
   if (!o.detect.reference || o.drop_turned_patches == 0 || mesh.faces().begin() == mesh.faces().end()) return;
   DetectOptions d = o.detect;
   d.restrict_to.reset();
@@ -560,8 +573,14 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     verdict.emplace(f.idx(), r);
     return r;
   };
+  std::vector<FaceHandle> rejected_faces;
+  for (FaceHandle f : mesh.faces()) {
+    if (rejected(f)) rejected_faces.push_back(f);
+  }
+  if (rejected_faces.empty()) return;
+  d.restrict_to = std::move(rejected_faces);
   std::vector<FaceHandle> seeds;
-  for (const auto& [f, g] : known ? *known : same_orientation_pairs(mesh, d)) {
+  for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
     if (rejected(f)) seeds.push_back(f);
     if (rejected(g)) seeds.push_back(g);
   }
@@ -858,20 +877,13 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   }
   if (grid) grid->update_new(mesh);
   if (!incremental && o.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
-  // The pairs of the flap peeling's last scan, while the mesh is still the one it scanned: the
-  // final call then makes one full pair scan instead of two.
-  std::optional<FacePairs> pairs;
   if (!incremental && o.peel_flaps > 0) {
-    const size_t peeled = peel_flaps(mesh, o, dups, pairs);
+    const size_t peeled = peel_flaps(mesh, o, dups);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
   }
-  if (o.global_orientation) {
-    const size_t flipped = report.components_flipped;
-    orient_globally(mesh, o, dups, report);
-    if (report.components_flipped != flipped) pairs.reset();  // faces re-added reversed
-  }
-  if (!incremental) drop_turned_patches(mesh, o, report, pairs ? &*pairs : nullptr);
+  if (o.global_orientation) orient_globally(mesh, o, dups, report);
+  if (!incremental) drop_turned_patches(mesh, o, report);
   if (o.garbage_collect) {
     const size_t before = mesh.n_vertices();
     mesh.garbage_collection();
