@@ -472,9 +472,8 @@ bool straighten_face(Mesh& mesh, FaceHandle f, const MoveTest& test) {
 
 /// Flattens a pleat (see `StackedLayerOptions`) of stacked faces f and g. A face of the two with
 /// two or three edges folded (n.n < 0) against its neighbours is turned over its own star (the
-/// third edge may lie on a crease): it is straightened
-/// alone (`straighten_face`), kept when fewer edges around fold than before and the two no
-/// longer overlap. Otherwise the interior vertices of f and g and their neighbours are smoothed
+/// third edge may lie on a crease): it is straightened alone (`straighten_face`), kept when
+/// fewer edges around fold than before and the two no longer overlap. Otherwise the interior vertices of f and g and their neighbours are smoothed
 /// together, up to 3 rounds, kept when f and g no longer overlap, no face around is degenerate
 /// and no more edges around fold than before. Returns whether something was kept (false too
 /// when a face is gone, no vertex is interior, or the other wall lies within the pleat's gap
