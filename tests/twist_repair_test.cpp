@@ -594,6 +594,36 @@ TEST(TwistRepair, StackedBorderLayerOfACurledRimIsRemoved) {
   EXPECT_EQ(flat.n_faces(), 96u);
 }
 
+TEST(TwistRepair, PairsRestrictedToFacesAreThoseOfTheWholeScan) {
+  // `same_orientation_pairs` with `restrict_to`: exactly the pairs of the whole scan in which the
+  // face or its partner is one of the given faces (the flap peeling and the turned-patch
+  // dropping look only around their candidates).
+  const Mesh m = spiral_ramp(1);
+  for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
+    const auto all = twist::same_orientation_pairs(m, {}, rule);
+    ASSERT_GE(all.size(), 8u);
+    // A face half a turn from the overlap (in no pair) and the first face of the first pair.
+    const FaceHandle middle(static_cast<int>(m.n_faces() / 2));
+    for (const auto& p : all) ASSERT_TRUE(p.first != middle && p.second != middle);
+    const std::vector<FaceHandle> some{middle, all.front().first};
+    twist::DetectOptions o;
+    o.restrict_to = some;
+    std::vector<std::pair<FaceHandle, FaceHandle>> expected;
+    for (const auto& p : all) {
+      if (std::find(some.begin(), some.end(), p.first) != some.end() || std::find(some.begin(), some.end(), p.second) != some.end()) {
+        expected.push_back(p);
+      }
+    }
+    ASSERT_GE(expected.size(), 1u);
+    ASSERT_LT(expected.size(), all.size());
+    EXPECT_EQ(twist::same_orientation_pairs(m, o, rule), expected);
+    o.restrict_to = std::vector<FaceHandle>{middle};
+    EXPECT_TRUE(twist::same_orientation_pairs(m, o, rule).empty());
+    o.restrict_to = std::vector<FaceHandle>{FaceHandle(static_cast<int>(m.n_faces()))};
+    EXPECT_THROW(twist::same_orientation_pairs(m, o, rule), InvalidInput);
+  }
+}
+
 TEST(TwistRepair, StackedLayersOfALargeOverlapOrAClosedMeshAreLeft) {
   // Six overlapping segments (24 faces per end): a layer that large is not a curled rim.
   Mesh m = spiral_ramp(6);
@@ -661,6 +691,49 @@ TEST(TwistRepair, PleatAroundAnOpenTubeIsSmoothedFlat) {
   EXPECT_EQ(inward(m), 0u) << "the band turned out with its neighbours";
   const edgefront::MeshStats st = edgefront::compute_stats(m);
   EXPECT_EQ(st.faces, 16u * kAround);
+  EXPECT_EQ(st.degenerate_faces, 0u);
+  EXPECT_EQ(st.border_loops, 2u);
+}
+
+TEST(TwistRepair, FaceTurnedOverItsOwnStarIsStraightenedAlone) {
+  // The slab's top plate (z = 0.5, facing up) with its vertex (3, 3) pushed across the edge
+  // (4, 3)-(4, 4) of its star and down to z = 0.3: one face turns over (facing down, like the
+  // bottom plate under it: a stacked same-orientation pair, no face on a border; two of its
+  // edges fold against its neighbours) and tucks under its neighbour across that edge, which
+  // then lies right behind it facing the other way, so the pleat smoothing of both layers is
+  // refused (the interleaved-walls guard). The turned face is straightened alone: the bottom
+  // plate does not move (vault shell t/R 0.1 at 1500 vertices, seed 1, repair: one face of the
+  // outer wall turned over onto the inner one).
+  Slab s = slab();
+  s.mesh.set_point(s.top[3 * 7 + 3], Vec3(4.4, 3.5, 0.3));
+  ASSERT_EQ(turned_top_faces(s.mesh).size(), 1u);
+  const FaceHandle turned = turned_top_faces(s.mesh).front();
+  const size_t stacked = twist::count_same_orientation_layers(s.mesh, {}, twist::LayerRule::Stacked);
+  ASSERT_GE(stacked, 2u) << "the turned face and the bottom face under it";
+  // Right behind the turned face (from its centroid up through the top plate) lies the face
+  // across its moved edge, facing up.
+  const Vec3 c = s.mesh.calc_face_centroid(turned);
+  bool tucked = false;
+  for (FaceHandle h : s.mesh.faces()) {
+    if (h == turned || s.mesh.calc_face_normal(h)[2] < 0.9) continue;
+    std::vector<Vec3> p;
+    for (auto v : s.mesh.fv_range(h)) p.push_back(s.mesh.point(v));
+    auto side = [&](const Vec3& a, const Vec3& b) { return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]); };
+    tucked = tucked || (side(p[0], p[1]) > 0 && side(p[1], p[2]) > 0 && side(p[2], p[0]) > 0 && c[2] < p[0][2]);
+  }
+  ASSERT_TRUE(tucked);
+  std::vector<Vec3> bottom;
+  for (int i = 0; i < 49; ++i) bottom.push_back(s.mesh.point(Mesh::VertexHandle(i)));
+  const twist::StackedLayerReport r = twist::remove_stacked_layers(s.mesh);
+  EXPECT_EQ(r.pairs_before, stacked);
+  EXPECT_GE(r.pleats_flattened, 1u);
+  EXPECT_EQ(r.faces_removed, 0u);
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(twist::count_same_orientation_layers(s.mesh, {}, twist::LayerRule::Stacked), 0u);
+  EXPECT_TRUE(turned_top_faces(s.mesh).empty()) << "the face turned back with its neighbours";
+  for (int i = 0; i < 49; ++i) EXPECT_EQ(s.mesh.point(Mesh::VertexHandle(i)), bottom[static_cast<size_t>(i)]) << "bottom vertex " << i;
+  const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
+  EXPECT_EQ(st.faces, 144u);
   EXPECT_EQ(st.degenerate_faces, 0u);
   EXPECT_EQ(st.border_loops, 2u);
 }

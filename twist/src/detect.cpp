@@ -10,6 +10,7 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "detail/geometry.h"
 #include "edgefront/error.h"
@@ -886,15 +887,35 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
   if (rule != LayerRule::Facing && rule != LayerRule::Stacked) {
     throw InvalidInput("twist::same_orientation_pairs: unknown layer rule " + std::to_string(static_cast<int>(rule)));
   }
-  Detector det(mesh, options, false);
+  DetectOptions full = options;
+  full.restrict_to.reset();  // the detector as for the whole mesh; the set only picks the faces
+  Detector det(mesh, full, false);
   std::vector<std::pair<FaceHandle, FaceHandle>> out;
-  for (FaceHandle f : mesh.faces()) {
-    if (det.normal(f).sqrnorm() == 0) continue;
+  auto add_pair = [&](FaceHandle f, const std::unordered_set<int>* keep) {
+    if (det.normal(f).sqrnorm() == 0) return;
     const bool stacked = rule == LayerRule::Stacked;
     FaceHandle g = det.far_layer(f, 1.0, true, stacked);
     if (!g.is_valid()) g = det.far_layer(f, -1.0, true, stacked);
-    if (g.is_valid()) out.emplace_back(f, g);
+    if (g.is_valid() && (!keep || keep->count(f.idx()) || keep->count(g.idx()))) out.emplace_back(f, g);
+  };
+  if (!options.restrict_to) {
+    for (FaceHandle f : mesh.faces()) add_pair(f, nullptr);
+    return out;
   }
+  // A face whose partner is in the set lies within the layer radius of it: the set and the faces
+  // around it are all that can make such a pair.
+  const std::unordered_set<int> keep = [&] {
+    std::unordered_set<int> k;
+    for (FaceHandle f : *options.restrict_to) k.insert(f.idx());
+    return k;
+  }();
+  std::vector<FaceHandle> candidates = *options.restrict_to;
+  for (FaceHandle f : *options.restrict_to) {
+    for (FaceHandle g : det.around(f)) candidates.push_back(g);
+  }
+  std::sort(candidates.begin(), candidates.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  for (FaceHandle f : candidates) add_pair(f, &keep);
   return out;
 }
 

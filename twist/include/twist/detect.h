@@ -249,8 +249,11 @@ enum class LayerRule {
 /// |n_f·d| >= `facing_cos`·|d|), far along the surface (as for facing layers) and with the same
 /// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
 /// `rule` sharpens which partners count (see `LayerRule`; the repair's flap peeling and turned
-/// patch dropping use `Facing`). Uses the geometry only (`reference`, `restrict_to` are
-/// ignored). Throws as `detect`, and InvalidInput for a `rule` that is no `LayerRule`.
+/// patch dropping use `Facing`). Uses the geometry only (`reference` is ignored). With
+/// `restrict_to`, only the pairs in which the face or its partner is one of those faces are
+/// returned (the same pairs the whole scan gives for them; only those faces and the faces within
+/// the layer radius of them are tested, so a small set costs little). Throws as `detect`, and
+/// InvalidInput for a `rule` that is no `LayerRule`.
 size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {},
                                      LayerRule rule = LayerRule::Facing);
 

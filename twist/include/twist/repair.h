@@ -187,15 +187,22 @@ struct StackedLayerReport {
 /// surface) but overlaps of one wall's faces where a rim or a hole's border curls over the
 /// surface next to it, as a reconstructor's border operations and its post-processing
 /// (projection onto the samples, flips, surface fit) leave them. A pair with no face on a border
-/// is a pleat (a Z fold inside the surface: the layer between the two faces is turned over): the
-/// interior vertices of the two faces and their neighbours are smoothed together (moved to the
-/// centroids of their neighbours, up to 3 times) and kept so when the two faces then no longer
-/// overlap, no face around is degenerate and no more edges around fold (n.n < 0) than before;
-/// else put back. A pleat is left when a face turned against the pair lies right behind its
-/// lower face, closer than the gap between the two: the walls of a shell thinner than the mesh
-/// resolves, interleaved, not a fold of one wall (smoothing would merge the walls: vault shell
-/// t/R 0.02 at 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard). Pairs in larger groups (`max_group_faces`) are left. A mesh without a border is
-/// not scanned (nothing to remove; its pleats stay). Does not garbage-collect.
+/// is a pleat (a Z fold inside the surface: the layer between the two faces is turned over), or a
+/// face turned over its own star onto another layer. A face of the pair with two or three edges
+/// folded (n.n < 0) against its neighbours is straightened alone: one of its interior vertices moved
+/// to the centroid of its neighbours, or else its interior vertices and their interior neighbours
+/// smoothed together (up to 3 times), kept when fewer edges around fold than before and the two
+/// faces no longer overlap (the other layer is not moved: vault shell t/R 0.1 at 1500 vertices,
+/// seed 1, one face of the outer wall turned over onto the inner one). Otherwise the interior
+/// vertices of the two faces and their neighbours are smoothed together (moved to the centroids
+/// of their neighbours, up to 3 times) and kept so when the two faces then no longer overlap, no
+/// face around is degenerate and no more edges around fold than before; else put back. That
+/// smoothing is not tried when a face turned against the pair lies right behind its lower face,
+/// closer than the gap between the two: the walls of a shell thinner than the mesh resolves,
+/// interleaved, not a fold of one wall (smoothing would merge the walls: vault shell t/R 0.02 at
+/// 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard). Pairs in larger
+/// groups (`max_group_faces`) are left. A mesh without a border is not scanned (nothing to
+/// remove; its pleats stay). Does not garbage-collect.
 /// \throws edgefront::InvalidInput for an empty mesh, non-finite coordinates or options out of
 ///         range (as `detect`, and `rounds`, `max_group_faces`, `min_component_faces`).
 StackedLayerReport remove_stacked_layers(edgefront::Mesh& mesh, const StackedLayerOptions& options = {});
