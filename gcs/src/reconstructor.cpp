@@ -526,60 +526,16 @@ struct Reconstructor::Impl {
 
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
-    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
+    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index], nb.index};
   }
 
   // The k samples nearest to p with their oriented normals (the film test of the border creation).
   std::vector<PointIndex::Neighbor> knn_oriented;  // its scratch (point_normal uses knn)
   void oriented_neighbors(const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
-    const bool kept = face_queries.knn_valid && face_queries.knn_point == p && face_queries.knn_k == k;
-    if (!kept) tree->k_nearest(p, k, knn_oriented);
-    face_queries.knn_valid = false;
+    tree->k_nearest(p, k, knn_oriented);
     out.clear();
     for (const PointIndex::Neighbor& nb : knn_oriented)
-      out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index]});
-  }
-
-  // The border creation's tests query the samples at every face's centroid: the nearest sample
-  // (support), the film_samples nearest (film test) and, among the faces kept, the nearest again
-  // (opposed faces). One search serves them: with the film test on, the nearest is the first of
-  // the k nearest (kept for the film test's call at the same point), and the nearest found for
-  // each centroid is remembered in face order for the opposed-face test, which queries the same
-  // points (the centroids of the faces still there, in the same order, nothing moved in between):
-  // an exact match of the point returns the remembered sample, anything else is searched.
-  struct FaceQueries {
-    std::vector<std::pair<Vec3, PointIndex::Neighbor>> seen;  // (centroid, its nearest) in query order
-    size_t cursor = 0;
-    Vec3 knn_point{0, 0, 0};  // knn_oriented holds the knn_k samples nearest to this point
-    size_t knn_k = 0;
-    bool knn_valid = false;
-  } face_queries;
-
-  // The support query of remove_unsupported_faces (see FaceQueries); film_k = 0 without the film test.
-  detail::CloudHit support_query(const Vec3& p, size_t film_k) {
-    PointIndex::Neighbor nb;
-    if (film_k > 0) {
-      tree->k_nearest(p, film_k, knn_oriented);
-      face_queries.knn_point = p;
-      face_queries.knn_k = film_k;
-      face_queries.knn_valid = true;
-      nb = knn_oriented.front();
-    } else {
-      nb = tree->nearest(p);
-    }
-    face_queries.seen.emplace_back(p, nb);
-    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
-  }
-  // The sample nearest to p for the opposed-face test (see FaceQueries).
-  PointIndex::Neighbor remembered_nearest(const Vec3& p) {
-    for (size_t k = face_queries.cursor; k < face_queries.seen.size(); ++k) {
-      if (face_queries.seen[k].first == p) {
-        face_queries.cursor = k + 1;
-        return face_queries.seen[k].second;
-      }
-    }
-    face_queries.cursor = face_queries.seen.size();  // out of step: search from now on
-    return tree->nearest(p);
+      out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index], nb.index});
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -1203,7 +1159,6 @@ struct Reconstructor::Impl {
       total += n;
       changed = changed || n > 0;
     };
-    face_queries = {};
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
@@ -1211,20 +1166,23 @@ struct Reconstructor::Impl {
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
       bp.film_samples = encloses ? opt.film_samples : 0;
-      const size_t film_k = bp.film_samples;
+      // The support test's nearest sample per face goes on to the opposed-face test (same
+      // centroids: nothing moves in between), with the sample's oriented normal.
+      detail::FaceNearest nearest;
       tally(faces_removed, detail::remove_unsupported_faces(
-                               mesh, [this, film_k](const Vec3& p) { return support_query(p, film_k); }, bp,
+                               mesh, dist, bp,
                                [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
                                  oriented_neighbors(p, k, out);
-                               }));
-      face_queries.knn_valid = false;
+                               },
+                               oriented ? &nearest : nullptr));
+      if (oriented) {
+        for (auto f : mesh.faces()) {
+          detail::CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
+          if (hit.index != detail::CloudHit::kNoSample) hit.normal = query_oriented_normal(hit.index);
+        }
+        tally(faces_removed, detail::remove_opposed_faces(mesh, nearest, {.max_distance = support}));
+      }
     }
-    if (opt.create_borders && oriented)
-      tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
-        const PointIndex::Neighbor nb = remembered_nearest(p);
-        return {std::sqrt(nb.distance2), query_oriented_normal(nb.index)};
-      }, {.max_distance = support}));
-    face_queries = {};
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;
@@ -1245,10 +1203,17 @@ struct Reconstructor::Impl {
       }
     }
     if (opt.create_borders) {
-      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
+      // Fills across the rims of thin closed shells (detail::RimSupport; needs oriented samples).
+      detail::RimSupport rim;
+      if (opt.close_rims && oriented) {
+        rim.neighbors = [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) { oriented_neighbors(p, k, out); };
+        rim.max_distance = support;
+      }
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5,
+                                                   {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}, rim));
       if (opt.fill_slits_max_vertices > 8)
         tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5,
-                                                       trim_rings));
+                                                       trim_rings, rim));
     }
     if (changed) resync();
     seconds_topology += seconds_since(t0);

@@ -102,6 +102,15 @@ struct ReconstructOptions {
   /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.
   /// Wide holes (the opening of a hemisphere or cylinder) and open sheets fail these checks.
   std::size_t fill_slits_max_vertices = 64;
+  /// Rims of thin closed shells (a vault shell's feet and end arches, about one edge wide, where
+  /// the mesh must turn 180 degrees within an edge or two): with oriented samples (orient_winners),
+  /// a small hole (up to 8 vertices) or slit (up to fill_slits_max_vertices) whose fan or strip
+  /// disagrees with the faces around it is still closed when every new face has, among the 8
+  /// samples nearest to its centroid and within the support distance (unsupported_distance mean
+  /// edges), one whose oriented normal makes a cosine of at least 0.5 with the face's normal (a
+  /// sample on the rim, facing like the face across it). Real openings have no samples facing
+  /// across them. false: such fills are refused as before.
+  bool close_rims = false;
   /// Oriented samples keep an open or planar cloud from ending as the start box collapsed onto it
   /// from both sides (a double layer): once the mesh has topology_min_vertices vertices, a
   /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "edgefront/mesh.h"
@@ -18,6 +19,9 @@ struct CloudHit {
   double distance = 0;
   edgefront::Vec3 normal{0, 0, 0};
   edgefront::Vec3 point{0, 0, 0};  ///< the sample (filled by CloudNeighbors; CloudQuery may leave it)
+  /// the sample's index in the searched points (kNoSample when the query does not say)
+  std::size_t index = kNoSample;
+  static constexpr std::size_t kNoSample = std::numeric_limits<std::size_t>::max();
 };
 using CloudQuery = std::function<CloudHit(const edgefront::Vec3&)>;
 /// The (up to) k input samples nearest to a point, nearest first, written into `out`.
@@ -43,12 +47,25 @@ struct BorderParams {
   double min_component_fraction = 0.05;  ///< ... or with fewer than this share of the largest's faces
 };
 
+/// The sample nearest to each face's centroid, indexed by face index (entries of faces that are
+/// deleted or were added later are meaningless). remove_unsupported_faces hands the nearest samples
+/// it found to remove_opposed_faces (double_layer.h) this way, so the second test needs no search.
+using FaceNearest = std::vector<CloudHit>;
+
 /// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
 /// components. Returns the number of faces removed. Never empties the mesh: when every face
 /// would go, nothing is removed.
-/// `neighbors` (may be empty: no film test) serves BorderParams::film_samples.
+/// `neighbors` (may be empty: no film test) serves BorderParams::film_samples; with the film test
+/// on, one search per face serves both tests: the nearest sample is the first of `neighbors`'
+/// answer (`cloud` is then not called). When `nearest` is given, it receives the nearest sample of
+/// every face the mesh had on entry (the faces still there after the call included), as found.
 std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cloud,
-                                     const BorderParams& params, const CloudNeighbors& neighbors = {});
+                                     const BorderParams& params, const CloudNeighbors& neighbors = {},
+                                     FaceNearest* nearest = nullptr);
+
+/// The sample nearest to every face's centroid by `cloud` (a FaceNearest for a mesh whose support
+/// test did not run, e.g. in tests).
+FaceNearest face_nearest(const edgefront::Mesh& mesh, const CloudQuery& cloud);
 
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
 /// removes components other than the largest with fewer than max(min_faces, min_fraction x the
@@ -94,6 +111,22 @@ struct ZipParams {
 /// the number of strips added.
 std::size_t zip_border_slits(edgefront::Mesh& mesh, const CloudQuery& cloud, const ZipParams& params);
 
+/// Rims of thin closed shells: where a shell's two walls meet in a rim (a foot strip or an end
+/// arch about one edge wide) the mesh must turn 180 degrees within an edge or two, so a hole fill or
+/// slit strip across the rim disagrees with the faces it borders (they belong to the two walls and
+/// face apart) and is refused by the agreement test. With `neighbors` set (oriented normals), such
+/// faces are still added when every one of them is faced by the samples: one of the `samples`
+/// samples nearest to its centroid, within max_distance, has an oriented normal making a cosine of
+/// at least min_cos with the face's normal (a sample on the rim itself). The gap between the two
+/// walls of a real opening has no such samples; a fill that folds back disagrees with them too.
+/// Empty `neighbors`: off.
+struct RimSupport {
+  CloudNeighbors neighbors;
+  std::size_t samples = 8;
+  double max_distance = 0;
+  double min_cos = 0.5;
+};
+
 /// Retrying a refused hole fill after removing rings of faces along the loop (a curled rim).
 struct TrimParams {
   std::size_t rings = 0;         ///< 1 ... this many rings are tried; 0 = off
@@ -108,9 +141,11 @@ struct TrimParams {
 /// With `trim` on, a loop of at most trim.max_loop_length whose fill is refused is tried again on a
 /// copy with 1 ... trim.rings rings of faces along it removed, filled by a fan of any size; the
 /// copy is kept when that fan is added and the number of components stays (the call then stops).
-/// Returns the number of loops filled.
+/// With `rim` on, a fill whose agreement is too low is still added when its faces are faced by the
+/// samples (RimSupport). Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
-                             double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
+                             double max_support_distance, double min_normal_agreement, const TrimParams& trim = {},
+                             const RimSupport& rim = {});
 
 /// Closes elongated holes (slits in a closed surface: a sparsely sampled stretch whose faces were
 /// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one
@@ -119,9 +154,11 @@ std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std
 /// merge_border_loops). With trim_rings > 0, a loop whose strip is refused (curled rims) is tried
 /// again on a copy with 1 ... trim_rings rings of faces along it removed (the wider loop may have
 /// more than max_vertices vertices); the copy is kept when the strip is added and the number of
-/// components stays (the call then stops). Returns the number of loops filled.
+/// components stays (the call then stops). With `rim` on, a strip whose agreement is too low is
+/// still added when its faces are faced by the samples (RimSupport). Returns the number of loops
+/// filled.
 std::size_t fill_slit_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t min_vertices,
                             std::size_t max_vertices, double max_support_distance, double min_normal_agreement,
-                            std::size_t trim_rings = 0);
+                            std::size_t trim_rings = 0, const RimSupport& rim = {});
 
 }  // namespace gcs::detail
