@@ -52,33 +52,6 @@ Vec3 face_normal(const Mesh& mesh, FaceHandle f) {
   return tri_normal(a, b, c);
 }
 
-// True when one of the rim.samples samples nearest to `c` (a new face's centroid; `n` its normal),
-// within rim.max_distance, faces like the face (see RimSupport).
-bool faced_by_samples(const RimSupport& rim, const Vec3& c, const Vec3& n) {
-  if (!rim.neighbors || !(n.norm() > 0)) return false;
-  std::vector<CloudHit> near;
-  rim.neighbors(c, rim.samples, near);
-  for (const CloudHit& s : near) {
-    if (s.distance > rim.max_distance) break;
-    if ((n | s.normal) >= rim.min_cos * n.norm() * s.normal.norm()) return true;
-  }
-  return false;
-}
-
-// Whether faces to be added across a border may be added: their mean cosine with the faces they
-// border (`agreement`, summed over the faces) reaches `min_agreement`, or else every one of them is
-// faced by the samples (RimSupport). `faces` gives face k's centroid and normal.
-bool faces_accepted(double agreement, size_t count, double min_agreement, const RimSupport& rim,
-                    const std::function<std::pair<Vec3, Vec3>(size_t)>& faces) {
-  if (agreement / static_cast<double>(count) >= min_agreement) return true;
-  if (!rim.neighbors) return false;
-  for (size_t k = 0; k < count; ++k) {
-    const auto [c, n] = faces(k);
-    if (!faced_by_samples(rim, c, n)) return false;
-  }
-  return true;
-}
-
 // Deletes the faces of every fan but the largest at non-manifold vertices; true if any was deleted.
 size_t fix_nonmanifold_vertices(Mesh& mesh) {
   size_t removed = 0;
@@ -191,7 +164,7 @@ struct Strip {
 // adds them. Leaves the mesh unchanged and returns false when a check fails or OpenMesh refuses a
 // face (a non-manifold result).
 bool zip_strip(Mesh& mesh, const CloudQuery& cloud, const Strip& st, double max_support_distance,
-               double min_normal_agreement, const RimSupport& rim = {}) {
+               double min_normal_agreement) {
   struct Tri {
     VertexHandle a, b, c;
     HalfedgeHandle border;  // the loop halfedge the face closes
@@ -226,12 +199,7 @@ bool zip_strip(Mesh& mesh, const CloudQuery& cloud, const Strip& st, double max_
     const Vec3 c = (mesh.point(t.a) + mesh.point(t.b) + mesh.point(t.c)) / 3.0;
     if (cloud(c).distance > max_support_distance) return false;
   }
-  const auto plan_face = [&](size_t k) {
-    const Tri& t = plan[k];
-    const Vec3 a = mesh.point(t.a), b = mesh.point(t.b), c = mesh.point(t.c);
-    return std::pair<Vec3, Vec3>((a + b + c) / 3.0, tri_normal(a, b, c));
-  };
-  if (!faces_accepted(agreement, plan.size(), min_normal_agreement, rim, plan_face)) return false;
+  if (agreement / static_cast<double>(plan.size()) < min_normal_agreement) return false;
   std::vector<FaceHandle> added;
   const MuteOpenMeshErrors mute;  // a refused face is handled below, not printed
   for (const Tri& t : plan) {
@@ -288,8 +256,8 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
     const Vec3 c = centroid(mesh, f);
     // With the film test on, its k nearest samples (nearest first) give the nearest one too.
     if (film_test) neighbors(c, params.film_samples, near);
-    const CloudHit hit = film_test ? (near.empty() ? CloudHit{std::numeric_limits<double>::infinity(), {}, {}} : near.front())
-                                   : cloud(c);
+    const CloudHit hit =
+        !film_test ? cloud(c) : near.empty() ? CloudHit{std::numeric_limits<double>::infinity(), {}, {}} : near.front();
     if (nearest) (*nearest)[static_cast<size_t>(f.idx())] = hit;
     bool remove = hit.distance > params.max_support_distance;
     if (!remove && hit.distance >= params.normal_check_distance && std::isfinite(hit.normal[0])) {
@@ -489,7 +457,7 @@ namespace {
 // Fills one simple border loop by a fan around its centroid (a triangle for 3 vertices) when the
 // centroid lies on the cloud and the fan agrees with the faces around (see fill_small_holes).
 bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance,
-               double min_normal_agreement, const RimSupport& rim) {
+               double min_normal_agreement) {
   const size_t n = loop.vertices.size();
   if (n < 3 || !is_simple(loop)) return false;
   Vec3 c(0, 0, 0);
@@ -506,13 +474,7 @@ bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max
   }
   // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
   // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
-  const auto fan_face = [&](size_t k) {
-    const Vec3 a = mesh.point(loop.vertices[k]), b = mesh.point(loop.vertices[(k + 1) % n]);
-    const Vec3 apex = n == 3 ? mesh.point(loop.vertices[(k + 2) % n]) : c;  // 3 vertices: the triangle itself
-    return std::pair<Vec3, Vec3>((a + b + apex) / 3.0, tri_normal(a, b, apex));
-  };
-  if (!faces_accepted(agreement, n, n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement, rim,
-                      fan_face))
+  if (agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
     return false;
   const MuteOpenMeshErrors mute;
   if (n == 3) return mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid();
@@ -549,16 +511,16 @@ bool trim_and_close(Mesh& mesh, const Loop& loop, size_t rings, const std::funct
 }  // namespace
 
 size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices, double max_support_distance,
-                        double min_normal_agreement, const TrimParams& trim, const RimSupport& rim) {
+                        double min_normal_agreement, const TrimParams& trim) {
   size_t filled = 0;
   for (const Loop& loop : border_loops(mesh)) {
     const size_t n = loop.vertices.size();
     if (n < 3) continue;
-    if (n <= max_vertices && fill_loop(mesh, cloud, loop, max_support_distance, min_normal_agreement, rim)) {
+    if (n <= max_vertices && fill_loop(mesh, cloud, loop, max_support_distance, min_normal_agreement)) {
       ++filled;
     } else if (trim.rings > 0 && loop.length <= trim.max_loop_length &&
                trim_and_close(mesh, loop, trim.rings, [&](Mesh& m, const Loop& wider) {
-                 return fill_loop(m, cloud, wider, max_support_distance, min_normal_agreement, rim);
+                 return fill_loop(m, cloud, wider, max_support_distance, min_normal_agreement);
                })) {
       return filled + 1;  // the trimming may have changed other loops' halfedges
     }
@@ -570,7 +532,7 @@ namespace {
 
 // Zips the two halves of one simple loop of at least 6 vertices together (see fill_slit_holes).
 bool fill_slit_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& L, double max_support_distance,
-                    double min_normal_agreement, const RimSupport& rim) {
+                    double min_normal_agreement) {
   const size_t n = L.vertices.size();
   if (n < 6 || !is_simple(L)) return false;
   // Tips: the pairs of loop vertices half a loop apart, farthest apart first; the strip runs from
@@ -586,7 +548,7 @@ bool fill_slit_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& L, double m
                       [&](size_t k) { return loop_vertex(L, i0 - 1 - long(k)); },
                       [&](size_t k) { return loop_halfedge(L, i0 + long(k)); },
                       [&](size_t k) { return loop_halfedge(L, i0 - 2 - long(k)); }, half, n - half - 2};
-    if (zip_strip(mesh, cloud, strip, max_support_distance, min_normal_agreement, rim)) return true;
+    if (zip_strip(mesh, cloud, strip, max_support_distance, min_normal_agreement)) return true;
   }
   return false;
 }
@@ -594,16 +556,15 @@ bool fill_slit_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& L, double m
 }  // namespace
 
 size_t fill_slit_holes(Mesh& mesh, const CloudQuery& cloud, size_t min_vertices, size_t max_vertices,
-                       double max_support_distance, double min_normal_agreement, std::size_t trim_rings,
-                       const RimSupport& rim) {
+                       double max_support_distance, double min_normal_agreement, std::size_t trim_rings) {
   size_t filled = 0;
   for (const Loop& L : border_loops(mesh)) {
     const size_t n = L.vertices.size();
     if (n < std::max<size_t>(min_vertices, 6) || n > max_vertices) continue;
-    if (fill_slit_loop(mesh, cloud, L, max_support_distance, min_normal_agreement, rim)) {
+    if (fill_slit_loop(mesh, cloud, L, max_support_distance, min_normal_agreement)) {
       ++filled;
     } else if (trim_rings > 0 && trim_and_close(mesh, L, trim_rings, [&](Mesh& m, const Loop& wider) {
-                 return fill_slit_loop(m, cloud, wider, max_support_distance, min_normal_agreement, rim);
+                 return fill_slit_loop(m, cloud, wider, max_support_distance, min_normal_agreement);
                })) {
       return filled + 1;  // the trimming may have changed other loops' halfedges
     }

@@ -570,6 +570,10 @@ struct Reconstructor::Impl {
     if (smooth || facing) gather_ring(VertexHandle(wi));
     if (facing && !((ring_normal_sum(wi) | draw[si].normal) > 0)) {
       const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, 8, 2 * grid.cell_size());
+      if (other == wi && opt.skip_unfaced_samples && cloud.has_normals()) {  // none faces the sample's side
+        end_step();
+        return;
+      }
       if (other != wi) {
         wi = other;
         gather_ring(VertexHandle(wi));
@@ -597,6 +601,10 @@ struct Reconstructor::Impl {
     tau[wi] += 1.0 / scale;
     order.set(wi, tau[wi]);
     last_win[wi] = steps;
+    end_step();
+  }
+  // The global decay of every basic step (with or without a winner).
+  void end_step() {
     scale *= decay;
     if (scale < 1e-150) renormalize();
     ++steps;
@@ -1203,17 +1211,10 @@ struct Reconstructor::Impl {
       }
     }
     if (opt.create_borders) {
-      // Fills across the rims of thin closed shells (detail::RimSupport; needs oriented samples).
-      detail::RimSupport rim;
-      if (opt.close_rims && oriented) {
-        rim.neighbors = [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) { oriented_neighbors(p, k, out); };
-        rim.max_distance = support;
-      }
-      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5,
-                                                   {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}, rim));
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
       if (opt.fill_slits_max_vertices > 8)
         tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5,
-                                                       trim_rings, rim));
+                                                       trim_rings));
     }
     if (changed) resync();
     seconds_topology += seconds_since(t0);

@@ -102,15 +102,6 @@ struct ReconstructOptions {
   /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.
   /// Wide holes (the opening of a hemisphere or cylinder) and open sheets fail these checks.
   std::size_t fill_slits_max_vertices = 64;
-  /// Rims of thin closed shells (a vault shell's feet and end arches, about one edge wide, where
-  /// the mesh must turn 180 degrees within an edge or two): with oriented samples (orient_winners),
-  /// a small hole (up to 8 vertices) or slit (up to fill_slits_max_vertices) whose fan or strip
-  /// disagrees with the faces around it is still closed when every new face has, among the 8
-  /// samples nearest to its centroid and within the support distance (unsupported_distance mean
-  /// edges), one whose oriented normal makes a cosine of at least 0.5 with the face's normal (a
-  /// sample on the rim, facing like the face across it). Real openings have no samples facing
-  /// across them. false: such fills are refused as before.
-  bool close_rims = false;
   /// Oriented samples keep an open or planar cloud from ending as the start box collapsed onto it
   /// from both sides (a double layer): once the mesh has topology_min_vertices vertices, a
   /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
@@ -120,6 +111,17 @@ struct ReconstructOptions {
   /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
   /// graph is not connected.
   bool orient_winners = true;
+  /// With orient_winners and input normals: a sample none of whose 8 nearest vertices (within two
+  /// grid cells of the nearest) faces its side is skipped (no winner, no move, no signal) instead of pulling the
+  /// plain nearest vertex to it. On a thin closed shell (walls about one edge apart) the vertices
+  /// nearest to a sample on a wall whose own layer is missing there (not yet grown, or cut by the
+  /// border creation) lie on the other wall and face away: pulling them dented that wall into the
+  /// gap, where the border creation then removed it, so the holes spread (the torn vault shells).
+  /// The missing layer grows back from its border instead (its border vertices win the samples
+  /// they face). Not with fitted normals, whose orientation can be wrong in places (the loop would
+  /// never follow those samples; on a landscape at 300 vertices that left folds). false: the
+  /// published oriented loop's fallback (the plain nearest vertex wins).
+  bool skip_unfaced_samples = true;
   /// With oriented samples (see orient_winners) that surround a volume (their normals point away
   /// from the centroid: not an open flat sheet), the border creation also removes films: faces all
   /// of whose this many nearest samples (within the support distance) face sideways to them and

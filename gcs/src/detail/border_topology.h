@@ -111,22 +111,6 @@ struct ZipParams {
 /// the number of strips added.
 std::size_t zip_border_slits(edgefront::Mesh& mesh, const CloudQuery& cloud, const ZipParams& params);
 
-/// Rims of thin closed shells: where a shell's two walls meet in a rim (a foot strip or an end
-/// arch about one edge wide) the mesh must turn 180 degrees within an edge or two, so a hole fill or
-/// slit strip across the rim disagrees with the faces it borders (they belong to the two walls and
-/// face apart) and is refused by the agreement test. With `neighbors` set (oriented normals), such
-/// faces are still added when every one of them is faced by the samples: one of the `samples`
-/// samples nearest to its centroid, within max_distance, has an oriented normal making a cosine of
-/// at least min_cos with the face's normal (a sample on the rim itself). The gap between the two
-/// walls of a real opening has no such samples; a fill that folds back disagrees with them too.
-/// Empty `neighbors`: off.
-struct RimSupport {
-  CloudNeighbors neighbors;
-  std::size_t samples = 8;
-  double max_distance = 0;
-  double min_cos = 0.5;
-};
-
 /// Retrying a refused hole fill after removing rings of faces along the loop (a curled rim).
 struct TrimParams {
   std::size_t rings = 0;         ///< 1 ... this many rings are tried; 0 = off
@@ -141,11 +125,9 @@ struct TrimParams {
 /// With `trim` on, a loop of at most trim.max_loop_length whose fill is refused is tried again on a
 /// copy with 1 ... trim.rings rings of faces along it removed, filled by a fan of any size; the
 /// copy is kept when that fan is added and the number of components stays (the call then stops).
-/// With `rim` on, a fill whose agreement is too low is still added when its faces are faced by the
-/// samples (RimSupport). Returns the number of loops filled.
+/// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
-                             double max_support_distance, double min_normal_agreement, const TrimParams& trim = {},
-                             const RimSupport& rim = {});
+                             double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
 
 /// Closes elongated holes (slits in a closed surface: a sparsely sampled stretch whose faces were
 /// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one
@@ -154,11 +136,9 @@ std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std
 /// merge_border_loops). With trim_rings > 0, a loop whose strip is refused (curled rims) is tried
 /// again on a copy with 1 ... trim_rings rings of faces along it removed (the wider loop may have
 /// more than max_vertices vertices); the copy is kept when the strip is added and the number of
-/// components stays (the call then stops). With `rim` on, a strip whose agreement is too low is
-/// still added when its faces are faced by the samples (RimSupport). Returns the number of loops
-/// filled.
+/// components stays (the call then stops). Returns the number of loops filled.
 std::size_t fill_slit_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t min_vertices,
                             std::size_t max_vertices, double max_support_distance, double min_normal_agreement,
-                            std::size_t trim_rings = 0, const RimSupport& rim = {});
+                            std::size_t trim_rings = 0);
 
 }  // namespace gcs::detail
