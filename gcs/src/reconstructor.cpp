@@ -569,8 +569,12 @@ struct Reconstructor::Impl {
     const bool facing = oriented && live >= opt.topology_min_vertices;
     if (smooth || facing) gather_ring(VertexHandle(wi));
     if (facing && !((ring_normal_sum(wi) | draw[si].normal) > 0)) {
-      const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, 8, 2 * grid.cell_size());
-      if (other == wi && opt.skip_unfaced_samples && cloud.has_normals()) {  // none faces the sample's side
+      // Skipping unfaced samples (ReconstructOptions::skip_unfaced_samples), the search goes wider:
+      // the missing layer's border vertices must be found to grow it back.
+      const bool skip = opt.skip_unfaced_samples && cloud.has_normals();
+      const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, skip ? 32 : 8,
+                                                       (skip ? 4 : 2) * grid.cell_size());
+      if (other == wi && skip) {  // no vertex nearby faces the sample's side
         end_step();
         return;
       }
