@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../gcs/src/detail/double_layer.h"
+#include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
@@ -123,7 +124,7 @@ TEST(GcsOpposedFaces, RemovesTheLayerFacingAwayFromTheSamples) {
   const size_t faces = m.n_faces();
   gcs::detail::OpposedParams p;
   p.max_distance = 0.5;
-  EXPECT_EQ(gcs::detail::remove_opposed_faces(m, plane_up, p), faces / 2);
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(m, gcs::detail::face_nearest(m, plane_up), p), faces / 2);
   m.garbage_collection();
   m.update_face_normals();
   EXPECT_EQ(m.n_faces(), faces / 2);
@@ -134,10 +135,62 @@ TEST(GcsOpposedFaces, RemovesTheLayerFacingAwayFromTheSamples) {
   // Faces farther than max_distance are not judged; a mesh that would lose (almost) all is kept.
   Mesh far = double_layer(6, 0.01);
   for (auto v : far.vertices()) far.point(v)[2] += 1.0;
-  EXPECT_EQ(gcs::detail::remove_opposed_faces(far, plane_up, p), 0u);
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(far, gcs::detail::face_nearest(far, plane_up), p), 0u);
   Mesh flipped = double_layer(6, 0.01);
   const auto plane_down = [](const Vec3& q) { return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, -1)}; };
-  EXPECT_EQ(gcs::detail::remove_opposed_faces(flipped, plane_down, p), faces / 2);
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(flipped, gcs::detail::face_nearest(flipped, plane_down), p), faces / 2);
+}
+
+TEST(GcsOpposedFaces, TheSupportTestHandsItsNearestSamplesOver) {
+  // A double layer with a strip of the upper layer lifted off the cloud: the support test removes
+  // the lifted faces and records the nearest sample of every face (one query per face); the
+  // opposed-face test then judges the faces left by those records alone.
+  Mesh m = double_layer(6, 0.01);
+  for (auto v : m.vertices())
+    if (m.point(v)[2] > 0 && m.point(v)[0] > 4.5) m.point(v)[2] = 3.0;
+  size_t queries = 0;
+  const gcs::detail::CloudQuery counted = [&](const Vec3& q) {
+    ++queries;
+    return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, 1), Vec3(q[0], q[1], 0), static_cast<size_t>(q[0] * 100)};
+  };
+  gcs::detail::BorderParams bp;
+  bp.max_support_distance = 0.5;
+  bp.max_edge_length = 10;
+  bp.min_component_faces = 1;
+  bp.min_component_fraction = 0;
+  const size_t faces = m.n_faces();
+  gcs::detail::FaceNearest nearest;
+  const size_t removed = gcs::detail::remove_unsupported_faces(m, counted, bp, {}, &nearest);
+  EXPECT_GT(removed, 0u);
+  EXPECT_EQ(queries, faces);
+  ASSERT_EQ(nearest.size(), faces);
+  size_t left = 0;
+  for (auto f : m.faces()) {
+    Vec3 c(0, 0, 0);
+    for (auto v : m.fv_range(f)) c += m.point(v);
+    c /= 3.0;
+    const gcs::detail::CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
+    EXPECT_DOUBLE_EQ(hit.distance, std::abs(c[2]));
+    EXPECT_EQ(hit.index, static_cast<size_t>(c[0] * 100));
+    ++left;
+  }
+  queries = 0;
+  gcs::detail::OpposedParams p;
+  p.max_distance = 0.5;
+  p.split_fraction = 0;
+  Mesh again = m;
+  const size_t opposed = gcs::detail::remove_opposed_faces(m, nearest, p);
+  EXPECT_EQ(queries, 0u);
+  EXPECT_GT(opposed, 0u);
+  // The same as searching again.
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(again, gcs::detail::face_nearest(again, counted), p), opposed);
+  EXPECT_EQ(queries, left);
+  m.garbage_collection();
+  m.update_face_normals();
+  for (auto f : m.faces()) EXPECT_GT(m.normal(f)[2], 0.99);
+  // A record per face is required.
+  gcs::detail::FaceNearest short_list(m.n_faces() / 2);
+  EXPECT_THROW(gcs::detail::remove_opposed_faces(m, short_list, p), edgefront::InternalError);
 }
 
 TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
@@ -160,10 +213,10 @@ TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
   p.max_distance = 0.5;
   Mesh kept_piece = strip;
   p.split_fraction = 0;
-  EXPECT_EQ(gcs::detail::remove_opposed_faces(kept_piece, cloud, p), 4u);
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(kept_piece, gcs::detail::face_nearest(kept_piece, cloud), p), 4u);
   EXPECT_EQ(edgefront::compute_stats(kept_piece).components, 2u);
   p.split_fraction = 0.25;
-  EXPECT_EQ(gcs::detail::remove_opposed_faces(strip, cloud, p), 4u + 12u);
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(strip, gcs::detail::face_nearest(strip, cloud), p), 4u + 12u);
   strip.garbage_collection();
   EXPECT_EQ(strip.n_faces(), 64u);
   EXPECT_EQ(edgefront::compute_stats(strip).components, 1u);
@@ -213,5 +266,38 @@ INSTANTIATE_TEST_SUITE_P(Clouds, GcsSheet,
                          [](const ::testing::TestParamInfo<SheetCase>& i) {
                            return i.param.shape + (i.param.normals ? "_normals" : "_no_normals");
                          });
+
+// ReconstructOptions::skip_unfaced_samples on a closed vault shell whose walls are about one mean
+// edge apart (thickness 0.2, 300 vertices): the option changes the run (samples there face no
+// vertex nearby), the result is a valid manifold mesh in one piece, and the same seed gives the same
+// mesh. On an open sheet with input normals some vertex always faces the sample: the same mesh
+// either way.
+TEST(GcsOrientedNearest, SkippingUnfacedSamplesOnAThinShellIsValidAndDeterministic) {
+  const auto run = [](const PointCloud& cloud, bool skip) {
+    gcs::ReconstructOptions o;
+    o.target_vertices = 300;
+    o.skip_unfaced_samples = skip;
+    return gcs::Reconstructor(cloud, o).run().mesh;
+  };
+  const auto same = [](const Mesh& a, const Mesh& b) {
+    if (a.n_vertices() != b.n_vertices() || a.n_faces() != b.n_faces()) return false;
+    for (auto v : a.vertices())
+      if (a.point(v) != b.point(VertexHandle(v.idx()))) return false;
+    return true;
+  };
+  edgefront::shapes::SampleOptions so;
+  so.points = 4000;
+  so.shape.thickness = 0.2;
+  const PointCloud shell = edgefront::shapes::sample("vault-shell", so);
+  const Mesh skipped = run(shell, true);
+  const gcs::MeshValidity v = gcs::mesh_validity(skipped);
+  EXPECT_TRUE(v.edge_manifold && v.vertex_manifold);
+  EXPECT_EQ(v.components, 1u);
+  EXPECT_GE(skipped.n_vertices(), 270u);
+  EXPECT_FALSE(same(skipped, run(shell, false)));
+  EXPECT_TRUE(same(skipped, run(shell, true)));
+  const PointCloud sheet = cloud_of("vault-sheet", 2000);
+  EXPECT_TRUE(same(run(sheet, true), run(sheet, false)));
+}
 
 }  // namespace

@@ -237,16 +237,28 @@ size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
   return removed;
 }
 
+FaceNearest face_nearest(const Mesh& mesh, const CloudQuery& cloud) {
+  FaceNearest nearest(mesh.n_faces());
+  for (auto f : mesh.faces()) nearest[static_cast<size_t>(f.idx())] = cloud(centroid(mesh, f));
+  return nearest;
+}
+
 size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const BorderParams& params,
-                                const CloudNeighbors& neighbors) {
+                                const CloudNeighbors& neighbors, FaceNearest* nearest) {
   std::vector<FaceHandle> doomed;
   std::vector<CloudHit> near;
   const bool film_test = params.film_samples > 0 && neighbors;
   size_t live_faces = 0;
   const double max_edge2 = params.max_edge_length * params.max_edge_length;
+  if (nearest) nearest->assign(mesh.n_faces(), CloudHit{});
   for (auto f : mesh.faces()) {
     ++live_faces;
-    const CloudHit hit = cloud(centroid(mesh, f));
+    const Vec3 c = centroid(mesh, f);
+    // With the film test on, its k nearest samples (nearest first) give the nearest one too.
+    if (film_test) neighbors(c, params.film_samples, near);
+    const CloudHit hit =
+        !film_test ? cloud(c) : near.empty() ? CloudHit{std::numeric_limits<double>::infinity(), {}, {}} : near.front();
+    if (nearest) (*nearest)[static_cast<size_t>(f.idx())] = hit;
     bool remove = hit.distance > params.max_support_distance;
     if (!remove && hit.distance >= params.normal_check_distance && std::isfinite(hit.normal[0])) {
       const Vec3 n = face_normal(mesh, f);
@@ -258,8 +270,6 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
     }
     if (!remove && film_test) {
       const Vec3 n = face_normal(mesh, f);
-      const Vec3 c = centroid(mesh, f);
-      neighbors(c, params.film_samples, near);
       bool supported = !(n.norm() > 0);
       for (const CloudHit& s : near) {
         if (supported || s.distance > params.max_support_distance) break;

@@ -64,14 +64,15 @@ int oriented_nearest_after(const Mesh& mesh, VertexGrid& grid, const Vec3& sampl
   return found >= 0 ? found : first;
 }
 
-std::size_t remove_opposed_faces(Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params) {
+std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const OpposedParams& params) {
+  EF_CHECK(nearest.size() >= mesh.n_faces(), "remove_opposed_faces: a nearest sample per face is needed");
   std::vector<FaceHandle> doomed;
   size_t live_faces = 0;
   for (auto f : mesh.faces()) {
     ++live_faces;
     auto it = mesh.cfv_iter(f);
     const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
-    const CloudHit hit = cloud((a + b + c) / 3.0);
+    const CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
     if (!(hit.distance <= params.max_distance) || !std::isfinite(hit.normal[0])) continue;
     const Vec3 n = (b - a) % (c - a);
     const double ln = n.norm(), lh = hit.normal.norm();

@@ -535,60 +535,16 @@ struct Reconstructor::Impl {
 
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
-    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
+    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index], nb.index};
   }
 
   // The k samples nearest to p with their oriented normals (the film test of the border creation).
   std::vector<PointIndex::Neighbor> knn_oriented;  // its scratch (point_normal uses knn)
   void oriented_neighbors(const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
-    const bool kept = face_queries.knn_valid && face_queries.knn_point == p && face_queries.knn_k == k;
-    if (!kept) tree->k_nearest(p, k, knn_oriented);
-    face_queries.knn_valid = false;
+    tree->k_nearest(p, k, knn_oriented);
     out.clear();
     for (const PointIndex::Neighbor& nb : knn_oriented)
-      out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index]});
-  }
-
-  // The border creation's tests query the samples at every face's centroid: the nearest sample
-  // (support), the film_samples nearest (film test) and, among the faces kept, the nearest again
-  // (opposed faces). One search serves them: with the film test on, the nearest is the first of
-  // the k nearest (kept for the film test's call at the same point), and the nearest found for
-  // each centroid is remembered in face order for the opposed-face test, which queries the same
-  // points (the centroids of the faces still there, in the same order, nothing moved in between):
-  // an exact match of the point returns the remembered sample, anything else is searched.
-  struct FaceQueries {
-    std::vector<std::pair<Vec3, PointIndex::Neighbor>> seen;  // (centroid, its nearest) in query order
-    size_t cursor = 0;
-    Vec3 knn_point{0, 0, 0};  // knn_oriented holds the knn_k samples nearest to this point
-    size_t knn_k = 0;
-    bool knn_valid = false;
-  } face_queries;
-
-  // The support query of remove_unsupported_faces (see FaceQueries); film_k = 0 without the film test.
-  detail::CloudHit support_query(const Vec3& p, size_t film_k) {
-    PointIndex::Neighbor nb;
-    if (film_k > 0) {
-      tree->k_nearest(p, film_k, knn_oriented);
-      face_queries.knn_point = p;
-      face_queries.knn_k = film_k;
-      face_queries.knn_valid = true;
-      nb = knn_oriented.front();
-    } else {
-      nb = tree->nearest(p);
-    }
-    face_queries.seen.emplace_back(p, nb);
-    return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index]};
-  }
-  // The sample nearest to p for the opposed-face test (see FaceQueries).
-  PointIndex::Neighbor remembered_nearest(const Vec3& p) {
-    for (size_t k = face_queries.cursor; k < face_queries.seen.size(); ++k) {
-      if (face_queries.seen[k].first == p) {
-        face_queries.cursor = k + 1;
-        return face_queries.seen[k].second;
-      }
-    }
-    face_queries.cursor = face_queries.seen.size();  // out of step: search from now on
-    return tree->nearest(p);
+      out.push_back({std::sqrt(nb.distance2), query_oriented_normal(nb.index), (*query_points)[nb.index], nb.index});
   }
 
   // ---------------------------------------------------------------- geometry helpers
@@ -622,7 +578,15 @@ struct Reconstructor::Impl {
     const bool facing = oriented && live >= opt.topology_min_vertices;
     if (smooth || facing) gather_ring(VertexHandle(wi));
     if (facing && !((ring_normal_sum(wi) | draw[si].normal) > 0)) {
-      const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, 8, 2 * grid.cell_size());
+      // Skipping unfaced samples (ReconstructOptions::skip_unfaced_samples), the search goes wider:
+      // the missing layer's border vertices must be found to grow it back.
+      const bool skip = opt.skip_unfaced_samples && cloud.has_normals();
+      const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, skip ? 32 : 8,
+                                                       (skip ? 4 : 2) * grid.cell_size());
+      if (other == wi && skip) {  // no vertex nearby faces the sample's side
+        end_step();
+        return;
+      }
       if (other != wi) {
         wi = other;
         gather_ring(VertexHandle(wi));
@@ -650,6 +614,10 @@ struct Reconstructor::Impl {
     tau[wi] += 1.0 / scale;
     order.set(wi, tau[wi]);
     last_win[wi] = steps;
+    end_step();
+  }
+  // The global decay of every basic step (with or without a winner).
+  void end_step() {
     scale *= decay;
     if (scale < 1e-150) renormalize();
     ++steps;
@@ -1212,7 +1180,6 @@ struct Reconstructor::Impl {
       total += n;
       changed = changed || n > 0;
     };
-    face_queries = {};
     if (opt.create_borders) {
       detail::BorderParams bp;
       bp.max_support_distance = support;
@@ -1220,20 +1187,23 @@ struct Reconstructor::Impl {
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
       bp.film_samples = encloses ? opt.film_samples : 0;
-      const size_t film_k = bp.film_samples;
+      // The support test's nearest sample per face goes on to the opposed-face test (same
+      // centroids: nothing moves in between), with the sample's oriented normal.
+      detail::FaceNearest nearest;
       tally(faces_removed, detail::remove_unsupported_faces(
-                               mesh, [this, film_k](const Vec3& p) { return support_query(p, film_k); }, bp,
+                               mesh, dist, bp,
                                [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
                                  oriented_neighbors(p, k, out);
-                               }));
-      face_queries.knn_valid = false;
+                               },
+                               oriented ? &nearest : nullptr));
+      if (oriented) {
+        for (auto f : mesh.faces()) {
+          detail::CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
+          if (hit.index != detail::CloudHit::kNoSample) hit.normal = query_oriented_normal(hit.index);
+        }
+        tally(faces_removed, detail::remove_opposed_faces(mesh, nearest, {.max_distance = support}));
+      }
     }
-    if (opt.create_borders && oriented)
-      tally(faces_removed, detail::remove_opposed_faces(mesh, [this](const Vec3& p) -> detail::CloudHit {
-        const PointIndex::Neighbor nb = remembered_nearest(p);
-        return {std::sqrt(nb.distance2), query_oriented_normal(nb.index)};
-      }, {.max_distance = support}));
-    face_queries = {};
     if (opt.merge_borders) {
       detail::MergeParams mp;
       mp.mean_edge_length = ell;

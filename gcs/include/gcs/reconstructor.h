@@ -111,6 +111,25 @@ struct ReconstructOptions {
   /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
   /// graph is not connected.
   bool orient_winners = true;
+  /// With orient_winners and input normals: the winner is the nearest vertex facing the sample's
+  /// side among its 32 nearest (within four grid cells, about four mean edges, of the nearest)
+  /// instead of 8 (two cells), and a sample none of them faces is skipped (no winner, no move, no
+  /// signal) instead of pulling the plain nearest vertex to it. On a thin closed shell (walls about
+  /// one edge apart) the vertices nearest to a sample on a wall whose own layer is missing there
+  /// (not yet grown, or cut by the border creation) lie on the other wall and face away: pulling
+  /// them dented that wall into the gap, where the border creation then removed it, so the holes
+  /// spread (the torn vault shells). The missing layer grows back from its border instead (its
+  /// border vertices win the samples they face; with only 8 candidates they were often out of
+  /// reach, and whole stretches of a shell stayed missing). Not with fitted normals, whose
+  /// orientation can be wrong in places (the loop would never follow those samples; on a landscape
+  /// at 300 vertices that left folds). Off by default: measured on vault shells (bench/results/
+  /// gcs.md, Session 11) it covers the shells (t/R 0.05 at edge = t: coverage 0.95-1.00 -> 0.998-
+  /// 1.000, Chamfer-L1 median 0.123 -> 0.088%; data/vault-shell.xyz at 2000 vertices: border loops
+  /// median 8 -> 3, Chamfer 0.595 -> 0.540%) but does not close them (0 border loops in 1 of 65
+  /// shell runs, 2 without it), adds loops on some t/R 0.05 runs and self-intersecting pairs on
+  /// others. Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
+  /// false: the published oriented loop's fallback (the plain nearest vertex wins among 8).
+  bool skip_unfaced_samples = false;
   /// With oriented samples (see orient_winners) that surround a volume (their normals point away
   /// from the centroid: not an open flat sheet), the border creation also removes films: faces all
   /// of whose this many nearest samples (within the support distance) face sideways to them and

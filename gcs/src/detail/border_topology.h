@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "edgefront/mesh.h"
@@ -18,6 +19,9 @@ struct CloudHit {
   double distance = 0;
   edgefront::Vec3 normal{0, 0, 0};
   edgefront::Vec3 point{0, 0, 0};  ///< the sample (filled by CloudNeighbors; CloudQuery may leave it)
+  /// the sample's index in the searched points (kNoSample when the query does not say)
+  std::size_t index = kNoSample;
+  static constexpr std::size_t kNoSample = std::numeric_limits<std::size_t>::max();
 };
 using CloudQuery = std::function<CloudHit(const edgefront::Vec3&)>;
 /// The (up to) k input samples nearest to a point, nearest first, written into `out`.
@@ -43,12 +47,25 @@ struct BorderParams {
   double min_component_fraction = 0.05;  ///< ... or with fewer than this share of the largest's faces
 };
 
+/// The sample nearest to each face's centroid, indexed by face index (entries of faces that are
+/// deleted or were added later are meaningless). remove_unsupported_faces hands the nearest samples
+/// it found to remove_opposed_faces (double_layer.h) this way, so the second test needs no search.
+using FaceNearest = std::vector<CloudHit>;
+
 /// Removes unsupported faces (and vertices left without faces), then non-manifold fans and tiny
 /// components. Returns the number of faces removed. Never empties the mesh: when every face
 /// would go, nothing is removed.
-/// `neighbors` (may be empty: no film test) serves BorderParams::film_samples.
+/// `neighbors` (may be empty: no film test) serves BorderParams::film_samples; with the film test
+/// on, one search per face serves both tests: the nearest sample is the first of `neighbors`'
+/// answer (`cloud` is then not called). When `nearest` is given, it receives the nearest sample of
+/// every face the mesh had on entry (the faces still there after the call included), as found.
 std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cloud,
-                                     const BorderParams& params, const CloudNeighbors& neighbors = {});
+                                     const BorderParams& params, const CloudNeighbors& neighbors = {},
+                                     FaceNearest* nearest = nullptr);
+
+/// The sample nearest to every face's centroid by `cloud` (a FaceNearest for a mesh whose support
+/// test did not run, e.g. in tests).
+FaceNearest face_nearest(const edgefront::Mesh& mesh, const CloudQuery& cloud);
 
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
 /// removes components other than the largest with fewer than max(min_faces, min_fraction x the

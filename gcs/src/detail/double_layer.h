@@ -54,9 +54,11 @@ struct OpposedParams {
 /// nearest to their centroid, then cleans non-manifold fans and tiny components (clean_topology),
 /// then removes the pieces that the removal cut off and that have fewer than split_fraction of the
 /// largest component's faces.
-/// `cloud` must return oriented normals (NaN normal: that face is not judged). Never removes 90%
-/// or more of the faces. Returns the number of faces removed.
-std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const CloudQuery& cloud, const OpposedParams& params);
+/// `nearest` holds every face's nearest sample by face index (as remove_unsupported_faces found it,
+/// or face_nearest), its distance and its oriented normal (NaN normal: that face is not judged);
+/// the mesh must not have moved since. Never removes 90% or more of the faces. Returns the number
+/// of faces removed. \throws edgefront::InternalError when `nearest` has fewer entries than faces.
+std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const FaceNearest& nearest, const OpposedParams& params);
 
 /// How much the normals point away from the points' centroid c: the sum of n.(p - c) / |n| over
 /// the points with a usable normal, divided by their count times the largest |p - c|. About 0.5-1
