@@ -1,7 +1,8 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
-///                   [--rejoin-borders] [--keep-noise] [--no-fit] [--fit-rounds R] [--fit-smoothness W]
+///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
+///                   [--fit-smoothness W]
 ///                   [--no-delaunay-flips]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
@@ -64,6 +65,10 @@ int main(int argc, char** argv) {
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
                "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
                "ending as a torn double layer)");
+  app.add_flag("--skip-unfaced-samples", options.skip_unfaced_samples,
+               "thin closed shells with input normals: a sample that no vertex nearby faces is skipped instead of "
+               "pulling the other wall's vertex (better coverage and Chamfer on vault shells, but not closed, and "
+               "sometimes more self-intersections; off by default)");
   bool keep_noise = false;
   app.add_flag("--keep-noise", keep_noise,
                "do not smooth a noisy cloud before the loop (by default a cloud whose estimated noise exceeds 5% of "

@@ -192,4 +192,19 @@ TEST_F(GcsCli, NoDelaunayFlipsIsAcceptedAndKeepsTheVertexCount) {
   EXPECT_GE(gcs::mesh_validity(ma).min_angle_deg, gcs::mesh_validity(mb).min_angle_deg);
 }
 
+TEST_F(GcsCli, SkipUnfacedSamplesIsAcceptedAndChangesTheShell) {
+  // The bundled thin shell (input normals): skipping samples that no vertex nearby faces changes
+  // which vertices move; the result is a valid manifold mesh either way.
+  const std::string shell = (fs::path(EDGEFRONT_DATA_DIR) / "vault-shell.xyz").string();
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 400 --seed 1 --quiet";
+  ASSERT_EQ(run(q(shell) + " -o " + q(a) + common).exit_code, 0);
+  const eftest::CommandResult rb = run(q(shell) + " -o " + q(b) + common + " --skip-unfaced-samples");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  EXPECT_NE(eftest::slurp(a), eftest::slurp(b));
+  const edgefront::MeshStats s = edgefront::compute_stats(edgefront::load_mesh(b));
+  EXPECT_EQ(s.nonmanifold_vertices, 0u);
+  EXPECT_GT(s.faces, 400u);
+}
+
 }  // namespace
