@@ -152,7 +152,7 @@ struct ReconstructOptions {
   /// 5K-vertex mesh is 1.7-3x closer to the true surface (Chamfer-L1), while its distance to the
   /// noisy points themselves grows (bench/results/gcs-noise.md).
   /// Clean clouds are left as they are: the synthetic shapes estimate below 0.01, CGAL's kitten.xyz
-  /// 0.012 (CGAL's sphere_20k: 0.71). >= 0 (0 smooths every cloud), not NaN; infinity turns it off.
+  /// 0.012 (CGAL's sphere_20k: 0.70). >= 0 (0 smooths every cloud), not NaN; infinity turns it off.
   double smooth_noise_ratio = 0.05;
   /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
   /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
