@@ -149,7 +149,7 @@ struct ReconstructOptions {
   /// fitted to its 64 nearest points (gcs::smooth_noise). The loop, its border tests and the
   /// post-processing (which put the mesh on the samples) then use the smoothed points, so the mesh
   /// does not carry the noise: with noise of 0.06-0.24 point spacings on synthetic shapes the
-  /// 5K-vertex mesh is 1.7-3x closer to the true surface (Chamfer-L1), while its distance to the
+  /// 5K-vertex mesh is 1.8-3x closer to the true surface (Chamfer-L1), while its distance to the
   /// noisy points themselves grows (bench/results/gcs-noise.md).
   /// Clean clouds are left as they are: the synthetic shapes estimate below 0.01, CGAL's kitten.xyz
   /// 0.012 (CGAL's sphere_20k: 0.70). >= 0 (0 smooths every cloud), not NaN; infinity turns it off.
