@@ -86,7 +86,7 @@ class QuadricFitter {
       near_.push_back({h.index, (cloud_.points[h.index] - cloud_.points[i]).sqrnorm()});
     }
     if (near_.size() < k_) return fit(i, q);  // e.g. the other wall of a thin shell in the cell
-    const std::size_t m = std::min(k_, near_.size());
+    const std::size_t m = k_;
     std::nth_element(near_.begin(), near_.begin() + static_cast<std::ptrdiff_t>(m), near_.end(),
                      [](const PointIndex::Neighbor& a, const PointIndex::Neighbor& b) {
                        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -444,6 +445,21 @@ std::optional<size_t> folds_around(const Mesh& mesh, const std::vector<VertexHan
   return n;
 }
 
+/// The vertices of `faces` and their neighbours that are not on the border, by index, once each.
+std::vector<VertexHandle> interior_vertices_around(const Mesh& mesh, std::initializer_list<FaceHandle> faces) {
+  std::vector<VertexHandle> vs;
+  for (FaceHandle x : faces) {
+    for (VertexHandle v : mesh.fv_range(x)) {
+      vs.push_back(v);
+      for (VertexHandle w : mesh.vv_range(v)) vs.push_back(w);
+    }
+  }
+  std::sort(vs.begin(), vs.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
+  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  vs.erase(std::remove_if(vs.begin(), vs.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), vs.end());
+  return vs;
+}
+
 /// Builds, for the vertices about to be moved, the test `smooth_until` applies after a round
 /// (it may note what it needs before the move).
 using MoveTest = std::function<std::function<bool()>(const std::vector<VertexHandle>&)>;
@@ -459,14 +475,7 @@ bool straighten_face(Mesh& mesh, FaceHandle f, const MoveTest& test) {
     const std::vector<VertexHandle> vs{v};
     if (smooth_until(mesh, vs, 1, test(vs))) return true;
   }
-  std::vector<VertexHandle> around;
-  for (VertexHandle v : own) {
-    for (VertexHandle w : mesh.vv_range(v)) around.push_back(w);
-    around.push_back(v);
-  }
-  std::sort(around.begin(), around.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
-  around.erase(std::unique(around.begin(), around.end()), around.end());
-  around.erase(std::remove_if(around.begin(), around.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), around.end());
+  const std::vector<VertexHandle> around = interior_vertices_around(mesh, {f});
   return smooth_until(mesh, around, 3, test(around));
 }
 
@@ -503,16 +512,7 @@ bool flatten_pleat(Mesh& mesh, FaceHandle f, FaceHandle g) {
     for (FaceHandle k : mesh.ff_range(t)) folded += OpenMesh::dot(nt, detail::unit_normal(detail::face_points(mesh, k))) < 0;
     if (folded >= 2 && straighten_face(mesh, t, fewer_folds_apart)) return true;
   }
-  std::vector<VertexHandle> vs;
-  for (FaceHandle x : {f, g}) {
-    for (VertexHandle v : mesh.fv_range(x)) {
-      vs.push_back(v);
-      for (VertexHandle w : mesh.vv_range(v)) vs.push_back(w);
-    }
-  }
-  std::sort(vs.begin(), vs.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
-  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
-  vs.erase(std::remove_if(vs.begin(), vs.end(), [&](VertexHandle v) { return mesh.is_boundary(v); }), vs.end());
+  const std::vector<VertexHandle> vs = interior_vertices_around(mesh, {f, g});
   if (vs.empty()) return false;
   const std::optional<size_t> before = folds_around(mesh, vs);
   if (!before) return false;
