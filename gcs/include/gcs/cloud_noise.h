@@ -15,13 +15,18 @@
 /// \endcode
 ///
 /// Method: around a point, a quadric height field z = f(x, y) is fitted by least squares to its
-/// nearest points, in the frame of their principal axes (z along the smallest one). On a smooth
-/// surface sampled without noise the quadric follows the surface to third order, so what it does
-/// not explain is the noise. With normals, neighbours whose normal differs from the point's by
-/// more than 60 degrees are left out: the other wall of a thin shell is not noise.
+/// nearest points, in the frame of their principal axes (z along the smallest one). What the quadric
+/// does not explain is the noise plus the surface's own misfit, which is not small where the
+/// sampling is coarse for the surface's detail (a scanned model's vertex set: CGAL's elephant,
+/// armadillo, dragon and man leave 0.09-0.16 point spacings at 10 neighbours without any noise).
+/// The two are told apart by fitting twice, to k and to 2k neighbours: noise leaves the same
+/// residual at both, the misfit grows (its square at least 4 times). With normals, neighbours whose
+/// normal differs from the point's by more than 60 degrees are left out: the other wall of a thin
+/// shell is not noise.
 ///
 /// Cost (2-core VM, one thread): the estimate looks at 5,000 points at most (0.06 s for 5K points,
-/// 0.16-0.18 s for 1M points, most of it passes over the points to find its patches);
+/// 0.16-0.18 s for 1M points, most of it passes over the points to find its patches; measured
+/// before the second fit);
 /// smoothing costs about 20 us per point (1M points: about 20 s), most of it in k-d tree queries,
 /// which the points of a small cell share. Memory: the cloud once more, and a k-d tree over it.
 
@@ -33,9 +38,15 @@ namespace gcs {
 
 /// The noise of a cloud, from `estimate_noise`.
 struct NoiseEstimate {
-  /// Median over the points of the quadric fit's residual (standard deviation, corrected for the
-  /// fit's 6 parameters): an estimate of the noise's standard deviation along the normal.
+  /// The noise's standard deviation along the normal: sqrt(max(0, (4 r^2 - R^2) / 3)) with r the
+  /// `residual` and R the `wide_residual` (what is left when the misfit, assumed to grow at least
+  /// 4-fold in square from r to R, is taken out; pure noise gives about r).
   double noise = 0;
+  /// Median over the points of the quadric fit's residual at `NoiseOptions::neighbours` (standard
+  /// deviation, corrected for the fit's 6 parameters): noise and misfit together.
+  double residual = 0;
+  /// The same at twice as many neighbours.
+  double wide_residual = 0;
   /// Median distance from a point to its nearest other point.
   double spacing = 0;
   /// Points whose neighbourhood was used (a degenerate or too small one is skipped).
@@ -46,8 +57,9 @@ struct NoiseEstimate {
 
 /// Options of `estimate_noise`.
 struct NoiseOptions {
-  /// Neighbours of a point the quadric is fitted to (the point included), in [8, 256]. Small, so that
-  /// the neighbourhood stays on one wall of a thin shell whose walls are a few spacings apart.
+  /// Neighbours of a point the quadric is fitted to (the point included), in [8, 256]; the second
+  /// fit takes twice as many. Small, so that the neighbourhood stays on one wall of a thin shell
+  /// whose walls are a few spacings apart.
   std::size_t neighbours = 10;
   /// At most this many points are looked at (an even stride over the cloud); >= 1. A cloud of more
   /// than 4 times as many is looked at in 16 patches (cubes around evenly strided points, holding
