@@ -128,7 +128,7 @@ std::string check_max_distance(std::string& text) {
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   if (text.empty() || ec != std::errc() || ptr != end || !(value >= 0)) {
-    return "--max-distance: '" + text + "' is not a non-negative number (or inf)";
+    return "'" + text + "' is not a non-negative number (or inf)";  // CLI11 prefixes the option
   }
   return {};
 }
