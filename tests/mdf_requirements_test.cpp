@@ -429,19 +429,29 @@ TEST(MdfRequirements, ConeUnrollsExactly) {
   }
 }
 
-// Property 6: |d(a,b) - d(b,a)| / d(a,b) averages at most 0.1% (a 2562-vertex bumpy sphere,
-// 20 random pairs; measured 0.059%; Dijkstra's edge paths are exactly symmetric, not tested).
+// Property 6: |d(a,b) - d(b,a)| / d(a,b) averages at most 0.1%: every pair of 8 random vertices
+// of a 2562-vertex bumpy sphere, one whole field per vertex, in each front mode (Dijkstra's edge
+// paths are symmetric by construction). Mdf.DistancesAreNearlySymmetric only asserts 1.5%.
 TEST(MdfRequirements, SymmetryWithinTheStatedBound) {
   const Mesh mesh = shapes::bumpy_sphere(4, 1.0, 0.15, 3.0);
   std::mt19937_64 rng(6);
-  double sum = 0;
-  for (int i = 0; i < 20; ++i) {
-    const auto ab = eftest::random_vertices(mesh, rng, 2);
-    const double dab = geodesic_distance(mesh, FrontSource::vertex(ab[0]), {.target = ab[1]}).distance[ab[1].idx()];
-    const double dba = geodesic_distance(mesh, FrontSource::vertex(ab[1]), {.target = ab[0]}).distance[ab[0].idx()];
-    sum += std::abs(dab - dba) / dab;
+  const auto sources = eftest::random_vertices(mesh, rng, 8);
+  for (const Mode& mode : modes()) {
+    if (mode.name == "dijkstra" || mode.name.rfind("stepwise", 0) == 0) continue;  // stepwise: the same fields
+    std::vector<std::vector<double>> fields;
+    for (VertexHandle s : sources) fields.push_back(mode.from_source(mesh, FrontSource::vertex(s), {}).distance);
+    double sum = 0;
+    size_t pairs = 0;
+    for (size_t a = 0; a < sources.size(); ++a) {
+      for (size_t b = a + 1; b < sources.size(); ++b, ++pairs) {
+        const double dab = fields[a][sources[b].idx()], dba = fields[b][sources[a].idx()];
+        sum += std::abs(dab - dba) / dab;
+      }
+    }
+    // Measured: mdf 0.086%, windows 2.2e-5%, fast 0.036% (the coarse mesh is the hard case:
+    // 0.080% for mdf with 10242 vertices).
+    EXPECT_LT(sum / static_cast<double>(pairs), 1e-3) << mode.name;
   }
-  EXPECT_LT(sum / 20, 1e-3);
 }
 
 // Property 7: the same surface under two triangulations (a height field with every quad's
