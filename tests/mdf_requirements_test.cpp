@@ -5,7 +5,8 @@
 // deleted, beyond max_distance) are infinite, never 0; the order, directions and stop reasons
 // agree with the distances. Plus the properties of /work/shared/notes/edge-fronts.md that
 // minimal_distance_front_test.cpp does not check: cones (4), symmetry at the stated 0.1% (6),
-// triangulation independence (7), and the working memory of a whole field following the front.
+// triangulation independence (7), and the working memory of a whole field following the front;
+// and the README's three-line example.
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,7 @@
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/geodesic_ring_table.h"
+#include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/shapes.h"
 #include "front_test_util.h"
@@ -503,6 +505,23 @@ TEST(MdfRequirements, WholeFieldWorkingMemoryFollowsTheFront) {
     }
     EXPECT_GT(bytes[0], 0u);
     EXPECT_LT(bytes[1], bytes[0] * 5 / 4) << (track ? "tracked" : "untracked");  // measured: equal
+  }
+}
+
+// The README's "distance field in three lines", as written there (the path from the data
+// directory): a whole field on the bundled bumpy sphere.
+TEST(MdfRequirements, ReadmeThreeLineExample) {
+  const std::string path = std::string(EDGEFRONT_DATA_DIR) + "/bumpy-sphere.off";
+  edgefront::Mesh mesh = edgefront::load_mesh(path);
+  auto field = edgefront::geodesic_distance(mesh, edgefront::FrontSource::vertex(edgefront::VertexHandle(0)));
+  ASSERT_EQ(field.distance.size(), 642u);
+  ASSERT_EQ(field.direction.size(), 642u);
+  ASSERT_EQ(field.order.size(), 642u);
+  EXPECT_EQ(field.order.front(), VertexHandle(0));
+  EXPECT_EQ(field.distance[0], 0.0);
+  for (size_t i = 1; i < 642; ++i) {
+    EXPECT_TRUE(std::isfinite(field.distance[i]) && field.distance[i] > 0) << i;
+    EXPECT_NEAR(field.direction[i].norm(), 1.0, 1e-9) << i;
   }
 }
 
