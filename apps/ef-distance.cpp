@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
   CLI::Option* side_opt = app.add_option("--side", side, "side of the loop to measure on: left (default) or right")
                               ->check(CLI::IsMember({"left", "right"}));
   app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: inf, no limit)")
-      ->check(CLI::Validator(check_max_distance, "D"));
+      ->check(CLI::Validator(check_max_distance, ""));
   app.add_option("--method", method,
                  "mdf (Minimal Distance Front, default), windows (MDF with per-edge windows: near-exact, "
                  "3-4x slower; vertices and points only), fast (one update per neighbour: about 2x a Dijkstra, "
