@@ -209,6 +209,14 @@ TEST(MdfRequirements, UnreachedVerticesAreInfiniteInEveryMode) {
     ASSERT_GT(unreached, 0u);
     EXPECT_EQ(other.order.size(), nested.n_vertices() - unreached) << mode.name;
     EXPECT_EQ(other.stop, DistanceStop::Exhausted) << mode.name;
+    if (mode.from_points) {  // a point on a face next to vertex 0: the same component
+      const FaceHandle face = *nested.vf_range(VertexHandle(0)).begin();
+      const DistanceField pf = mode.from_points(nested, {{face, {0.2, 0.3, 0.5}}}, {});
+      for (VertexHandle v : nested.vertices()) {
+        EXPECT_EQ(std::isinf(pf.distance[v.idx()]), hops[v.idx()] < 0) << mode.name << ": vertex " << v.idx();
+        EXPECT_GT(pf.distance[v.idx()], 0) << mode.name << ": the point lies inside the face";
+      }
+    }
 
     // A deleted vertex is never reached (the others are: the sphere stays connected).
     const DistanceField h = mode.from_source(holes.mesh, FrontSource::vertex(VertexHandle(0)), {});
