@@ -14,8 +14,11 @@
 /// one-line summary (method, time, reached vertices, peak front, stop reason) goes to stderr.
 /// --method windows is the MDF with per-edge windows (DistanceOptions::windows): near-exact
 /// distances from vertices and points at about 3-4x the time of the default. --method fast is
-/// the MDF's fast mode (DistanceOptions::fast): about 2.5x a Dijkstra's time, errors a few times
-/// those of the default (vertices and points only).
+/// the MDF's fast mode (DistanceOptions::fast): about 2x the time of --method dijkstra, errors a
+/// few times those of the default (vertices and points only). --point takes every method but
+/// dijkstra; --loop only mdf and dijkstra.
+/// --max-distance takes a non-negative number or "inf" (the default); an empty value is refused
+/// (CLI11 would read it as 0).
 /// --png renders the field (colormap, isolines at a nice step, grey where not reached) with the
 /// sources (points or the loop) into a picture (apps/common/app_render.h).
 ///
@@ -118,6 +121,18 @@ void append_number(std::string& text, double x) {
   text.append(buf, ptr);
 }
 
+/// CLI11 validator of --max-distance: a non-negative number or inf. Empty text is refused here
+/// (CLI11 itself would assign 0), as are NaN and numbers beyond the double range.
+std::string check_max_distance(std::string& text) {
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc() || ptr != end || !(value >= 0)) {
+    return "'" + text + "' is not a non-negative number (or inf)";  // CLI11 prefixes the option
+  }
+  return {};
+}
+
 std::string stop_name(edgefront::DistanceStop stop) {
   switch (stop) {
     case edgefront::DistanceStop::NotStarted: return "not started";
@@ -148,16 +163,17 @@ int main(int argc, char** argv) {
       app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
   CLI::Option* point_opt = app.add_option(
       "--point", point_texts, "source point F:b0,b1,b2 (face index, barycentric coordinates in the face's vertex "
-                              "order); may be repeated (mdf only)");
+                              "order); may be repeated (not with --method dijkstra)");
   source_opt->excludes(loop_opt)->excludes(point_opt);
   loop_opt->excludes(source_opt)->excludes(point_opt);
   point_opt->excludes(source_opt)->excludes(loop_opt);
   CLI::Option* side_opt = app.add_option("--side", side, "side of the loop to measure on: left (default) or right")
                               ->check(CLI::IsMember({"left", "right"}));
-  app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: no limit)");
+  app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: inf, no limit)")
+      ->check(CLI::Validator(check_max_distance, ""));
   app.add_option("--method", method,
                  "mdf (Minimal Distance Front, default), windows (MDF with per-edge windows: near-exact, "
-                 "3-4x slower; vertices and points only), fast (one update per neighbour: about 2.5x a Dijkstra, "
+                 "3-4x slower; vertices and points only), fast (one update per neighbour: about 2x a Dijkstra, "
                  "less accurate than mdf; vertices and points only) or dijkstra (over edges)")
       ->check(CLI::IsMember({"mdf", "windows", "fast", "dijkstra"}));
   app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply");
@@ -167,11 +183,9 @@ int main(int argc, char** argv) {
     if (source_text.empty() && loop_text.empty() && point_texts.empty()) {
       throw edgefront::apps::AppUsageError("one of --source, --loop or --point is required");
     }
-    if (!(max_distance >= 0)) {  // also NaN
-      throw edgefront::apps::AppUsageError("--max-distance must be a non-negative number");
-    }
     if (!point_texts.empty() && method == "dijkstra") {
-      throw edgefront::apps::AppUsageError("--point needs --method mdf (Dijkstra runs from vertices and loops)");
+      throw edgefront::apps::AppUsageError(
+          "--point needs --method mdf, windows or fast (Dijkstra runs from vertices and loops)");
     }
     if (!loop_text.empty() && (method == "windows" || method == "fast")) {
       throw edgefront::apps::AppUsageError("--method " + method + " takes --source or --point, not --loop");
@@ -200,8 +214,8 @@ int main(int argc, char** argv) {
       source = edgefront::FrontSource::from_vertices(parse_vertex_list(source_text, n, "--source"));
     } else if (!loop_text.empty()) {
       std::vector<VertexHandle> path = parse_vertex_list(loop_text, n, "--loop");
-      // Accept the closing vertex written out again ("1,2,3,1").
-      if (path.size() > 3 && path.front() == path.back()) path.pop_back();
+      // Accept the closing vertex written out again ("1,2,3,1"; "1,2,1" is then a path of 2).
+      if (path.size() > 1 && path.front() == path.back()) path.pop_back();
       source = edgefront::loop_from_vertices(
           mesh, path, side == "right" ? edgefront::LoopSide::Right : edgefront::LoopSide::Left);
     } else {

@@ -1,7 +1,8 @@
 // Tests of the ef-front and ef-distance command-line tools: real runs of the built executables
 // (EDGEFRONT_APP_DIR) on the bundled meshes (EDGEFRONT_DATA_DIR), with the output compared to the
 // library's own answers, PLY output read back, and the documented exit codes (0 ok, 1 error with
-// one line "<app>: error: ..." on stderr, 2 usage error).
+// one line "<app>: error: ..." on stderr, 2 usage error). ef-distance: every --method, every
+// source form, the summary line, the PLY's values and colours, bad values and bad meshes.
 
 #include <gtest/gtest.h>
 
@@ -11,12 +12,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,6 +33,7 @@
 #include "edgefront/minimal_edge_front.h"
 #include "edgefront/shapes.h"
 #include "edgefront/vertex_front.h"
+#include "render/color.h"
 
 namespace {
 
@@ -422,6 +428,174 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_usage_error(torus + " --source 0 --max-distance nan");
   expect_usage_error(torus + " --source 0 --side right");
   expect_usage_error(torus + " --source 0 -o d.xyz");
+}
+
+
+/// The library's field for ef-distance's --method (the CLI runs without directions).
+edgefront::DistanceField library_field(const Mesh& mesh, const FrontSource& source, const std::string& method,
+                                       edgefront::DistanceOptions options = {}) {
+  options.directions = false;
+  options.windows = method == "windows";
+  options.fast = method == "fast";
+  return method == "dijkstra" ? edgefront::dijkstra_distance(mesh, source, options)
+                              : edgefront::geodesic_distance(mesh, source, options);
+}
+
+// Every method: the library's field byte for byte, inf exactly on the other component, the
+// summary's count of reached vertices equal to the finite lines, --max-distance 0 only the
+// source, --max-distance inf no limit.
+TEST_F(AppsFrontTest, EfDistanceEveryMethodOnTwoComponents) {
+  use_app("ef-distance");
+  const Mesh mesh = edgefront::shapes::nested_spheres(1);
+  const fs::path file = path("nested.off");
+  edgefront::write_mesh(mesh, file);
+  const std::vector<int> hops = edgefront::edge_front_levels(mesh, FrontSource::vertex(VertexHandle(3)));
+  const auto reached = static_cast<size_t>(std::count_if(hops.begin(), hops.end(), [](int h) { return h >= 0; }));
+  ASSERT_LT(reached, mesh.n_vertices());
+  for (const std::string method : {"mdf", "windows", "fast", "dijkstra"}) {
+    const CommandResult r = run(quoted(file.string()) + " --source 3 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    const std::vector<double> d = parse_distances(r.out);
+    EXPECT_EQ(d, library_field(mesh, FrontSource::vertex(VertexHandle(3)), method).distance) << method;
+    ASSERT_EQ(d.size(), mesh.n_vertices());
+    for (size_t i = 0; i < d.size(); ++i) {
+      EXPECT_EQ(std::isfinite(d[i]), hops[i] >= 0) << method << ": vertex " << i << " at " << d[i];
+      if (i != 3) {
+        EXPECT_GT(d[i], 0) << method << ": vertex " << i;
+      }
+    }
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(summary_count(r.err, "of " + std::to_string(mesh.n_vertices()) + " vertices reached"),
+              static_cast<int>(reached))
+        << r.err;
+    EXPECT_NE(r.err.find(" ms, "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(method == "mdf" || method == "windows" ? "peak front " : "no front"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("peak working memory "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("stop: exhausted"), std::string::npos) << r.err;
+
+    const CommandResult zero = run(quoted(file.string()) + " --source 3,5 --max-distance 0 --method " + method);
+    ASSERT_EQ(zero.exit_code, 0) << zero.err;
+    const std::vector<double> z = parse_distances(zero.out);
+    ASSERT_EQ(z.size(), mesh.n_vertices());
+    for (size_t i = 0; i < z.size(); ++i) {
+      EXPECT_EQ(z[i], i == 3 || i == 5 ? 0.0 : std::numeric_limits<double>::infinity()) << method << ": " << i;
+    }
+    EXPECT_NE(zero.err.find("2 of " + std::to_string(mesh.n_vertices()) + " vertices reached"), std::string::npos)
+        << zero.err;
+    EXPECT_NE(zero.err.find("stop: max distance"), std::string::npos) << zero.err;
+    const CommandResult unbounded = run(quoted(file.string()) + " --source 3 --max-distance inf --method " + method);
+    ASSERT_EQ(unbounded.exit_code, 0) << unbounded.err;
+    EXPECT_EQ(unbounded.out, r.out) << method;
+  }
+  // Surface points in the modes that take them; the closing vertex of a loop may be repeated.
+  const Mesh torus = edgefront::read_mesh(data_file("torus.off")).mesh;
+  edgefront::SurfacePoint p;
+  p.face = edgefront::FaceHandle(10);
+  p.bary = {0.2, 0.3, 0.5};
+  for (const std::string method : {"windows", "fast"}) {
+    const CommandResult r = run(quoted(data_file("torus.off")) + " --point 10:0.2,0.3,0.5 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(parse_distances(r.out),
+              edgefront::geodesic_distance(torus, std::vector<edgefront::SurfacePoint>{p},
+                                           {.directions = false, .windows = method == "windows", .fast = method == "fast"})
+                  .distance)
+        << method;
+  }
+  const std::string neck = quoted(data_file("neck.off"));
+  const CommandResult open_form = run(neck + " --loop 43,44,45 --side right --method dijkstra");
+  const CommandResult closed_form = run(neck + " --loop 43,44,45,43 --side right --method dijkstra");
+  ASSERT_EQ(open_form.exit_code, 0) << open_form.err;
+  ASSERT_EQ(closed_form.exit_code, 0) << closed_form.err;
+  EXPECT_EQ(closed_form.out, open_form.out);
+  EXPECT_NE(open_form.out.find("inf\n"), std::string::npos);  // the loop's other side
+}
+
+// The PLY for MeshLab: binary little endian, x y z, the distance as a double property, then
+// red green blue; the distances are those of the text output (inf kept), grey exactly where not
+// reached, and colours from the colormap with isolines (the source lies on the first, darkened).
+TEST_F(AppsFrontTest, EfDistancePlyHoldsTheDistancesAndIsolineColors) {
+  use_app("ef-distance");
+  const std::string torus = quoted(data_file("torus.off"));
+  const CommandResult txt = run(torus + " --source 3 --max-distance 1.5");
+  ASSERT_EQ(txt.exit_code, 0) << txt.err;
+  const std::vector<double> expected = parse_distances(txt.out);
+  const CommandResult ply = run(torus + " --source 3 --max-distance 1.5 -o " + quoted(path("d.ply").string()));
+  ASSERT_EQ(ply.exit_code, 0) << ply.err;
+  const std::string bytes = slurp(path("d.ply"));
+  const std::string end_header = "end_header\n";
+  const size_t body = bytes.find(end_header);
+  ASSERT_NE(body, std::string::npos);
+  const std::string header = bytes.substr(0, body);
+  EXPECT_EQ(header.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u) << header;
+  EXPECT_NE(header.find("\nelement vertex 192\nproperty double x\nproperty double y\nproperty double z\n"
+                        "property double distance\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                        "element face 384\n"),
+            std::string::npos)
+      << header;
+  constexpr size_t kRecord = 4 * sizeof(double) + 3;
+  ASSERT_GE(bytes.size(), body + end_header.size() + 192 * kRecord);
+  const char* at = bytes.data() + body + end_header.size();
+  std::set<std::array<uint8_t, 3>> colors;
+  size_t unreached = 0;
+  for (size_t i = 0; i < 192; ++i, at += kRecord) {
+    double d = 0;
+    std::memcpy(&d, at + 3 * sizeof(double), sizeof d);  // the machine is little endian
+    std::array<uint8_t, 3> c{};
+    std::memcpy(c.data(), at + 4 * sizeof(double), 3);
+    EXPECT_EQ(d, expected[i]) << "vertex " << i;
+    const bool grey = c == std::array<uint8_t, 3>{128, 128, 128};
+    EXPECT_EQ(grey, std::isinf(d)) << "vertex " << i;
+    unreached += std::isinf(d);
+    colors.insert(c);
+  }
+  EXPECT_GT(unreached, 0u);
+  EXPECT_LT(unreached, 150u);
+  EXPECT_GT(colors.size(), 10u);  // a colormap, not one colour
+  // The source (distance 0) sits on the first isoline: the colormap's start at 30% brightness.
+  const std::array<uint8_t, 3> start = edgefront::render::colormap(0.0);
+  std::array<uint8_t, 3> source{};
+  std::memcpy(source.data(), bytes.data() + body + end_header.size() + 3 * kRecord + 4 * sizeof(double), 3);
+  for (size_t k = 0; k < 3; ++k) EXPECT_EQ(source[k], static_cast<uint8_t>(start[k] * 0.3)) << k;
+}
+
+TEST_F(AppsFrontTest, EfDistanceRefusesBadValuesAndMeshes) {
+  use_app("ef-distance");
+  const std::string torus = quoted(data_file("torus.off"));
+  // CLI11 reads an empty number as 0; ef-distance refuses it, and NaN, and what overflows a double.
+  expect_usage_error(torus + " --source 0 --max-distance ''", "--max-distance");
+  expect_usage_error(torus + " --source 0 --max-distance 1e400", "not a non-negative number");
+  expect_usage_error(torus + " --source 0 --max-distance=-inf", "not a non-negative number");
+  expect_usage_error(torus + " --source 0 --max-distance 1x", "not a non-negative number");
+  expect_usage_error(torus + " --point 0:1,0,0 --method dijkstra", "windows or fast");
+  expect_usage_error(torus + " --source -1", "not a vertex index");
+  expect_error(torus + " --source 99999999999999999999999", "out of range");
+  expect_error(torus + " --source 0,191,0", "twice");
+  expect_error(torus + " --loop 0,1,0", "at least 3 vertices, got 2");
+  expect_error(torus + " --point 0:0.3,0.3,0.3", "sum");
+  expect_error(torus + " --point 0:nan,0.5,0.5", "finite");
+
+  // A vertex where two fans meet (two triangles sharing only vertex 0): the fronts refuse it with
+  // a clear error; Dijkstra, which needs no front, runs.
+  const fs::path bowtie = path("bowtie.off");
+  std::ofstream(bowtie) << "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n-1 0 0\n-1 -1 0\n3 0 1 2\n3 0 3 4\n";
+  for (const std::string method : {"mdf", "windows", "fast"}) {
+    expect_error(quoted(bowtie.string()) + " --source 1 --method " + method, "non-manifold");
+  }
+  const CommandResult dij = run(quoted(bowtie.string()) + " --source 1 --method dijkstra");
+  EXPECT_EQ(dij.exit_code, 0) << dij.err;
+  EXPECT_EQ(parse_distances(dij.out).size(), 5u);
+
+  const fs::path nan_off = path("nan.off");
+  std::ofstream(nan_off) << "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n";
+  expect_error(quoted(nan_off.string()) + " --source 0", "non-finite");
+  const fs::path empty = path("empty.off");
+  std::ofstream(empty) << "OFF\n0 0 0\n";
+  expect_error(quoted(empty.string()) + " --source 0", "the mesh has 0 vertices");
+
+  const CommandResult help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("may be repeated (not with --method dijkstra)"), std::string::npos) << help.out;
 }
 
 }  // namespace
