@@ -239,6 +239,11 @@ TEST_F(AppsFrontTest, EfFrontUsageErrorsExitTwo) {
   expect_usage_error(torus + " --source 0 -o out.obj");        // unsupported output
   expect_usage_error(torus + " --source 0 --bogus");           // unknown flag
   expect_usage_error("--source 0");                            // no mesh
+  expect_usage_error(torus + " --source 0 --levels ''");       // empty: CLI11 alone read it as 0
+  expect_usage_error(torus + " --source 0 --levels=");
+  const CommandResult empty = run(torus + " --source '' --levels 2");
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.err.find("empty value for --source"), std::string::npos) << empty.err;
   const CommandResult help = run("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--method"), std::string::npos);

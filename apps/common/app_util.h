@@ -51,14 +51,27 @@ inline void print_error(const std::string& app_name, const std::string& message)
   std::cerr << app_name << ": error: " << line << std::endl;
 }
 
+/// An empty argument ('' or --name=) is a usage error in every tool: CLI11 would give a numeric
+/// option the value 0 for it (e.g. `--levels ''` ran 0 levels). Throws CLI::ValidationError.
+inline void refuse_empty_arguments(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool empty_after_equals = arg.size() > 2 && arg.rfind("--", 0) == 0 && arg.back() == '=';
+    if (!arg.empty() && !empty_after_equals) continue;
+    const std::string after = empty_after_equals ? arg.substr(0, arg.size() - 1) : i > 1 ? argv[i - 1] : "";
+    throw CLI::ValidationError("empty value" + (after.empty() ? std::string() : " for " + after));
+  }
+}
+
 /// Parses `argv` with `app`, then runs `body` (a callable returning the exit code, usually 0).
-/// --help prints the help on stdout and returns 0; a parse error prints one line and a hint on
-/// stderr and returns 2; an exception from `body` prints one line and returns 1 (2 for
-/// AppUsageError).
+/// --help prints the help on stdout and returns 0; a parse error (an empty argument included)
+/// prints one line and a hint on stderr and returns 2; an exception from `body` prints one line
+/// and returns 1 (2 for AppUsageError).
 template <class Body>
 int run_app(CLI::App& app, int argc, char** argv, Body&& body) {
   const std::string name = app.get_name().empty() ? std::string("app") : app.get_name();
   try {
+    refuse_empty_arguments(argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
