@@ -286,6 +286,13 @@ TEST(Mef, BadSourcesAreRefused) {
   EXPECT_THROW(loop_from_vertices(mesh, {VertexHandle(6), VertexHandle(1), VertexHandle(2), VertexHandle(6),
                                          VertexHandle(11), VertexHandle(10)}),
                InvalidInput);
+  // A vertex written twice in a row is named as a repeat, not as a missing edge.
+  try {
+    loop_from_vertices(mesh, {VertexHandle(0), VertexHandle(1), VertexHandle(6), VertexHandle(6)});
+    ADD_FAILURE() << "a repeated vertex was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 6 is visited twice"), std::string::npos) << e.what();
+  }
   // The outer border as a loop whose ahead side is outside the mesh.
   std::vector<HalfedgeHandle> border;
   HalfedgeHandle start;

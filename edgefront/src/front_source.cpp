@@ -17,8 +17,12 @@ FrontSource loop_from_vertices(const Mesh& mesh, const std::vector<VertexHandle>
     throw InvalidInput("loop source: a closed edge path needs at least 3 vertices, got " +
                        std::to_string(path.size()));
   }
+  std::unordered_set<int> seen;
   for (VertexHandle v : path) {
     if (!is_live(mesh, v)) throw InvalidInput("loop source: " + vname(v) + " is not a vertex of the mesh");
+    if (!seen.insert(v.idx()).second) {
+      throw InvalidInput("loop source: " + vname(v) + " is visited twice; the path must not intersect itself");
+    }
   }
   std::vector<HalfedgeHandle> hs;
   hs.reserve(path.size());
