@@ -9,7 +9,8 @@
 /// Output: one distance per line in input vertex order ("inf" where not reached: another
 /// component, behind a loop, beyond --max-distance), written with the fewest digits that read
 /// back to the same double, on stdout or into FILE.txt. FILE.ply gets the mesh with a per-vertex
-/// scalar "distance" and colors: a colormap over [0, largest finite distance] with dark isoline
+/// scalar "distance", the same as "quality" (what MeshLab reads as per-vertex quality; -1 where not
+/// reached) and colors: a colormap over [0, largest finite distance] with dark isoline
 /// bands every 1/20 of that range, grey where not reached (for MeshLab and similar viewers). A
 /// one-line summary (method, time, reached vertices, peak front, stop reason) goes to stderr.
 /// --method windows is the MDF with per-edge windows (DistanceOptions::windows): near-exact
@@ -243,6 +244,11 @@ int main(int argc, char** argv) {
       edgefront::MeshWriteOptions wo;
       wo.vertex_colors = isoline_colors(field.distance, max_finite);
       wo.vertex_scalars.emplace_back("distance", field.distance);
+      // MeshLab reads a property named "quality" as its per-vertex quality (colorize by quality,
+      // isolines by quality, selection by quality); -1 where not reached keeps its ranges finite.
+      std::vector<double> quality = field.distance;
+      for (double& q : quality) q = std::isfinite(q) ? q : -1.0;
+      wo.vertex_scalars.emplace_back("quality", std::move(quality));
       edgefront::write_mesh(mesh, output, wo);
     } else {
       std::string text;

@@ -534,21 +534,25 @@ TEST_F(AppsFrontTest, EfDistancePlyHoldsTheDistancesAndIsolineColors) {
   const std::string header = bytes.substr(0, body);
   EXPECT_EQ(header.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u) << header;
   EXPECT_NE(header.find("\nelement vertex 192\nproperty double x\nproperty double y\nproperty double z\n"
-                        "property double distance\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                        "property double distance\nproperty double quality\nproperty uchar red\nproperty uchar green\n"
+                        "property uchar blue\n"
                         "element face 384\n"),
             std::string::npos)
       << header;
-  constexpr size_t kRecord = 4 * sizeof(double) + 3;
+  constexpr size_t kRecord = 5 * sizeof(double) + 3;
   ASSERT_GE(bytes.size(), body + end_header.size() + 192 * kRecord);
   const char* at = bytes.data() + body + end_header.size();
   std::set<std::array<uint8_t, 3>> colors;
   size_t unreached = 0;
   for (size_t i = 0; i < 192; ++i, at += kRecord) {
     double d = 0;
+    double quality = 0;
     std::memcpy(&d, at + 3 * sizeof(double), sizeof d);  // the machine is little endian
+    std::memcpy(&quality, at + 4 * sizeof(double), sizeof quality);
     std::array<uint8_t, 3> c{};
-    std::memcpy(c.data(), at + 4 * sizeof(double), 3);
+    std::memcpy(c.data(), at + 5 * sizeof(double), 3);
     EXPECT_EQ(d, expected[i]) << "vertex " << i;
+    EXPECT_EQ(quality, std::isinf(d) ? -1.0 : d) << "vertex " << i;  // MeshLab's per-vertex quality
     const bool grey = c == std::array<uint8_t, 3>{128, 128, 128};
     EXPECT_EQ(grey, std::isinf(d)) << "vertex " << i;
     unreached += std::isinf(d);
@@ -560,7 +564,7 @@ TEST_F(AppsFrontTest, EfDistancePlyHoldsTheDistancesAndIsolineColors) {
   // The source (distance 0) sits on the first isoline: the colormap's start at 30% brightness.
   const std::array<uint8_t, 3> start = edgefront::render::colormap(0.0);
   std::array<uint8_t, 3> source{};
-  std::memcpy(source.data(), bytes.data() + body + end_header.size() + 3 * kRecord + 4 * sizeof(double), 3);
+  std::memcpy(source.data(), bytes.data() + body + end_header.size() + 3 * kRecord + 5 * sizeof(double), 3);
   for (size_t k = 0; k < 3; ++k) EXPECT_EQ(source[k], static_cast<uint8_t>(start[k] * 0.3)) << k;
 }
 
