@@ -134,6 +134,26 @@ TEST(Mdf, GeodesicBendsAroundASaddleVertexNotOverIt) {
   EXPECT_LT(f.distance[c.idx()], f.distance[x.idx()] + (mesh.point(c) - mesh.point(x)).norm() - 0.1);
 }
 
+// Past a pseudo source: a vertex whose own shortest path bends at a saddle vertex keeps that
+// bend as its source, but the path to a neighbour beyond it can pass the saddle unbent. The
+// straighter second source (a smaller offset) is propagated too. On this saddle-rich landscape,
+// against the window mode (the polyhedral geodesics to about 1e-5), one bent source per vertex
+// made the worst vertex 3.0%, 5.1%, 2.3% and 3.3% too long from these four sources; with the
+// straighter second source it is 1.2-1.3%.
+TEST(Mdf, StraighterSecondSourcePassesASaddleUnbent) {
+  const Mesh mesh = shapes::landscape(12, 1.0, 0.2, 6.0);
+  for (const int s : {12, 61, 86, 98}) {
+    const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)));
+    const DistanceField w = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)), {.windows = true});
+    double worst = 0;
+    for (VertexHandle v : mesh.vertices()) {
+      if (v.idx() == s) continue;
+      worst = std::max(worst, std::abs(f.distance[v.idx()] - w.distance[v.idx()]) / w.distance[v.idx()]);
+    }
+    EXPECT_LT(worst, 0.015) << "source " << s;
+  }
+}
+
 // Property 4: developable surfaces. On the polyhedral cylinder the exact distance is the
 // straight line in the unrolled strip of the polygonal cross-section.
 // The mean relative error on an open cylinder against its unrolled strip.

@@ -15,15 +15,19 @@
 ///   - the distance from x's virtual source, unfolded exactly through the faces around x into a
 ///     face at the edge x-c, when the straight line from it to c crosses every edge of x in
 ///     between inside the edge and passes x on c's side.
-/// One source per vertex is kept (not a window per edge as in exact MMP/ICH): a value is never
-/// below the straight line from the real source, but it can fall slightly below the exact
-/// geodesic where a line strays from the faces its source was unfolded along.
+/// One source per vertex sets its distance (not a window per edge as in exact MMP/ICH); a second
+/// one, the best offered from another source position, is propagated too when the first finds
+/// no line to a neighbour or the second is straighter (bends later: a path past a pseudo source
+/// need not bend there). A value is never below the straight line from the real source, but it
+/// can fall slightly below the exact geodesic where a line strays from the faces its source was
+/// unfolded along.
 /// `DistanceOptions::windows` keeps windows per edge instead (MMP/ICH carried in the same front
 /// order): below 5e-4% mean error on the scanned models, about 3-4x the time of the default.
 ///
 /// Accuracy (bench/results/geodesic-*.md): exact (1e-14) on planar meshes under any
-/// triangulation and on open cylinders; cones 1e-5% mean; on CGAL's scanned models the mean
-/// relative error is 0.18-1.1% (Dijkstra 4-7%, CGAL's heat method 1.3-3%).
+/// triangulation, on open cylinders and cones (1e-13%); on CGAL's six scanned models the mean
+/// relative error is 0.1-0.33%, the 99th percentile 0.52-3.8% (homer; ChineseDragon 1.74%),
+/// Dijkstra 4.3-7.3%, CGAL's heat method 1.2-3% (geodesic-accuracy.md, session 12).
 ///
 /// Memory: the loops, the front-vertex table and the priority queue hold O(front) elements; the
 /// result arrays (`DistanceField`) are the only per-mesh allocation, and the stepwise class can be
