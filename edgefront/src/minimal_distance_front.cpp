@@ -180,6 +180,11 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& o) {
 }
 
 // Checks source points; returns the vertices of their faces (each once).
+void check_finite_vertex(const Vec3& position, int v) {
+  if (!std::isfinite(position[0]) || !std::isfinite(position[1]) || !std::isfinite(position[2]))
+    throw InvalidInput("distance: vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+}
+
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points) {
   if (points.empty()) throw InvalidInput("distance: no source points given");
   std::vector<VertexHandle> verts;
@@ -321,7 +326,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // dropped and made again (it is reached again from behind).
   DRec& record(int v) {
     auto [r, inserted] = dt.insert(static_cast<uint32_t>(v), DRec{});
-    if (inserted && line_source) r->unsettled = count_unsettled(v);
+    if (inserted) {
+      detail::check_finite_vertex(mesh.point(VertexHandle(v)), v);
+      if (line_source) r->unsettled = count_unsettled(v);
+    }
     return *r;
   }
 
