@@ -69,7 +69,10 @@ struct DijkstraRun {
       const auto [d, key] = heap.top();
       const int x = index_of(key);
       heap.pop();
-      if (!heap.empty()) look_ahead(index_of(heap.top().second), 0);
+      if (!heap.empty()) {
+        look_ahead(index_of(heap.top().second), 0);
+        detail::prefetch(&out.distance[static_cast<size_t>(vertex_of(heap.top().second))]);  // in mesh order
+      }
       if (done[x] || d != dist[x]) continue;
       if (d > options.max_distance) {
         out.stop = DistanceStop::MaxDistance;

@@ -186,7 +186,12 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
     const auto [d, node] = heap.top();
     const int x = node.x;
     heap.pop();
-    if (!heap.empty()) rings.prefetch_header(heap.top().second.x);
+    if (!heap.empty()) {
+      const Node next = heap.top().second;
+      rings.prefetch_header(next.x);
+      detail::prefetch(&out.distance[static_cast<size_t>(next.v)]);  // the output, in mesh order
+      if (o.directions) detail::prefetch(&out.direction[static_cast<size_t>(next.v)]);
+    }
     FastRec& rx = rec[x];
     if (rx.settled || d != rx.d) continue;
     if (d > o.max_distance) {
