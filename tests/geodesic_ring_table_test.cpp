@@ -26,8 +26,8 @@ void expect_same_field(const DistanceField& a, const DistanceField& b, const std
   EXPECT_EQ(a.stop, b.stop) << what;
 }
 
-// The neighbours are the vertex's neighbours in the mesh's circulation order, with their edge
-// lengths; the corners are the angles between consecutive edges with their cosines and sines; the
+// The neighbours are the vertex's neighbours in the mesh's circulation order (table and mesh
+// indices), with their edge lengths; the corners are the angles between consecutive edges with their cosines and sines; the
 // angle sum is 2 pi at interior vertices of a flat grid (flat), and a border ring starts after its
 // gap.
 TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
@@ -40,9 +40,11 @@ TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
     ASSERT_EQ(table.n_vertices(), mesh.n_vertices());
     size_t edges = 0;
     for (VertexHandle v : mesh.vertices()) {
-      const auto edge = table.edges(v.idx());
-      const auto corners = table.corners(v.idx());
-      const GeodesicRingTable::Ring& info = table.ring(v.idx());
+      const int x = table.index(v);
+      ASSERT_EQ(table.vertex(x), v);
+      const auto edge = table.edges(x);
+      const auto corners = table.corners(x);
+      const GeodesicRingTable::Ring& info = table.ring(x);
       const size_t m = info.size;
       ASSERT_EQ(edge.size(), m);
       ASSERT_EQ(corners.size(), m);
@@ -51,7 +53,8 @@ TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
       size_t k = 0;
       for (VertexHandle y : mesh.vv_range(v)) {
         ASSERT_LT(k, m);
-        EXPECT_EQ(edge[k].v, y.idx());
+        EXPECT_EQ(edge[k].v, table.index(y));
+        EXPECT_EQ(edge[k].vertex, y.idx());
         EXPECT_NEAR(edge[k].len, (mesh.point(y) - mesh.point(v)).norm(), 1e-15);
         EXPECT_EQ(corners[k].e, mesh.point(y) - mesh.point(v));
         ++k;
@@ -85,7 +88,49 @@ TEST(GeodesicRingTable, LayoutMatchesTheMesh) {
     EXPECT_EQ(edges, mesh.n_halfedges());
     EXPECT_GE(table.memory_bytes(), edges * (sizeof(GeodesicRingTable::Edge) + sizeof(GeodesicRingTable::Corner)));
   }
-  EXPECT_FALSE(GeodesicRingTable(shapes::icosphere(1)).ring(0).flat);  // a sphere's vertex is not flat
+  const GeodesicRingTable sphere(shapes::icosphere(1));
+  EXPECT_FALSE(sphere.ring(sphere.index(VertexHandle(0))).flat);  // a sphere's vertex is not flat
+}
+
+// The table's order depends on the positions only (a shuffled copy of the mesh gets the same
+// points in the same order), `index` and `vertex` are inverse permutations, and neighbours lie
+// close in it: the median index distance across an edge is a small fraction of a shuffled order's.
+TEST(GeodesicRingTable, LocalityOrder) {
+  const Mesh mesh = shapes::bumpy_sphere(4);
+  const size_t n = mesh.n_vertices();
+  ASSERT_GT(n, 2000u);
+  std::vector<int> perm(n);  // shuffled index -> mesh index
+  for (size_t i = 0; i < n; ++i) perm[i] = static_cast<int>(i);
+  std::mt19937_64 rng(3);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  Mesh shuffled;
+  std::vector<VertexHandle> to(n);
+  for (size_t i = 0; i < n; ++i) to[static_cast<size_t>(perm[i])] = shuffled.add_vertex(mesh.point(VertexHandle(perm[i])));
+  for (FaceHandle f : mesh.faces()) {
+    std::vector<VertexHandle> fv;
+    for (VertexHandle v : mesh.fv_range(f)) fv.push_back(to[static_cast<size_t>(v.idx())]);
+    ASSERT_TRUE(shuffled.add_face(fv).is_valid());
+  }
+  const GeodesicRingTable a(mesh), b(shuffled);
+  std::vector<int> gap_table, gap_shuffled;
+  for (size_t i = 0; i < n; ++i) {
+    const int x = static_cast<int>(i);
+    ASSERT_EQ(a.index(a.vertex(x)), x);
+    ASSERT_EQ(a.ring(x).point, b.ring(x).point);
+    ASSERT_EQ(to[static_cast<size_t>(a.vertex(x).idx())], b.vertex(x));
+    for (const GeodesicRingTable::Edge& e : a.edges(x)) gap_table.push_back(std::abs(e.v - x));
+    const VertexHandle s = to[i];
+    for (VertexHandle y : shuffled.vv_range(s)) gap_shuffled.push_back(std::abs(y.idx() - s.idx()));
+  }
+  for (auto* g : {&gap_table, &gap_shuffled}) std::nth_element(g->begin(), g->begin() + g->size() / 2, g->end());
+  const int median_table = gap_table[gap_table.size() / 2], median_shuffled = gap_shuffled[gap_shuffled.size() / 2];
+  EXPECT_LT(median_table, median_shuffled / 20) << median_table << " " << median_shuffled;
+  // Same fields on both meshes, vertex for vertex (the rings start at other edges: to round-off).
+  const DistanceField fa = geodesic_distance(mesh, a, FrontSource::vertex(VertexHandle(5)));
+  const DistanceField fb = geodesic_distance(shuffled, b, FrontSource::vertex(to[5]));
+  for (size_t v = 0; v < n; ++v) {
+    ASSERT_NEAR(fa.distance[v], fb.distance[static_cast<size_t>(to[v].idx())], 1e-12 * (1 + fa.distance[v])) << v;
+  }
 }
 
 // One table serves many queries (vertex, several vertices, points; max_distance, target, no
@@ -183,7 +228,7 @@ TEST(GeodesicRingTable, NonManifoldVertex) {
   const VertexHandle t2 = mesh.add_vertex(Vec3(2, 1.8, 0));
   ASSERT_TRUE(mesh.add_face(corner, t1, t2).is_valid());
   const GeodesicRingTable table(mesh);
-  EXPECT_TRUE(table.ring(corner.idx()).non_manifold);
+  EXPECT_TRUE(table.ring(table.index(corner)).non_manifold);
   EXPECT_THROW(geodesic_distance(mesh, table, FrontSource::vertex(t1)), TopologyError);
   const DistanceField f =
       geodesic_distance(mesh, table, FrontSource::vertex(VertexHandle(0)), {.max_distance = 0.4});

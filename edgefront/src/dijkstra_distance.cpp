@@ -20,63 +20,82 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Dijkstra's state: a binary heap of (distance, vertex) and per-vertex arrays.
+// A queued vertex: its mesh index in the high 32 bits, its index in the edges' numbering (a
+// table's locality order, or the mesh's) in the low ones. Equal distances pop by mesh index, so
+// Dijkstra over a table settles in the same order as over the mesh.
+using Key = std::uint64_t;
+Key key_of(int vertex, int x) {
+  return static_cast<Key>(static_cast<std::uint32_t>(vertex)) << 32 | static_cast<std::uint32_t>(x);
+}
+int index_of(Key k) { return static_cast<int>(k & 0xffffffffu); }
+int vertex_of(Key k) { return static_cast<int>(k >> 32); }
+
+// Dijkstra's state: a binary heap of (distance, vertex) and per-vertex arrays, by the edges'
+// numbering; `out` by mesh index.
 struct DijkstraRun {
-  using Entry = std::pair<double, int>;
+  using Entry = std::pair<double, Key>;
   DistanceField out;
+  std::vector<double> dist;  // tentative distances
   std::vector<int> via;
   std::vector<uint8_t> done;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
 
-  explicit DijkstraRun(size_t n) : via(n, -1), done(n, 0) { out.distance.assign(n, kInf); }
+  explicit DijkstraRun(size_t n) : dist(n, kInf), via(n, -1), done(n, 0) { out.distance.assign(n, kInf); }
 
-  void offer(int y, int from, double d) {
-    if (!done[y] && d < out.distance[y]) {
-      out.distance[y] = d;
+  void seed(int x, int vertex) {
+    dist[x] = 0;
+    heap.emplace(0.0, key_of(vertex, x));
+  }
+
+  void offer(int y, int vertex, int from, double d) {
+    if (!done[y] && d < dist[y]) {
+      dist[y] = d;
       via[y] = from;
-      heap.emplace(d, y);
+      heap.emplace(d, key_of(vertex, y));
     }
   }
 
-  // Settles vertices in distance order; edges(v, f) calls f(y, |v - y|) for every neighbour y of v,
-  // point(v) is v's position (for the directions), look_ahead(v, stage) may prefetch what edges(v)
-  // reads (stage 0 right after the previous vertex is popped, 1 when its neighbours are done).
-  template <class Edges, class Point, class LookAhead>
-  DistanceField run(const DistanceOptions& options, Edges&& edges, Point&& point, LookAhead&& look_ahead) {
+  // Settles vertices in distance order; edges(x, f) calls f(y, mesh index of y, |x - y|) for every
+  // neighbour y of x, point(x) is x's position and vertex(x) its mesh index (for the directions),
+  // look_ahead(x, stage) may prefetch what edges(x) reads (stage 0 right after the previous vertex
+  // is popped, 1 when its neighbours are done).
+  template <class Edges, class Point, class Vertex, class LookAhead>
+  DistanceField run(const DistanceOptions& options, Edges&& edges, Point&& point, Vertex&& vertex,
+                    LookAhead&& look_ahead) {
     const size_t n = done.size();
     out.stop = DistanceStop::Exhausted;
     size_t peak = 0;
     while (!heap.empty()) {
-      const auto [d, v] = heap.top();
+      const auto [d, key] = heap.top();
+      const int x = index_of(key);
       heap.pop();
-      if (!heap.empty()) look_ahead(heap.top().second, 0);
-      if (done[v] || d != out.distance[v]) continue;
+      if (!heap.empty()) {
+        look_ahead(index_of(heap.top().second), 0);
+        detail::prefetch(&out.distance[static_cast<size_t>(vertex_of(heap.top().second))]);  // in mesh order
+      }
+      if (done[x] || d != dist[x]) continue;
       if (d > options.max_distance) {
-        out.distance[v] = kInf;
         out.stop = DistanceStop::MaxDistance;
         break;
       }
-      done[v] = 1;
-      out.order.push_back(VertexHandle(v));
-      if (options.target && options.target->idx() == v) {
+      done[x] = 1;
+      out.distance[static_cast<size_t>(vertex_of(key))] = d;
+      out.order.push_back(VertexHandle(vertex_of(key)));
+      if (options.target && options.target->idx() == vertex_of(key)) {
         out.stop = DistanceStop::TargetReached;
         break;
       }
-      edges(v, [&](int y, double len) { offer(y, v, d + len); });
+      edges(x, [&](int y, int vy, double len) { offer(y, vy, x, d + len); });
       peak = std::max(peak, heap.size());
-      if (!heap.empty()) look_ahead(heap.top().second, 1);
-    }
-    // Unsettled tentative values are not answers.
-    for (size_t v = 0; v < n; ++v) {
-      if (!done[v]) out.distance[v] = kInf;
+      if (!heap.empty()) look_ahead(index_of(heap.top().second), 1);
     }
     if (options.directions) {
       out.direction.assign(n, Vec3(0, 0, 0));
-      for (size_t v = 0; v < n; ++v) {
-        if (via[v] >= 0 && done[v]) {
-          const Vec3 dv = point(via[v]) - point(static_cast<int>(v));
+      for (size_t x = 0; x < n; ++x) {
+        if (via[x] >= 0 && done[x]) {
+          const Vec3 dv = point(via[x]) - point(static_cast<int>(x));
           const double l = dv.norm();
-          if (l > 0) out.direction[v] = dv / l;
+          if (l > 0) out.direction[static_cast<size_t>(vertex(static_cast<int>(x)))] = dv / l;
         }
       }
     }
@@ -94,8 +113,8 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
   if (source.is_loop()) {
     for (HalfedgeHandle h : source.loop) {
       const int v = mesh.to_vertex_handle(h).idx();
-      dij.out.distance[v] = 0;
-      dij.heap.emplace(0.0, v);
+      dij.seed(v, v);
+      dij.out.distance[static_cast<size_t>(v)] = 0;  // settled below
     }
     // First step only into the ahead wedges; loop vertices are never re-entered.
     const size_t m = source.loop.size();
@@ -105,26 +124,23 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
       HalfedgeHandle g = mesh.next_halfedge_handle(source.loop[i]);
       while (true) {
         const int y = mesh.to_vertex_handle(g).idx();
-        dij.offer(y, x, (mesh.point(VertexHandle(y)) - mesh.point(VertexHandle(x))).norm());
+        dij.offer(y, y, x, (mesh.point(VertexHandle(y)) - mesh.point(VertexHandle(x))).norm());
         if (g == source.loop[(i + 1) % m]) break;
         g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
       }
     }
     for (HalfedgeHandle h : source.loop) dij.out.order.push_back(mesh.to_vertex_handle(h));
   } else {
-    for (VertexHandle v : source.vertices) {
-      dij.out.distance[v.idx()] = 0;
-      dij.heap.emplace(0.0, v.idx());
-    }
+    for (VertexHandle v : source.vertices) dij.seed(v.idx(), v.idx());
   }
   const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
   return dij.run(
       options,
       [&](int v, auto&& f) {
         const Vec3& pv = point(v);
-        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), (mesh.point(y) - pv).norm());
+        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), (mesh.point(y) - pv).norm());
       },
-      point, [](int, int) {});
+      point, [](int v) { return v; }, [](int, int) {});
 }
 
 DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
@@ -134,16 +150,13 @@ DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table
   detail::check_distance_options(mesh, options);
   table.check(mesh);
   DijkstraRun dij(table.n_vertices());
-  for (VertexHandle v : source.vertices) {
-    dij.out.distance[v.idx()] = 0;
-    dij.heap.emplace(0.0, v.idx());
-  }
+  for (VertexHandle v : source.vertices) dij.seed(table.index(v), v.idx());
   return dij.run(
       options,
-      [&](int v, auto&& f) {
-        for (const GeodesicRingTable::Edge& e : table.edges(v)) f(e.v, e.len);
+      [&](int x, auto&& f) {
+        for (const GeodesicRingTable::Edge& e : table.edges(x)) f(e.v, e.vertex, e.len);
       },
-      [&](int v) -> const Vec3& { return table.ring(v).point; },
+      [&](int x) -> const Vec3& { return table.ring(x).point; }, [&](int x) { return table.vertex(x).idx(); },
       [&](int v, int stage) {  // the same look-ahead as the fast mode's on a table
         if (stage == 0) {
           detail::prefetch(&table.ring(v));

@@ -52,14 +52,24 @@ struct FastRec {
 };
 
 struct FastSeed {
-  int v;
+  int v;  // mesh index (and rec.parent)
   FastRec rec;
 };
+
+// A queued vertex: its index in the rings (a table's locality order) and in the mesh. Equal
+// distances pop by mesh index, so a query on a table settles in the per-call mode's order.
+struct Node {
+  int x;  // rings index
+  int v;  // mesh index
+  bool operator<(const Node& o) const { return v < o.v; }
+};
+using Heap = detail::MinHeap4<double, Node>;
 
 // One edge of the ring of the vertex being settled, in walk order: the table's entries with the
 // ring angle summed from the ring's first edge.
 struct Ray {
-  int v;
+  int v;       // rings index
+  int vertex;  // mesh index
   double len;
   double theta;                 // ring angle
   double cos_theta, sin_theta;  // of theta, as the product of the corners' rotations (no cos/sin calls)
@@ -112,6 +122,7 @@ struct RingView {
 struct TableRings {
   const GeodesicRingTable& table;
   size_t n_vertices() const { return table.n_vertices(); }
+  int index(int v) const { return table.index(VertexHandle(v)); }  // of mesh vertex v
   RingView operator()(int x) const { return {table.ring(x), table.edges(x), table.corners(x)}; }
   // Look-ahead: the next vertex's ring header, then (once that is in the cache) its edges and corners.
   void prefetch_header(int x) const { detail::prefetch(&table.ring(x)); }
@@ -131,6 +142,7 @@ struct MeshRings {
   std::vector<GeodesicRingTable::Edge> edges;
   std::vector<GeodesicRingTable::Corner> corners;
   size_t n_vertices() const { return mesh.n_vertices(); }
+  int index(int v) const { return v; }
   RingView operator()(int x) {
     edges.clear();
     corners.clear();
@@ -152,13 +164,15 @@ template <class Rings>
 DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
                          const DistanceOptions& o) {
   const size_t n = rings.n_vertices();
-  std::vector<FastRec> rec(n);
-  detail::MinHeap4<double> heap;
+  std::vector<FastRec> rec(n);  // by rings index, as every index below but the output's
+  Heap heap;
   for (const FastSeed& s : seeds) {
-    FastRec& r = rec[s.v];
+    const int x = rings.index(s.v);
+    FastRec& r = rec[x];
     if (s.rec.d < r.d) {
       r = s.rec;
-      heap.push(r.d, s.v);
+      if (r.parent >= 0) r.parent = rings.index(r.parent);
+      heap.push(r.d, Node{x, s.v});
     }
   }
 
@@ -169,9 +183,15 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
   size_t peak = heap.size();
   std::vector<Ray> ring;  // the ring of the vertex being settled
   while (!heap.empty()) {
-    const auto [d, x] = heap.top();
+    const auto [d, node] = heap.top();
+    const int x = node.x;
     heap.pop();
-    if (!heap.empty()) rings.prefetch_header(heap.top().second);
+    if (!heap.empty()) {
+      const Node next = heap.top().second;
+      rings.prefetch_header(next.x);
+      detail::prefetch(&out.distance[static_cast<size_t>(next.v)]);  // the output, in mesh order
+      if (o.directions) detail::prefetch(&out.direction[static_cast<size_t>(next.v)]);
+    }
     FastRec& rx = rec[x];
     if (rx.settled || d != rx.d) continue;
     if (d > o.max_distance) {
@@ -179,14 +199,14 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       break;
     }
     rx.settled = 1;
-    out.distance[x] = d;
-    out.order.push_back(VertexHandle(x));
+    out.distance[node.v] = d;
+    out.order.push_back(VertexHandle(node.v));
 
     // x's ring (laid out once per mesh by a table, or now), its ring angles summed from its first edge.
     const RingView view = rings(x);
     const GeodesicRingTable::Ring& info = view.info;
     if (info.non_manifold) {
-      throw TopologyError("distance: vertex " + std::to_string(x) +
+      throw TopologyError("distance: vertex " + std::to_string(node.v) +
                           " is non-manifold (several fans meet there); split it before computing distances");
     }
     const Vec3& px = info.point;
@@ -198,7 +218,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       double theta = 0, cos_theta = 1, sin_theta = 0;
       for (size_t k = 0, i = first; k < m; ++k) {
         const GeodesicRingTable::Corner& c = view.corners[i];
-        ring[i] = Ray{view.edges[i].v, view.edges[i].len, theta, cos_theta, sin_theta, &c};
+        ring[i] = Ray{view.edges[i].v, view.edges[i].vertex, view.edges[i].len, theta, cos_theta, sin_theta, &c};
         if (c.face_after) {
           theta += c.angle_after;
           const double c2 = cos_theta * c.cos_after - sin_theta * c.sin_after;
@@ -228,8 +248,8 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       cos_phi = std::cos(phi);
       sin_phi = std::sin(phi);
     }
-    if (o.directions && aimed) out.direction[x] = fast_direction(ring, first, phi, cos_phi, sin_phi);
-    if (o.target && o.target->idx() == x) {
+    if (o.directions && aimed) out.direction[node.v] = fast_direction(ring, first, phi, cos_phi, sin_phi);
+    if (o.target && o.target->idx() == node.v) {
       out.stop = DistanceStop::TargetReached;
       break;
     }
@@ -382,13 +402,13 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       rc.b = cb;
       rc.parent = x;
       rc.origin = rx.origin;
-      heap.push(cd, ry.v);
+      heap.push(cd, Node{ry.v, ry.vertex});
     }
     peak = std::max(peak, heap.size());
-    if (!heap.empty()) rings.prefetch_edges(heap.top().second);
+    if (!heap.empty()) rings.prefetch_edges(heap.top().second.x);
   }
   out.peak_front = 0;
-  out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(detail::MinHeap4<double>::Entry) +
+  out.peak_working_memory_bytes = n * sizeof(FastRec) + peak * sizeof(Heap::Entry) +
                                   ring.capacity() * sizeof(Ray);
   return out;
 }

@@ -1,9 +1,11 @@
 #include "edgefront/geodesic_ring_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "detail/distance_common.h"
 #include "edgefront/error.h"
@@ -39,7 +41,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<Geodesi
         gap = corners.size() - info.begin;
         ++gaps;
       }
-      edges.push_back(GeodesicRingTable::Edge{c.e.norm(), y.idx()});
+      edges.push_back(GeodesicRingTable::Edge{c.e.norm(), y.idx(), y.idx()});
       corners.push_back(c);
       h = mesh.next_halfedge_handle(g);
       if (corners.size() - info.begin > max_ring) {
@@ -85,6 +87,74 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<Geodesi
 
 }  // namespace detail
 
+namespace {
+
+// The position of a point with coordinates x[0..2] (each below 2^bits) along the Hilbert curve
+// through the 2^bits-cube (Skilling's transpose form: the coordinates turned into the curve's
+// digits in place, then their bits interleaved).
+std::uint64_t hilbert_key(std::uint32_t x[3], int bits) {
+  for (std::uint32_t q = 1u << (bits - 1); q > 1; q >>= 1) {  // undo the excess rotations
+    const std::uint32_t low = q - 1;
+    for (int i = 0; i < 3; ++i) {
+      if (x[i] & q) {
+        x[0] ^= low;
+      } else {
+        const std::uint32_t t = (x[0] ^ x[i]) & low;
+        x[0] ^= t;
+        x[i] ^= t;
+      }
+    }
+  }
+  x[1] ^= x[0];  // Gray code
+  x[2] ^= x[1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = 1u << (bits - 1); q > 1; q >>= 1) {
+    if (x[2] & q) t ^= q - 1;
+  }
+  std::uint64_t key = 0;
+  for (int b = bits - 1; b >= 0; --b) {
+    for (int i = 0; i < 3; ++i) key = key << 1 | (((x[i] ^ t) >> b) & 1u);
+  }
+  return key;
+}
+
+// The mesh's vertices sorted by their position along a Hilbert curve through the bounding cube
+// of their points (21 bits per axis; ties, and NaN coordinates, by mesh index).
+std::vector<int> locality_order(const Mesh& mesh) {
+  constexpr int kBits = 21;
+  const size_t n = mesh.n_vertices();
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3& p = mesh.point(VertexHandle(static_cast<int>(v)));
+    for (int a = 0; a < 3; ++a) {
+      if (std::isfinite(p[a])) {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+    }
+  }
+  double extent = 0;
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, hi[a] - lo[a]);
+  const double top = static_cast<double>((1u << kBits) - 1);
+  const double scale = extent > 0 ? top / extent : 0.0;
+  std::vector<std::pair<std::uint64_t, int>> keyed(n);
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3& p = mesh.point(VertexHandle(static_cast<int>(v)));
+    std::uint32_t x[3];
+    for (int a = 0; a < 3; ++a) {
+      const double q = (p[a] - lo[a]) * scale;  // NaN and infinities go to the cube's faces
+      x[a] = q > 0 ? static_cast<std::uint32_t>(std::min(q, top)) : 0u;
+    }
+    keyed[v] = {hilbert_key(x, kBits), static_cast<int>(v)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+  return order;
+}
+
+}  // namespace
+
 GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
     : n_faces_(mesh.n_faces()), n_halfedges_(mesh.n_halfedges()) {
   if (mesh.n_halfedges() >= std::numeric_limits<std::uint32_t>::max()) {
@@ -92,12 +162,14 @@ GeodesicRingTable::GeodesicRingTable(const Mesh& mesh)
                        " halfedges, more than the table's 32-bit offsets hold");
   }
   const size_t n = mesh.n_vertices();
+  vertex_ = locality_order(mesh);
+  index_.resize(n);
+  for (size_t i = 0; i < n; ++i) index_[static_cast<size_t>(vertex_[i])] = static_cast<int>(i);
   rings_.resize(n);
   edges_.reserve(mesh.n_halfedges());
   corners_.reserve(mesh.n_halfedges());
-  for (size_t x = 0; x < n; ++x) {
-    rings_[x] = detail::layout_ring(mesh, static_cast<int>(x), edges_, corners_);
-  }
+  for (size_t i = 0; i < n; ++i) rings_[i] = detail::layout_ring(mesh, vertex_[i], edges_, corners_);
+  for (Edge& e : edges_) e.v = index_[static_cast<size_t>(e.vertex)];
 }
 
 bool GeodesicRingTable::matches(const Mesh& mesh) const {

@@ -86,7 +86,7 @@ struct DistanceOptions {
   /// settled vertex x and neighbour c. x's ring is laid out by its corner angles (polar
   /// coordinates) when it settles, or read from a prebuilt `GeodesicRingTable`
   /// (geodesic_ring_table.h) passed to `geodesic_distance(mesh, table, ...)`: the same fields bit
-  /// for bit, about 40% less time per query once the table is built (the build costs about 1.1
+  /// for bit, about 60% less time per query once the table is built (the build costs about 1.5
   /// Dijkstras: worth it from the second query on a mesh). x keeps its distance to its virtual
   /// source and the source's ring angle. c takes the distance from the virtual source found, in a
   /// face x-c-y whose corner y is settled too, where the circles of x's and y's source distances
@@ -100,9 +100,9 @@ struct DistanceOptions {
   /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
   /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
   /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
-  /// halfedges; the default mode: 5-6x); on a table about 1.2x `dijkstra_distance` and 2.5x
-  /// `dijkstra_distance(mesh, table, ...)` (bench/results/geodesic-speed.md, "Session 10
-  /// (mdf12)"). Not provided: the edge front (`peak_front` is 0), the
+  /// halfedges; the default mode: 5-6x); on a table (vertices in a locality order) about 0.8x
+  /// `dijkstra_distance` and 2.4x `dijkstra_distance(mesh, table, ...)`, which the order speeds up
+  /// as much (bench/results/geodesic-speed.md, "Session 12 (mdf14)"). Not provided: the edge front (`peak_front` is 0), the
   /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
   /// sources (they run the default mode). A vertex nearer the source than all its neighbours gets
   /// its first settled neighbour's distance.

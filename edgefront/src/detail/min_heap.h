@@ -12,16 +12,17 @@
 
 namespace edgefront::detail {
 
-template <class Key>
+// `Index` is int, or a type with operator< (e.g. a vertex's index in two numberings, ordered by one).
+template <class Key, class Index = int>
 class MinHeap4 {
  public:
-  using Entry = std::pair<Key, int>;
+  using Entry = std::pair<Key, Index>;
 
   bool empty() const { return a_.empty(); }
   size_t size() const { return a_.size(); }
   const Entry& top() const { return a_.front(); }
 
-  void push(Key key, int index) {
+  void push(Key key, Index index) {
     const Entry e{key, index};
     size_t i = a_.size();
     a_.push_back(e);
