@@ -184,6 +184,34 @@ TEST(MdfRequirements, EveryModeRefusesTheSameBadInput) {
   }
 }
 
+TEST(MdfRequirements, NonFiniteCoordinatesAreRefusedWhenReached) {
+  // A mesh built in code is not checked on input: a vertex with a NaN or infinite coordinate must
+  // not pass for an unreachable one. Every mode refuses it when it reaches it.
+  Mesh mesh = shapes::icosphere(1);
+  const VertexHandle bad(5);
+  mesh.set_point(bad, Vec3(std::nan(""), 0, 0));
+  FaceHandle touching;
+  for (FaceHandle f : mesh.vf_range(bad)) touching = f;
+  for (const Mode& mode : modes()) {
+    EXPECT_THROW(mode.from_source(mesh, FrontSource::vertex(VertexHandle(0)), {}), InvalidInput) << mode.name;
+    EXPECT_THROW(mode.from_source(mesh, FrontSource::vertex(bad), {}), InvalidInput) << mode.name;
+    if (mode.from_points) {
+      EXPECT_THROW(mode.from_points(mesh, {{touching, {1.0 / 3, 1.0 / 3, 1.0 / 3}}}, {}), InvalidInput) << mode.name;
+    }
+  }
+  mesh.set_point(bad, Vec3(0, std::numeric_limits<double>::infinity(), 0));
+  EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0))), InvalidInput);
+  EXPECT_THROW(dijkstra_distance(mesh, FrontSource::vertex(VertexHandle(0))), InvalidInput);
+  // Beyond max_distance it is never reached, so the query runs: O(front), not a scan of the mesh.
+  Mesh far = shapes::icosphere(2);
+  const VertexHandle opposite = *std::max_element(far.vertices().begin(), far.vertices().end(),
+      [&](VertexHandle a, VertexHandle b) { return (far.point(a) - far.point(VertexHandle(0))).norm() <
+                                                   (far.point(b) - far.point(VertexHandle(0))).norm(); });
+  far.set_point(opposite, Vec3(std::nan(""), 0, 0));
+  const DistanceField near = geodesic_distance(far, FrontSource::vertex(VertexHandle(0)), {.max_distance = 0.5});
+  EXPECT_EQ(near.stop, DistanceStop::MaxDistance);
+}
+
 // ---- unreached vertices: infinite, never 0 ----
 
 TEST(MdfRequirements, UnreachedVerticesAreInfiniteInEveryMode) {

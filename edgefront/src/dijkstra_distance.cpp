@@ -2,6 +2,7 @@
 // GeodesicRingTable.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -110,6 +111,16 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
   validate_source(mesh, source);
   detail::check_distance_options(mesh, options);
   DijkstraRun dij(mesh.n_vertices());
+  const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
+  // |x - y|; a vertex with a NaN or infinite coordinate is refused when an edge reaches it.
+  const auto length = [&](int x, int y) {
+    const double len = (point(y) - point(x)).norm();
+    if (!std::isfinite(len)) {
+      detail::check_finite_vertex(point(x), x);
+      detail::check_finite_vertex(point(y), y);
+    }
+    return len;
+  };
   if (source.is_loop()) {
     for (HalfedgeHandle h : source.loop) {
       const int v = mesh.to_vertex_handle(h).idx();
@@ -124,21 +135,22 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
       HalfedgeHandle g = mesh.next_halfedge_handle(source.loop[i]);
       while (true) {
         const int y = mesh.to_vertex_handle(g).idx();
-        dij.offer(y, y, x, (mesh.point(VertexHandle(y)) - mesh.point(VertexHandle(x))).norm());
+        dij.offer(y, y, x, length(x, y));
         if (g == source.loop[(i + 1) % m]) break;
         g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
       }
     }
     for (HalfedgeHandle h : source.loop) dij.out.order.push_back(mesh.to_vertex_handle(h));
   } else {
-    for (VertexHandle v : source.vertices) dij.seed(v.idx(), v.idx());
+    for (VertexHandle v : source.vertices) {
+      detail::check_finite_vertex(point(v.idx()), v.idx());
+      dij.seed(v.idx(), v.idx());
+    }
   }
-  const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
   return dij.run(
       options,
       [&](int v, auto&& f) {
-        const Vec3& pv = point(v);
-        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), (mesh.point(y) - pv).norm());
+        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), length(v, y.idx()));
       },
       point, [](int v) { return v; }, [](int, int) {});
 }

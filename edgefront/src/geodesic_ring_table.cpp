@@ -23,6 +23,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<Geodesi
   const VertexHandle vx(x);
   GeodesicRingTable::Ring info;
   info.point = mesh.point(vx);
+  check_finite_vertex(info.point, x);
   info.begin = static_cast<std::uint32_t>(corners.size());
   // The ring, in the walk order of next(opposite(h)).
   size_t gap = 0;
@@ -35,6 +36,7 @@ GeodesicRingTable::Ring layout_ring(const Mesh& mesh, int x, std::vector<Geodesi
       const VertexHandle y = mesh.to_vertex_handle(h);
       const HalfedgeHandle g = mesh.opposite_halfedge_handle(h);
       Corner c;
+      check_finite_vertex(mesh.point(y), y.idx());
       c.e = mesh.point(y) - info.point;
       c.face_after = mesh.face_handle(g).is_valid();
       if (!c.face_after) {

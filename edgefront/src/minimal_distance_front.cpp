@@ -205,6 +205,7 @@ std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<Surfa
       throw InvalidInput(which + ": barycentric coordinates sum to " + std::to_string(sum) + ", not 1");
     }
     for (VertexHandle v : mesh.fv_range(p.face)) {
+      check_finite_vertex(mesh.point(v), v.idx());
       if (std::find(verts.begin(), verts.end(), v) == verts.end()) verts.push_back(v);
     }
   }
