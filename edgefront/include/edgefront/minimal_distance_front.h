@@ -98,7 +98,7 @@ struct DistanceOptions {
   /// Dijkstra bound, and vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact
   /// on planar convex regions, open cylinders and cones (vertex or point sources); on CGAL's six
   /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
-  /// default mode 0.1-0.37%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
+  /// default mode 0.1-0.33%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
   /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
   /// halfedges; the default mode: 5-6x); on a table (vertices in a locality order) about 0.8x
   /// `dijkstra_distance` and 2.4x `dijkstra_distance(mesh, table, ...)`, which the order speeds up
