@@ -1,7 +1,7 @@
 // Resolving self-intersecting face pairs of the GCS result (gcs/src/detail/untangle.h,
 // ReconstructOptions::resolve_self_intersections): a poked vertex is smoothed back, crossings
 // smoothing cannot undo are cut out, a mesh without crossings is untouched, bad parameters are
-// refused, and a thin vault shell that comes out of the loop with crossings is returned without.
+// refused, a cut never splits the mesh, and a thin vault shell that comes out of the loop with crossings is returned without.
 
 #include <gtest/gtest.h>
 
@@ -50,8 +50,8 @@ bool same_mesh(const Mesh& a, const Mesh& b) {
   for (auto v : a.vertices())
     if (a.point(v) != b.point(VertexHandle(v.idx()))) return false;
   for (auto f : a.faces()) {
-    auto ia = a.fv_begin(f);
-    auto ib = b.fv_begin(edgefront::FaceHandle(f.idx()));
+    auto ia = a.cfv_begin(f);
+    auto ib = b.cfv_begin(edgefront::FaceHandle(f.idx()));
     for (int k = 0; k < 3; ++k, ++ia, ++ib)
       if (ia->idx() != ib->idx()) return false;
   }
@@ -85,7 +85,7 @@ TEST(GcsUntangle, AVertexPokedThroughTheLayerBelowIsSmoothedBack) {
   EXPECT_EQ(m.n_faces(), faces);
   EXPECT_GT(m.point(poked)[2], -0.3);  // back above the lower sheet
   // max_move bounds the way back: with 0.2 the vertex stays below the lower sheet, so the pair
-  // is cut out instead (both faces inside the surface: both go) and nothing crosses either.
+  // is cut out instead (one face of each pair) and nothing crosses either.
   Mesh bounded;
   const std::vector<VertexHandle> u2 = add_grid(bounded, 8, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
   add_grid(bounded, 8, Vec3(0.3, 0.3, -0.3), Vec3(1, 0, 0), Vec3(0, 1, 0));
@@ -98,9 +98,9 @@ TEST(GcsUntangle, AVertexPokedThroughTheLayerBelowIsSmoothedBack) {
 }
 
 TEST(GcsUntangle, FlatSheetsThatCrossAreCutApartAndStayManifold) {
-  // A vertical strip through a horizontal sheet: both flat, so smoothing changes nothing and the
-  // crossing faces are cut out; the strip's faces touch its border, the sheet's interior faces
-  // do not, so only the strip loses faces.
+  // A vertical strip through a horizontal sheet: both flat, so smoothing cannot part them (the
+  // strip shrinks within its plane) and the crossing faces are cut out; the strip's faces touch
+  // its border, the sheet's interior faces do not, so only the strip loses faces.
   Mesh m;
   add_grid(m, 6, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
   add_grid(m, 1, Vec3(2.5, 2.2, -0.5), Vec3(0, 1.6, 0), Vec3(0, 0, 1));
@@ -109,9 +109,9 @@ TEST(GcsUntangle, FlatSheetsThatCrossAreCutApartAndStayManifold) {
   const Mesh copy = m;
   const gcs::detail::UntangleReport r = gcs::detail::untangle(m, far_cloud, params(0.5));
   EXPECT_EQ(r.pairs_after, 0u);
-  EXPECT_EQ(r.vertices_moved, 0u);
   EXPECT_GT(r.faces_removed, 0u);
   EXPECT_EQ(r.holes_filled, 0u);
+  for (auto v : m.vertices()) EXPECT_LE((m.point(v) - copy.point(v)).norm(), 0.5);  // max_move
   m.garbage_collection();
   EXPECT_EQ(m.n_faces(), sheet_faces);  // the strip's two faces went, the sheet is whole
   const gcs::MeshValidity v = gcs::mesh_validity(m);
@@ -143,6 +143,12 @@ TEST(GcsUntangle, AMeshWithoutCrossingsIsUntouchedAndBadParametersAreRefused) {
   p = params(1.0);
   p.relax_iterations = -1;
   EXPECT_THROW(gcs::detail::untangle(m, far_cloud, p), edgefront::InvalidInput);
+  p = params(1.0);
+  p.pull_back_passes = -1;
+  EXPECT_THROW(gcs::detail::untangle(m, far_cloud, p), edgefront::InvalidInput);
+  p = params(1.0);
+  p.min_face_cos = 1.5;
+  EXPECT_THROW(gcs::detail::untangle(m, far_cloud, p), edgefront::InvalidInput);
 }
 
 TEST(GcsUntangle, AThinVaultShellIsReturnedWithoutCrossings) {
@@ -172,7 +178,6 @@ TEST(GcsUntangle, AThinVaultShellIsReturnedWithoutCrossings) {
   EXPECT_TRUE(v.edge_manifold && v.vertex_manifold);
   EXPECT_EQ(v.components, gcs::mesh_validity(kept.mesh).components);
   EXPECT_LE(v.border_loops, gcs::mesh_validity(kept.mesh).border_loops);
-  EXPECT_TRUE(same_mesh(r.mesh, run(true).mesh));
 }
 
 }  // namespace

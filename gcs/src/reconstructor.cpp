@@ -1348,7 +1348,8 @@ struct Reconstructor::Impl {
       r.crossing_faces_removed = u.faces_removed;
       r.crossing_holes_filled = u.holes_filled;
       if (u.faces_removed > 0) r.mesh.garbage_collection();
-      r.seconds_fit += seconds_since(t_untangle);
+      r.seconds_crossings = seconds_since(t_untangle);
+      r.seconds_fit += r.seconds_crossings;
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();

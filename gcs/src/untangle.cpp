@@ -1,6 +1,7 @@
 #include "detail/untangle.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -8,6 +9,7 @@
 
 #include "detail/self_intersection.h"
 #include "edgefront/error.h"
+#include "edgefront/mesh_stats.h"
 
 namespace gcs::detail {
 
@@ -50,9 +52,57 @@ Vec3 smoothing_target(const Mesh& mesh, VertexHandle v) {
   return n > 0 ? sum / n : mesh.point(v);
 }
 
-// One smoothing round over the vertices of the crossing faces and `rings` rings around them;
-// moves that make a new pair cross are put back. Returns the pairs after the round.
-Pairs relax_round(Mesh& mesh, const Pairs& pairs, int rings, const std::vector<Vec3>& origin, const UntangleParams& p) {
+Vec3 unit_normal(const Mesh& mesh, FaceHandle f) {
+  auto it = mesh.cfv_begin(f);
+  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+  const Vec3 n = (b - a) % (c - a);
+  const double len = n.norm();
+  return len > 0 ? n / len : Vec3(0, 0, 0);
+}
+
+// The vertices `set` (sorted) were moved from `saved`: put back (there) the moved vertices of both
+// faces of every pair that crosses now and is not in `allowed`, and of every face that turned by
+// more than acos(min_face_cos) from `entry_normal`, until there is none (at worst every vertex
+// goes back). Returns the pairs that cross then.
+Pairs settle(Mesh& mesh, const std::vector<VertexHandle>& set, const std::vector<Vec3>& saved, const Pairs& allowed,
+             const std::vector<Vec3>& entry_normal, double min_face_cos) {
+  const auto put_back = [&](FaceHandle f) {
+    bool any = false;
+    for (VertexHandle v : mesh.fv_range(f)) {
+      const auto it = std::lower_bound(set.begin(), set.end(), v);
+      if (it == set.end() || *it != v) continue;
+      const Vec3& s = saved[static_cast<std::size_t>(it - set.begin())];
+      if (mesh.point(v) != s) {
+        mesh.point(v) = s;
+        any = true;
+      }
+    }
+    return any;
+  };
+  for (;;) {
+    bool again = false;
+    for (VertexHandle v : set) {
+      for (FaceHandle f : mesh.vf_range(v)) {
+        const Vec3 n = unit_normal(mesh, f);
+        if (!(n.sqrnorm() > 0 && (n | entry_normal[static_cast<std::size_t>(f.idx())]) >= min_face_cos))
+          again = put_back(f) || again;
+      }
+    }
+    if (again) continue;
+    Pairs now = self_intersecting_face_pairs(mesh);
+    for (const auto& pair : now) {
+      if (std::binary_search(allowed.begin(), allowed.end(), pair)) continue;
+      again = put_back(FaceHandle(pair.first)) || again;
+      again = put_back(FaceHandle(pair.second)) || again;
+    }
+    if (!again) return now;
+  }
+}
+
+// One smoothing round over the vertices of the crossing faces and `rings` rings around them
+// (moves that make a new pair cross or turn a face too far are put back). Returns the pairs after.
+Pairs relax_round(Mesh& mesh, const Pairs& pairs, int rings, const std::vector<Vec3>& origin,
+                  const std::vector<Vec3>& entry_normal, const UntangleParams& p) {
   std::vector<char> in(mesh.n_vertices(), 0);
   std::vector<VertexHandle> set;
   const auto add = [&](VertexHandle v) {
@@ -81,26 +131,54 @@ Pairs relax_round(Mesh& mesh, const Pairs& pairs, int rings, const std::vector<V
       mesh.point(set[k]) = o + moved;
     }
   }
-  // Put back (to where the round started) the moved vertices of both faces of every pair that
-  // crosses now and did not before, until there is none (at worst every vertex goes back).
-  for (;;) {
-    Pairs now = self_intersecting_face_pairs(mesh);
-    bool put_back = false;
-    for (const auto& pair : now) {
-      if (std::binary_search(pairs.begin(), pairs.end(), pair)) continue;
-      for (const int f : {pair.first, pair.second}) {
-        for (VertexHandle v : mesh.fv_range(FaceHandle(f))) {
-          if (!in[static_cast<std::size_t>(v.idx())]) continue;
-          const std::size_t k = static_cast<std::size_t>(std::lower_bound(set.begin(), set.end(), v) - set.begin());
-          if (mesh.point(v) != saved[k]) {
-            mesh.point(v) = saved[k];
-            put_back = true;
-          }
-        }
-      }
+  return settle(mesh, set, saved, pairs, entry_normal, p.min_face_cos);
+}
+
+// Moves every smoothed vertex halfway back to where it was on entry, `passes` times, as far as
+// that makes no pair cross that does not cross now (the smoothing moved more than needed, off the
+// samples). Returns the pairs after.
+Pairs pull_back(Mesh& mesh, Pairs pairs, const std::vector<Vec3>& origin, const std::vector<Vec3>& entry_normal,
+                const UntangleParams& p) {
+  for (int pass = 0; pass < p.pull_back_passes; ++pass) {
+    std::vector<VertexHandle> set;
+    std::vector<Vec3> saved;
+    for (VertexHandle v : mesh.vertices()) {
+      const Vec3& o = origin[static_cast<std::size_t>(v.idx())];
+      if (mesh.point(v) == o) continue;
+      set.push_back(v);
+      saved.push_back(mesh.point(v));
+      mesh.point(v) = 0.5 * (mesh.point(v) + o);
     }
-    if (!put_back) return now;
+    if (set.empty()) break;
+    pairs = settle(mesh, set, saved, pairs, entry_normal, p.min_face_cos);
   }
+  return pairs;
+}
+
+// Cuts out one face of `pair` (the one touching a border, else the one farther from the cloud,
+// else the other) when that leaves no more components than there are (after removing the pieces
+// of fewer than 8 faces it cuts off, as the border creation does). Returns the faces removed (0:
+// neither face could go).
+std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pair) {
+  const FaceHandle fa(pair.first), fb(pair.second);
+  if (mesh.status(fa).deleted() || mesh.status(fb).deleted()) return 0;
+  const auto centroid = [&](FaceHandle f) {
+    Vec3 c(0, 0, 0);
+    for (VertexHandle v : mesh.fv_range(f)) c += mesh.point(v);
+    return c / 3.0;
+  };
+  const bool ba = touches_border(mesh, fa), bb = touches_border(mesh, fb);
+  bool a_first = ba != bb ? ba : cloud(centroid(fa)).distance >= cloud(centroid(fb)).distance;
+  const std::size_t components = edgefront::connected_components(mesh).count;
+  for (const FaceHandle f : a_first ? std::array{fa, fb} : std::array{fb, fa}) {
+    Mesh trial = mesh;
+    trial.delete_face(f, true);
+    const std::size_t removed = 1 + clean_topology(trial, 8);
+    if (edgefront::connected_components(trial).count > components) continue;
+    mesh = std::move(trial);
+    return removed;
+  }
+  return 0;
 }
 
 }  // namespace
@@ -111,33 +189,28 @@ UntangleReport untangle(Mesh& mesh, const CloudQuery& cloud, const UntangleParam
   if (p.relax_rounds < 0 || p.relax_iterations < 0)
     throw edgefront::InvalidInput("gcs untangle: relax_rounds and relax_iterations must be >= 0");
   if (!(p.relax_rate > 0 && p.relax_rate <= 1)) throw edgefront::InvalidInput("gcs untangle: relax_rate must be in (0, 1]");
+  if (!(p.min_face_cos >= -1 && p.min_face_cos <= 1)) throw edgefront::InvalidInput("gcs untangle: min_face_cos must be in [-1, 1]");
+  if (p.pull_back_passes < 0) throw edgefront::InvalidInput("gcs untangle: pull_back_passes must be >= 0");
   UntangleReport report;
   Pairs pairs = self_intersecting_face_pairs(mesh);
   report.pairs_before = pairs.size();
   if (pairs.empty()) return report;
   std::vector<Vec3> origin(mesh.n_vertices());
   for (VertexHandle v : mesh.vertices()) origin[static_cast<std::size_t>(v.idx())] = mesh.point(v);
-  for (int round = 0; round < p.relax_rounds && !pairs.empty(); ++round) pairs = relax_round(mesh, pairs, round, origin, p);
+  std::vector<Vec3> entry_normal(mesh.n_faces(), Vec3(0, 0, 0));
+  for (FaceHandle f : mesh.faces()) entry_normal[static_cast<std::size_t>(f.idx())] = unit_normal(mesh, f);
+  for (int round = 0; round < p.relax_rounds && !pairs.empty(); ++round)
+    pairs = relax_round(mesh, pairs, round, origin, entry_normal, p);
+  pairs = pull_back(mesh, std::move(pairs), origin, entry_normal, p);
   for (VertexHandle v : mesh.vertices()) report.vertices_moved += mesh.point(v) != origin[static_cast<std::size_t>(v.idx())] ? 1 : 0;
 
   // Cutting: a pair ends when one of its faces goes.
   if (p.cut && !pairs.empty()) {
-    std::vector<int> cut;
-    for (const auto& [a, b] : pairs) {
-      const bool ba = touches_border(mesh, FaceHandle(a)), bb = touches_border(mesh, FaceHandle(b));
-      if (ba != bb) {
-        cut.push_back(ba ? a : b);
-      } else {
-        cut.push_back(a);
-        cut.push_back(b);
-      }
-    }
-    std::sort(cut.begin(), cut.end());
-    cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
-    for (const int f : cut) mesh.delete_face(FaceHandle(f), true);
-    report.faces_removed += cut.size() + clean_topology(mesh, 8);
-    pairs = self_intersecting_face_pairs(mesh);  // none: every pair lost a face
-    if (p.fill_max_vertices >= 3) {
+    std::size_t removed = 0;
+    for (const auto& pair : pairs) removed += cut_pair(mesh, cloud, pair);
+    report.faces_removed += removed;
+    pairs = self_intersecting_face_pairs(mesh);  // the pairs whose faces could not go
+    if (removed > 0 && p.fill_max_vertices >= 3) {
       Mesh filled = mesh;
       const std::size_t n = fill_small_holes(filled, cloud, p.fill_max_vertices, p.fill_support, 0.5);
       if (n > 0 && self_intersecting_face_pairs(filled) == pairs) {

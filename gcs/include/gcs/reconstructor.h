@@ -203,10 +203,12 @@ struct ReconstructOptions {
   /// rims curl over the faces next to them, so faces cross. The vertices of the crossing faces
   /// (then also 1 and 2 rings around them) are smoothed toward the mean of their neighbours (on a
   /// border: of their two border neighbours; 8 half steps, at most half a mean edge length in
-  /// all), and a move that makes a pair cross that did not before is put back. Faces still crossing
-  /// are cut out (of a pair with one face touching a border, that face; otherwise both) and the
-  /// holes of at most 8 vertices this leaves are filled when the fan lies on the samples and
-  /// crosses nothing. A mesh without crossings keeps its bytes. false: crossings are left.
+  /// all); a move that makes a pair cross that did not before, or turns a face by more than 60
+  /// degrees, is put back; then the moved vertices go back halfway to where they were, 4 times, as
+  /// far as nothing crosses again. Of a pair still crossing one face is cut out (the one touching a
+  /// border, else the one farther from the samples; not when that splits the mesh in two), and
+  /// border loops of at most 8 vertices are then filled when their fans lie on the samples and
+  /// cross nothing. A mesh without crossings keeps its bytes. false: crossings are left.
   bool resolve_self_intersections = true;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
@@ -288,6 +290,7 @@ struct ReconstructResult {
   std::size_t crossing_vertices_moved = 0;  ///< by its smoothing
   std::size_t crossing_faces_removed = 0;   ///< cut out by it
   std::size_t crossing_holes_filled = 0;    ///< holes it filled after the cut
+  double seconds_crossings = 0;             ///< of seconds_fit: in it (the crossing count included)
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
   double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (ReconstructOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;     ///< the loop ran on the smoothed cloud

@@ -23,10 +23,18 @@ struct UntangleParams {
   double relax_rate = 0.5;
   /// A vertex moves at most this far in all (> 0).
   double max_move = 0;
-  /// Cut out the faces of pairs that still cross after the smoothing (of a pair with exactly one
-  /// face touching a border, that face; otherwise both), then fill border loops of at most
-  /// `fill_max_vertices` vertices (fill_small_holes with `fill_support` and normal agreement 0.5)
-  /// when the fill creates no crossing.
+  /// A move is put back when one of the vertex's faces turns by more than acos(min_face_cos) from
+  /// its normal on entry (in [-1, 1]; 0.5 = 60 degrees: smoothing must not fold a face over).
+  double min_face_cos = 0.5;
+  /// Then, this many times, every moved vertex goes halfway back to its entry position where that
+  /// makes nothing cross again (the smoothing moves more than needed, off the samples). >= 0.
+  int pull_back_passes = 4;
+  /// Cut out one face of every pair that still crosses: the one touching a border (a curled rim),
+  /// else the one whose centroid is farther from the cloud, else the other; a cut that would split
+  /// a component off (beyond pieces of fewer than 8 faces, which go, as in the border creation)
+  /// is not made, and the pair is left. Then border loops of at most `fill_max_vertices`
+  /// vertices (fill_small_holes with `fill_support` and normal agreement 0.5; this includes holes
+  /// that were there before) are filled when the fills create no crossing.
   bool cut = true;
   std::size_t fill_max_vertices = 8;
   double fill_support = 0;
@@ -34,9 +42,9 @@ struct UntangleParams {
 
 struct UntangleReport {
   std::size_t pairs_before = 0;     ///< self-intersecting face pairs on entry
-  std::size_t pairs_after = 0;      ///< ... on return (never more than on entry)
+  std::size_t pairs_after = 0;      ///< ... on return (never more than on entry; > 0 when a cut was refused)
   std::size_t vertices_moved = 0;   ///< by the smoothing
-  std::size_t faces_removed = 0;    ///< cut out (with the faces clean_topology removed after them)
+  std::size_t faces_removed = 0;    ///< cut out (with the pieces of < 8 faces this cut off)
   std::size_t holes_filled = 0;
 };
 
@@ -45,7 +53,8 @@ struct UntangleReport {
 /// kept, so the result never has a crossing the input did not have. The mesh stays a valid
 /// manifold oriented mesh (deleted elements not collected; faces are only removed and added when
 /// `cut`). A mesh without crossings is not changed. \throw edgefront::InvalidInput for
-/// max_move <= 0 or NaN, negative rounds or iterations, relax_rate outside (0, 1].
+/// max_move <= 0 or not finite, negative rounds, iterations or passes, relax_rate outside (0, 1],
+/// min_face_cos outside [-1, 1].
 UntangleReport untangle(edgefront::Mesh& mesh, const CloudQuery& cloud, const UntangleParams& params);
 
 }  // namespace gcs::detail
