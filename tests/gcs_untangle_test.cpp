@@ -23,19 +23,23 @@ using edgefront::Mesh;
 using edgefront::Vec3;
 using edgefront::VertexHandle;
 
-// An n x n grid of unit cells in the plane through `origin` spanned by u and w, added to m.
-std::vector<VertexHandle> add_grid(Mesh& m, int n, const Vec3& origin, const Vec3& u, const Vec3& w) {
+// An nu x nw grid of cells in the plane through `origin` spanned by u and w, added to m.
+std::vector<VertexHandle> add_grid(Mesh& m, int nu, int nw, const Vec3& origin, const Vec3& u, const Vec3& w) {
   std::vector<VertexHandle> v;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) v.push_back(m.add_vertex(origin + double(i) * u + double(j) * w));
-  const auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * (n + 1) + i)]; };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
+  for (int j = 0; j <= nw; ++j)
+    for (int i = 0; i <= nu; ++i) v.push_back(m.add_vertex(origin + double(i) * u + double(j) * w));
+  const auto at = [&](int i, int j) { return v[static_cast<std::size_t>(j * (nu + 1) + i)]; };
+  for (int j = 0; j < nw; ++j) {
+    for (int i = 0; i < nu; ++i) {
       m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
       m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
     }
   }
   return v;
+}
+
+std::vector<VertexHandle> add_grid(Mesh& m, int n, const Vec3& origin, const Vec3& u, const Vec3& w) {
+  return add_grid(m, n, n, origin, u, w);
 }
 
 // No sample anywhere near: hole fills are refused.
@@ -122,6 +126,24 @@ TEST(GcsUntangle, FlatSheetsThatCrossAreCutApartAndStayManifold) {
   gcs::detail::untangle(again, far_cloud, params(0.5));
   again.garbage_collection();
   EXPECT_TRUE(same_mesh(m, again));
+}
+
+TEST(GcsUntangle, ACutThatWouldSplitTheMeshIsNotMade) {
+  // A strip one cell wide and 12 long with a blade (one quad) through its middle cell: cutting
+  // the strip's faces there would cut the strip in two pieces of more than 8 faces, so the
+  // blade's faces go instead, and the strip stays whole.
+  Mesh m;
+  add_grid(m, 12, 1, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  add_grid(m, 1, 1, Vec3(6.5, -0.6, -0.5), Vec3(0, 2.2, 0), Vec3(0, 0, 1));
+  ASSERT_GT(gcs::count_self_intersections(m), 0u);
+  const gcs::detail::UntangleReport r = gcs::detail::untangle(m, far_cloud, params(0.5));
+  EXPECT_EQ(r.pairs_after, 0u);
+  m.garbage_collection();
+  EXPECT_EQ(m.n_faces(), 24u);  // the whole strip, no blade
+  const gcs::MeshValidity v = gcs::mesh_validity(m);
+  EXPECT_EQ(v.components, 1u);
+  EXPECT_TRUE(v.edge_manifold && v.vertex_manifold);
+  EXPECT_EQ(v.self_intersecting_pairs.value_or(1), 0u);
 }
 
 TEST(GcsUntangle, AMeshWithoutCrossingsIsUntouchedAndBadParametersAreRefused) {

@@ -155,10 +155,18 @@ Pairs pull_back(Mesh& mesh, Pairs pairs, const std::vector<Vec3>& origin, const 
   return pairs;
 }
 
+// Components with at least 8 faces (the border creation's smallest kept piece).
+std::size_t big_components(const Mesh& mesh) {
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  std::vector<std::size_t> faces(labels.count, 0);
+  for (FaceHandle f : mesh.faces()) ++faces[static_cast<std::size_t>(labels.vertex_component[mesh.cfv_begin(f)->idx()])];
+  return static_cast<std::size_t>(std::count_if(faces.begin(), faces.end(), [](std::size_t n) { return n >= 8; }));
+}
+
 // Cuts out one face of `pair` (the one touching a border, else the one farther from the cloud,
-// else the other) when that leaves no more components than there are (after removing the pieces
-// of fewer than 8 faces it cuts off, as the border creation does). Returns the faces removed (0:
-// neither face could go).
+// else the other) when that leaves no more components of at least 8 faces than there are (pieces
+// of fewer than 8 faces it cuts off are removed, as the border creation does). Returns the faces
+// removed (0: neither face could go).
 std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pair) {
   const FaceHandle fa(pair.first), fb(pair.second);
   if (mesh.status(fa).deleted() || mesh.status(fb).deleted()) return 0;
@@ -169,12 +177,12 @@ std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pa
   };
   const bool ba = touches_border(mesh, fa), bb = touches_border(mesh, fb);
   bool a_first = ba != bb ? ba : cloud(centroid(fa)).distance >= cloud(centroid(fb)).distance;
-  const std::size_t components = edgefront::connected_components(mesh).count;
+  const std::size_t components = big_components(mesh);
   for (const FaceHandle f : a_first ? std::array{fa, fb} : std::array{fb, fa}) {
     Mesh trial = mesh;
     trial.delete_face(f, true);
     const std::size_t removed = 1 + clean_topology(trial, 8);
-    if (edgefront::connected_components(trial).count > components) continue;
+    if (big_components(trial) > components) continue;
     mesh = std::move(trial);
     return removed;
   }
