@@ -6,7 +6,7 @@
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
 ///               [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--only-repair] [--explain 1|2]
-///               [--keep-crossings] [--trace] [--dump PREFIX]
+///               [--keep-crossings] [--skip-unfaced-samples] [--trace] [--dump PREFIX]
 ///   bench_twist --explain-mesh MESH [--shapes S] [--thickness t] [--explain 2]
 ///                                     where the same-orientation pairs of a saved result lie
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
@@ -53,7 +53,8 @@
 /// (`gcs::count_self_intersections`, as gcs-eval counts them), plain and repair run, and for the
 /// repair run what the last post-processing step (`ReconstructOptions::resolve_self_intersections`)
 /// found and did: pairs found / vertices smoothed / faces cut out, and its share of the run's wall
-/// time. `--keep-crossings` turns it off.
+/// time. `--keep-crossings` turns it off. `--skip-unfaced-samples` sets
+/// `ReconstructOptions::skip_unfaced_samples` (off by default).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
@@ -393,6 +394,7 @@ int main(int argc, char** argv) {
   std::string dump;
   bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
   bool resolve_crossings = true;  // ReconstructOptions::resolve_self_intersections
+  bool skip_unfaced = false;      // ReconstructOptions::skip_unfaced_samples
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
   std::string only, cloud_path, explain_mesh;
@@ -433,6 +435,7 @@ int main(int argc, char** argv) {
     else if (a == "--explain-mesh") explain_mesh = next();
     else if (a == "--no-post") post = false;
     else if (a == "--keep-crossings") resolve_crossings = false;
+    else if (a == "--skip-unfaced-samples") skip_unfaced = true;
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
@@ -440,7 +443,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--thin-wall E] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--keep-crossings] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--keep-crossings] [--skip-unfaced-samples] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
       return 2;
     }
   }
@@ -516,6 +519,7 @@ int main(int argc, char** argv) {
       ro.orient_winners = orient_winners;
       ro.project_to_samples = ro.fit_surface = post;
       ro.resolve_self_intersections = resolve_crossings;
+      ro.skip_unfaced_samples = skip_unfaced;
       if (stacked_rounds >= 0) ro.stacked_layer_rounds = stacked_rounds;
       Consistency cons[2];
       double cover[2] = {0, 0};
