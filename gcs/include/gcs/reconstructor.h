@@ -127,7 +127,8 @@ struct ReconstructOptions {
   /// 1.000, Chamfer-L1 median 0.123 -> 0.088%; data/vault-shell.xyz at 2000 vertices: border loops
   /// median 8 -> 3, Chamfer 0.595 -> 0.540%) but does not close them (0 border loops in 1 of 65
   /// shell runs, 2 without it), adds loops on some t/R 0.05 runs and self-intersecting pairs on
-  /// others. Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
+  /// others (resolve_self_intersections now removes those: 0 in every shell run, Session 12).
+  /// Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
   /// false: the published oriented loop's fallback (the plain nearest vertex wins among 8).
   bool skip_unfaced_samples = false;
   /// With oriented samples (see orient_winners) that surround a volume (their normals point away
