@@ -155,18 +155,26 @@ Pairs pull_back(Mesh& mesh, Pairs pairs, const std::vector<Vec3>& origin, const 
   return pairs;
 }
 
-// Components with at least 8 faces (the border creation's smallest kept piece).
-std::size_t big_components(const Mesh& mesh) {
+// The border creation's rule for the pieces it keeps (BorderParams::min_component_faces and
+// min_component_fraction): at least 8 faces and 5% of the largest piece's.
+constexpr std::size_t kMinPieceFaces = 8;
+constexpr double kMinPieceFraction = 0.05;
+
+// Components the border creation would keep.
+std::size_t kept_components(const Mesh& mesh) {
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   std::vector<std::size_t> faces(labels.count, 0);
   for (FaceHandle f : mesh.faces()) ++faces[static_cast<std::size_t>(labels.vertex_component[mesh.cfv_begin(f)->idx()])];
-  return static_cast<std::size_t>(std::count_if(faces.begin(), faces.end(), [](std::size_t n) { return n >= 8; }));
+  const std::size_t largest = faces.empty() ? 0 : *std::max_element(faces.begin(), faces.end());
+  const double least = std::max(static_cast<double>(kMinPieceFaces), kMinPieceFraction * static_cast<double>(largest));
+  return static_cast<std::size_t>(
+      std::count_if(faces.begin(), faces.end(), [&](std::size_t n) { return static_cast<double>(n) >= least; }));
 }
 
 // Cuts out one face of `pair` (the one touching a border, else the one farther from the cloud,
-// else the other) when that leaves no more components of at least 8 faces than there are (pieces
-// of fewer than 8 faces it cuts off are removed, as the border creation does). Returns the faces
-// removed (0: neither face could go).
+// else the other) when that leaves no more pieces the border creation would keep than there are;
+// the pieces it would not keep (fewer than 8 faces or 5% of the largest's) are removed, as the
+// border creation does. Returns the faces removed (0: neither face could go).
 std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pair) {
   const FaceHandle fa(pair.first), fb(pair.second);
   if (mesh.status(fa).deleted() || mesh.status(fb).deleted()) return 0;
@@ -177,12 +185,12 @@ std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pa
   };
   const bool ba = touches_border(mesh, fa), bb = touches_border(mesh, fb);
   bool a_first = ba != bb ? ba : cloud(centroid(fa)).distance >= cloud(centroid(fb)).distance;
-  const std::size_t components = big_components(mesh);
+  const std::size_t components = kept_components(mesh);
   for (const FaceHandle f : a_first ? std::array{fa, fb} : std::array{fb, fa}) {
     Mesh trial = mesh;
     trial.delete_face(f, true);
-    const std::size_t removed = 1 + clean_topology(trial, 8);
-    if (big_components(trial) > components) continue;
+    const std::size_t removed = 1 + clean_topology(trial, kMinPieceFaces, kMinPieceFraction);
+    if (kept_components(trial) > components) continue;
     mesh = std::move(trial);
     return removed;
   }

@@ -207,7 +207,9 @@ struct ReconstructOptions {
   /// all); a move that makes a pair cross that did not before, or turns a face by more than 60
   /// degrees, is put back; then the moved vertices go back halfway to where they were, 4 times, as
   /// far as nothing crosses again. Of a pair still crossing one face is cut out (the one touching a
-  /// border, else the one farther from the samples; not when that splits the mesh in two), and
+  /// border, else the one farther from the samples; pieces it cuts off go when the border creation
+  /// would remove them too, below 8 faces or 5% of the largest piece; a cut that would cut off a
+  /// larger piece is not made), and
   /// border loops of at most 8 vertices are then filled when their fans lie on the samples and
   /// cross nothing. A mesh without crossings keeps its bytes. false: crossings are left.
   bool resolve_self_intersections = true;

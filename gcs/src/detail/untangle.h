@@ -30,11 +30,12 @@ struct UntangleParams {
   /// makes nothing cross again (the smoothing moves more than needed, off the samples). >= 0.
   int pull_back_passes = 4;
   /// Cut out one face of every pair that still crosses: the one touching a border (a curled rim),
-  /// else the one whose centroid is farther from the cloud, else the other; a cut that would split
-  /// a component off (beyond pieces of fewer than 8 faces, which go, as in the border creation)
-  /// is not made, and the pair is left. Then border loops of at most `fill_max_vertices`
-  /// vertices (fill_small_holes with `fill_support` and normal agreement 0.5; this includes holes
-  /// that were there before) are filled when the fills create no crossing.
+  /// else the one whose centroid is farther from the cloud, else the other; pieces this cuts off
+  /// that the border creation would remove too (fewer than 8 faces or 5% of the largest piece's)
+  /// go, and a cut that would cut off a larger piece is not made (the pair is left). Then border
+  /// loops of at most `fill_max_vertices` vertices (fill_small_holes with `fill_support` and normal
+  /// agreement 0.5; this includes holes that were there before) are filled when the fills create
+  /// no crossing.
   bool cut = true;
   std::size_t fill_max_vertices = 8;
   double fill_support = 0;
