@@ -155,26 +155,47 @@ Pairs pull_back(Mesh& mesh, Pairs pairs, const std::vector<Vec3>& origin, const 
   return pairs;
 }
 
-// The border creation's rule for the pieces it keeps (BorderParams::min_component_faces and
-// min_component_fraction): at least 8 faces and 5% of the largest piece's.
+// A piece a cut separates goes when it has fewer than this share of the largest piece's faces
+// (the border creation's BorderParams::min_component_fraction); pieces of fewer than 8 faces go
+// in any case (min_component_faces).
 constexpr std::size_t kMinPieceFaces = 8;
 constexpr double kMinPieceFraction = 0.05;
 
-// Components the border creation would keep.
-std::size_t kept_components(const Mesh& mesh) {
-  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+// Deletes face f of `trial` and the pieces of fewer than 8 faces that leaves; when f's corners
+// end up in several pieces, the largest of those stays and the others go if each is below 5% of
+// the largest piece of the mesh. Returns the faces removed, 0 when a larger piece would be cut off.
+std::size_t cut_face(Mesh& trial, FaceHandle f) {
+  std::vector<VertexHandle> corners;
+  for (VertexHandle v : trial.fv_range(f)) corners.push_back(v);
+  trial.delete_face(f, true);
+  std::size_t removed = 1 + clean_topology(trial, kMinPieceFaces);
+  const edgefront::ComponentLabels labels = edgefront::connected_components(trial);
+  std::vector<int> pieces;
+  for (VertexHandle v : corners)
+    if (!trial.status(v).deleted() && !trial.is_isolated(v)) pieces.push_back(labels.vertex_component[static_cast<std::size_t>(v.idx())]);
+  std::sort(pieces.begin(), pieces.end());
+  pieces.erase(std::unique(pieces.begin(), pieces.end()), pieces.end());
+  if (pieces.size() <= 1) return removed;
   std::vector<std::size_t> faces(labels.count, 0);
-  for (FaceHandle f : mesh.faces()) ++faces[static_cast<std::size_t>(labels.vertex_component[mesh.cfv_begin(f)->idx()])];
-  const std::size_t largest = faces.empty() ? 0 : *std::max_element(faces.begin(), faces.end());
-  const double least = std::max(static_cast<double>(kMinPieceFaces), kMinPieceFraction * static_cast<double>(largest));
-  return static_cast<std::size_t>(
-      std::count_if(faces.begin(), faces.end(), [&](std::size_t n) { return static_cast<double>(n) >= least; }));
+  for (FaceHandle g : trial.faces()) ++faces[static_cast<std::size_t>(labels.vertex_component[trial.cfv_begin(g)->idx()])];
+  const double least = kMinPieceFraction * static_cast<double>(*std::max_element(faces.begin(), faces.end()));
+  const int keep = *std::max_element(pieces.begin(), pieces.end(), [&](int x, int y) {
+    return faces[static_cast<std::size_t>(x)] < faces[static_cast<std::size_t>(y)];
+  });
+  for (const int c : pieces)
+    if (c != keep && static_cast<double>(faces[static_cast<std::size_t>(c)]) >= least) return 0;
+  for (FaceHandle g : trial.faces()) {
+    const int c = labels.vertex_component[trial.cfv_begin(g)->idx()];
+    if (c != keep && std::binary_search(pieces.begin(), pieces.end(), c)) {
+      trial.delete_face(g, true);
+      ++removed;
+    }
+  }
+  return removed;
 }
 
 // Cuts out one face of `pair` (the one touching a border, else the one farther from the cloud,
-// else the other) when that leaves no more pieces the border creation would keep than there are;
-// the pieces it would not keep (fewer than 8 faces or 5% of the largest's) are removed, as the
-// border creation does. Returns the faces removed (0: neither face could go).
+// else the other; see cut_face). Returns the faces removed (0: neither face could go).
 std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pair) {
   const FaceHandle fa(pair.first), fb(pair.second);
   if (mesh.status(fa).deleted() || mesh.status(fb).deleted()) return 0;
@@ -185,12 +206,10 @@ std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pa
   };
   const bool ba = touches_border(mesh, fa), bb = touches_border(mesh, fb);
   bool a_first = ba != bb ? ba : cloud(centroid(fa)).distance >= cloud(centroid(fb)).distance;
-  const std::size_t components = kept_components(mesh);
   for (const FaceHandle f : a_first ? std::array{fa, fb} : std::array{fb, fa}) {
     Mesh trial = mesh;
-    trial.delete_face(f, true);
-    const std::size_t removed = 1 + clean_topology(trial, kMinPieceFaces, kMinPieceFraction);
-    if (kept_components(trial) > components) continue;
+    const std::size_t removed = cut_face(trial, f);
+    if (removed == 0) continue;
     mesh = std::move(trial);
     return removed;
   }
