@@ -3,7 +3,7 @@
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
 ///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
-///                   [--no-delaunay-flips]
+///                   [--no-delaunay-flips] [--keep-crossings]
 ///                   [--quiet]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-delaunay-flips", no_flips,
                "do not flip edges of the result toward a Delaunay triangulation (on by default: only between nearly "
                "coplanar faces, vertex positions unchanged)");
+  bool keep_crossings = false;
+  app.add_flag("--keep-crossings", keep_crossings,
+               "do not resolve self-intersecting face pairs of the result (by default the crossing faces' vertices "
+               "are smoothed, and faces still crossing are cut out and their small holes filled; thin shells)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
@@ -106,6 +110,7 @@ int main(int argc, char** argv) {
     options.fit_surface = !no_fit;
     if (keep_noise) options.smooth_noise_ratio = std::numeric_limits<double>::infinity();
     options.delaunay_flips = !no_flips;
+    options.resolve_self_intersections = !keep_crossings;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");
@@ -155,6 +160,10 @@ int main(int argc, char** argv) {
     std::cout << "gcs-reconstruct: " << s.vertices << " vertices, " << s.faces << " faces, " << s.components
               << " component(s), " << s.border_loops << " border loop(s), " << gcs::to_string(r.stop_reason) << ", "
               << r.seconds_total << " s -> " << output;
+    if (r.crossing_pairs_found > 0)
+      std::cout << "; " << r.crossing_pairs_found << " self-intersecting face pair(s) resolved ("
+                << r.crossing_vertices_moved << " vertices smoothed, " << r.crossing_faces_removed << " faces cut out, "
+                << r.crossing_holes_filled << " hole(s) filled), " << r.crossing_pairs_left << " left";
     if (r.cloud_smoothed) std::cout << "; cloud smoothed first (noise " << r.noise_ratio << " of the point spacing)";
     if (twist_op) {  // on the same summary line
       const gcs::TwistOperationStats& t = twist_op->stats();

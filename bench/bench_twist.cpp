@@ -6,7 +6,7 @@
 ///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
 ///               [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--only-repair] [--explain 1|2]
-///               [--trace] [--dump PREFIX]
+///               [--keep-crossings] [--skip-unfaced-samples] [--trace] [--dump PREFIX]
 ///   bench_twist --explain-mesh MESH [--shapes S] [--thickness t] [--explain 2]
 ///                                     where the same-orientation pairs of a saved result lie
 ///   bench_twist --detect-scaling      time per incremental detection call vs mesh size
@@ -49,7 +49,12 @@
 /// column "stacked before the removal / removed / pleats flattened": the faces with a stacked
 /// partner it found on the post-processed mesh, before it changed anything (0 when it did not
 /// scan: off, or no border), the faces it removed and the pleats it smoothed flat, for the plain
-/// and the repair run).
+/// and the repair run); "self-int. pairs": the result's self-intersecting face pairs
+/// (`gcs::count_self_intersections`, as gcs-eval counts them), plain and repair run, and for the
+/// repair run what the last post-processing step (`ReconstructOptions::resolve_self_intersections`)
+/// found and did: pairs found / vertices smoothed / faces cut out, and its share of the run's wall
+/// time. `--keep-crossings` turns it off. `--skip-unfaced-samples` sets
+/// `ReconstructOptions::skip_unfaced_samples` (off by default).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
@@ -59,6 +64,7 @@
 /// Prints a markdown table.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -387,6 +393,8 @@ int main(int argc, char** argv) {
   int peel = -1, turned = -1, stacked_rounds = -1;
   std::string dump;
   bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
+  bool resolve_crossings = true;  // ReconstructOptions::resolve_self_intersections
+  bool skip_unfaced = false;      // ReconstructOptions::skip_unfaced_samples
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
   double edge_per_thickness = 0;
   std::string only, cloud_path, explain_mesh;
@@ -426,6 +434,8 @@ int main(int argc, char** argv) {
     else if (a == "--dump") dump = next();
     else if (a == "--explain-mesh") explain_mesh = next();
     else if (a == "--no-post") post = false;
+    else if (a == "--keep-crossings") resolve_crossings = false;
+    else if (a == "--skip-unfaced-samples") skip_unfaced = true;
     else if (a == "--detect-scaling") {
       detect_scaling();
       return 0;
@@ -433,7 +443,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b] [--thickness t]"
                    " [--side-weight W] [--thin-wall E] [--max-retwists K] [--regrow] [--margin M] [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]"
-                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
+                   " [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--explain 1|2] [--only-repair] [--dump PREFIX] [--trace] [--rejoin] [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--keep-crossings] [--skip-unfaced-samples] | --detect-scaling | --cloud FILE [--vertices N] [--seeds S] [--retest-all] [--rejoin] [--no-rejoin] [--peel N]\n";
       return 2;
     }
   }
@@ -480,8 +490,8 @@ int main(int argc, char** argv) {
               retest_all ? ", every changed face retested" : "",
               orient_winners ? ", oriented winners" : ", plain winners (--no-orient-winners)");
   if (edge_per_thickness > 0) std::printf("; vault shells at %g x thickness mean edge (vertices and points per row)", edge_per_thickness);
-  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | stacked before the removal / removed / pleats flattened: plain, repair | twist time share | twist CPU share |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n\n| shape | seed | no repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | with repair: abs / comp | coverage | eval comp | judged comp (undecided) | same-orient. faces: stacked / facing | borders | components | found | repaired | cut out | faces removed | re-joined | turned dropped | stacked before the removal / removed / pleats flattened: plain, repair | self-int. pairs: plain / repair (before the resolution: found / vertices smoothed / faces cut, repair run; its share of the repair run's time) | twist time share | twist CPU share |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
     size_t case_vertices = vertices, case_points = points;
     std::string label = c.label;
@@ -508,12 +518,16 @@ int main(int argc, char** argv) {
       ro.seed = seed;
       ro.orient_winners = orient_winners;
       ro.project_to_samples = ro.fit_surface = post;
+      ro.resolve_self_intersections = resolve_crossings;
+      ro.skip_unfaced_samples = skip_unfaced;
       if (stacked_rounds >= 0) ro.stacked_layer_rounds = stacked_rounds;
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];
-      size_t left[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0}, stacked_removed[2] = {0, 0}, stacked_found[2] = {0, 0}, pleats[2] = {0, 0};
+      size_t left[2] = {0, 0}, crossing[2] = {0, 0}, stacked[2] = {0, 0}, borders[2] = {0, 0}, components[2] = {0, 0}, stacked_removed[2] = {0, 0}, stacked_found[2] = {0, 0}, pleats[2] = {0, 0};
       gcs::TwistOperationStats stats;
+      std::array<size_t, 3> resolution{};
+      double crossing_share = 0;
       double share = 0, cpu_share = 0;
       for (int with = only_repair ? 1 : 0; with < 2; ++with) {
         gcs::Reconstructor rec(cloud, ro);
@@ -548,6 +562,11 @@ int main(int argc, char** argv) {
         eval[with] = gcs::orientation_consistency(r.mesh, dense_cloud);  // the eval branch's metric, for comparison
         left[with] = twist::count_same_orientation_layers(r.mesh);
         stacked[with] = twist::count_same_orientation_layers(r.mesh, {}, twist::LayerRule::Stacked);
+        crossing[with] = gcs::count_self_intersections(r.mesh);
+        if (with) {
+          resolution = {r.crossing_pairs_found, r.crossing_vertices_moved, r.crossing_faces_removed};
+          crossing_share = r.seconds_total > 0 ? r.seconds_crossings / r.seconds_total : 0;
+        }
         if (explain > 0) {
           for (twist::LayerRule rule : {twist::LayerRule::Facing, twist::LayerRule::Stacked}) {
             explain_pairs(r.mesh, truth, c.label + (with ? " repair" : " plain"), seed, explain, rule);
@@ -566,11 +585,11 @@ int main(int argc, char** argv) {
           cpu_share = run_cpu > 0 ? stats.cpu_seconds / run_cpu : 0;
         }
       }
-      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu / %zu / %zu, %zu / %zu / %zu | %.1f%% | %.1f%% |\n",
+      std::printf("| %s | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %.4f / %.4f | %.4f | %.4f | %.4f (%.2f) | %zu / %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu | %zu / %zu / %zu, %zu / %zu / %zu | %zu / %zu (%zu / %zu / %zu; %.1f%%) | %.1f%% | %.1f%% |\n",
                   label.c_str(), seed, cons[0].absolute, cons[0].per_component, cover[0], eval[0].per_component, cons[0].judged,
                   cons[0].undecided, stacked[0], left[0], borders[0], cons[1].absolute, cons[1].per_component, cover[1], eval[1].per_component,
                   cons[1].judged, cons[1].undecided, stacked[1], left[1], borders[1], components[1],
-                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, stacked_found[0], stacked_removed[0], pleats[0], stacked_found[1], stacked_removed[1], pleats[1], 100 * share, 100 * cpu_share);
+                  stats.regions_found, stats.repairs, stats.regions_cut_out, stats.faces_removed, stats.borders_rejoined, stats.turned_faces_dropped, stacked_found[0], stacked_removed[0], pleats[0], stacked_found[1], stacked_removed[1], pleats[1], crossing[0], crossing[1], resolution[0], resolution[1], resolution[2], 100 * crossing_share, 100 * share, 100 * cpu_share);
       std::fflush(stdout);
     }
   }

@@ -207,4 +207,19 @@ TEST_F(GcsCli, SkipUnfacedSamplesIsAcceptedAndChangesTheShell) {
   EXPECT_GT(s.faces, 400u);
 }
 
+TEST_F(GcsCli, KeepCrossingsLeavesTheShellsSelfIntersectionsAndTheDefaultResolvesThem) {
+  // The bundled thin shell at 300 vertices (seed 3, no twist): the loop's mesh has crossing faces.
+  const std::string shell = (fs::path(EDGEFRONT_DATA_DIR) / "vault-shell.xyz").string();
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 300 --seed 3 --no-twist --quiet";
+  const eftest::CommandResult ra = run(q(shell) + " -o " + q(a) + common);
+  ASSERT_EQ(ra.exit_code, 0) << ra.err;
+  const eftest::CommandResult rb = run(q(shell) + " -o " + q(b) + common + " --keep-crossings");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  EXPECT_NE(ra.out.find("self-intersecting face pair(s) resolved"), std::string::npos) << ra.out;
+  EXPECT_EQ(rb.out.find("self-intersecting"), std::string::npos) << rb.out;
+  EXPECT_EQ(gcs::count_self_intersections(edgefront::load_mesh(a)), 0u);
+  EXPECT_GT(gcs::count_self_intersections(edgefront::load_mesh(b)), 0u);
+}
+
 }  // namespace

@@ -26,6 +26,7 @@
 #include "detail/sample_projection.h"
 #include "detail/spatial_order.h"
 #include "detail/surface_fit.h"
+#include "detail/untangle.h"
 #include "detail/vertex_grid.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
@@ -1334,6 +1335,21 @@ struct Reconstructor::Impl {
       r.stacked_pleats_flattened = layers.pleats_flattened;
       if (r.stacked_faces_removed > 0) r.mesh.garbage_collection();
       r.seconds_fit += seconds_since(t_layers);
+    }
+    if (opt.resolve_self_intersections && r.mesh.n_faces() > 0) {
+      const auto t_untangle = Clock::now();
+      detail::UntangleParams up;
+      up.max_move = 0.5 * ell;
+      up.fill_support = 1.5 * opt.unsupported_distance * std::max(ell, sample_spacing);  // the topology pass's bridge
+      const detail::UntangleReport u = detail::untangle(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, up);
+      r.crossing_pairs_found = u.pairs_before;
+      r.crossing_pairs_left = u.pairs_after;
+      r.crossing_vertices_moved = u.vertices_moved;
+      r.crossing_faces_removed = u.faces_removed;
+      r.crossing_holes_filled = u.holes_filled;
+      if (u.faces_removed > 0) r.mesh.garbage_collection();
+      r.seconds_crossings = seconds_since(t_untangle);
+      r.seconds_fit += r.seconds_crossings;
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();

@@ -127,7 +127,8 @@ struct ReconstructOptions {
   /// 1.000, Chamfer-L1 median 0.123 -> 0.088%; data/vault-shell.xyz at 2000 vertices: border loops
   /// median 8 -> 3, Chamfer 0.595 -> 0.540%) but does not close them (0 border loops in 1 of 65
   /// shell runs, 2 without it), adds loops on some t/R 0.05 runs and self-intersecting pairs on
-  /// others. Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
+  /// others (resolve_self_intersections now removes those: 0 in every shell run, Session 12).
+  /// Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
   /// false: the published oriented loop's fallback (the plain nearest vertex wins among 8).
   bool skip_unfaced_samples = false;
   /// With oriented samples (see orient_winners) that surround a volume (their normals point away
@@ -198,6 +199,20 @@ struct ReconstructOptions {
   /// front to back (large groups) are left; a mesh without a border is not scanned (a closed
   /// result keeps its bytes). In [0, 16]; 0 = off.
   int stacked_layer_rounds = 3;
+  /// Post-processing of the returned mesh, last: self-intersecting face pairs are resolved. On thin
+  /// shells (walls about an edge apart) the loop drags vertices of one wall through the other and
+  /// rims curl over the faces next to them, so faces cross. The vertices of the crossing faces
+  /// (then also 1 and 2 rings around them) are smoothed toward the mean of their neighbours (on a
+  /// border: of their two border neighbours; 8 half steps, at most half a mean edge length in
+  /// all); a move that makes a pair cross that did not before, or turns a face by more than 60
+  /// degrees, is put back; then the moved vertices go back halfway to where they were, 4 times, as
+  /// far as nothing crosses again. Of a pair still crossing one face is cut out (the one touching a
+  /// border, else the one farther from the samples; pieces it cuts off go when the border creation
+  /// would remove them too, below 8 faces or 5% of the largest piece; a cut that would cut off a
+  /// larger piece is not made), and
+  /// border loops of at most 8 vertices are then filled when their fans lie on the samples and
+  /// cross nothing. A mesh without crossings keeps its bytes. false: crossings are left.
+  bool resolve_self_intersections = true;
   /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
@@ -268,10 +283,17 @@ struct ReconstructResult {
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
-  double seconds_fit = 0;         ///< of it: in the surface fit, Delaunay flips and stacked-layer removal of the returned mesh
+  double seconds_fit = 0;         ///< of it: in the surface fit, Delaunay flips, stacked-layer removal and crossing resolution of the returned mesh
   std::size_t stacked_faces_found = 0;    ///< faces with a stacked same-orientation partner before that removal
   std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (ReconstructOptions::stacked_layer_rounds)
   std::size_t stacked_pleats_flattened = 0;  ///< stacked pairs inside the surface it smoothed apart
+  /// self-intersecting face pairs before the last post-processing step (resolve_self_intersections;
+  /// 0 when it is off), and after it
+  std::size_t crossing_pairs_found = 0, crossing_pairs_left = 0;
+  std::size_t crossing_vertices_moved = 0;  ///< by its smoothing
+  std::size_t crossing_faces_removed = 0;   ///< cut out by it
+  std::size_t crossing_holes_filled = 0;    ///< holes it filled after the cut
+  double seconds_crossings = 0;             ///< of seconds_fit: in it (the crossing count included)
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
   double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (ReconstructOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;     ///< the loop ran on the smoothed cloud
