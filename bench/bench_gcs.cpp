@@ -7,7 +7,8 @@
 //    --seeds N also one line per seed 1..N (border loops, genus) and how many ended closed genus 1.
 //    (--case sphere --seeds N: the sphere case with seeds 1..N.)
 // 6. (--case nested only) nested spheres (shapes::sample "nested-spheres", 20K points) at 4K
-//    vertices: components, border loops, genus per component (target: two closed spheres).
+//    vertices: components, border loops, genus per component (target: two closed spheres); with
+//    --seeds N also one line per seed 1..N and how many ended as two closed spheres.
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape,
@@ -227,7 +228,21 @@ int main(int argc, char** argv) {
     if (only == "nested") {
       edgefront::shapes::SampleOptions so;
       so.points = 20000;
-      print_mesh("nested spheres (20K points) at 4K", run(edgefront::shapes::sample("nested-spheres", so), 4000));
+      const edgefront::PointCloud nested = edgefront::shapes::sample("nested-spheres", so);
+      print_mesh("nested spheres (20K points) at 4K", run(nested, 4000));
+      if (seeds > 1) {  // --seeds N: how many of seeds 1..N end as two closed spheres
+        size_t two_closed = 0;
+        for (size_t seed = 1; seed <= seeds; ++seed) {
+          g_seed = seed;
+          const edgefront::MeshStats s = edgefront::compute_stats(run(nested, 4000).mesh);
+          const bool ok = s.components == 2 && s.border_loops == 0 && s.nonmanifold_vertices == 0;
+          two_closed += ok;
+          std::printf("  seed %zu: %zu component(s), %zu border loop(s)%s\n", seed, s.components, s.border_loops,
+                      ok ? "  two closed spheres" : "");
+        }
+        g_seed = 1;
+        std::printf("  two closed spheres on %zu of %zu seeds\n", two_closed, seeds);
+      }
     }
     if (!want("sphere")) {
     } else if (std::filesystem::exists(models / "sphere_20k.xyz")) {
