@@ -22,6 +22,18 @@ using edgefront::Mesh;
 using edgefront::Vec3;
 using edgefront::VertexHandle;
 
+Vec3 centroid(const Mesh& mesh, FaceHandle f) {
+  Vec3 c(0, 0, 0);
+  for (auto v : mesh.fv_range(f)) c += mesh.point(v);
+  return c / 3.0;
+}
+
+Vec3 face_normal(const Mesh& mesh, FaceHandle f) {
+  auto it = mesh.cfv_iter(f);
+  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+  return (b - a) % (c - a);
+}
+
 namespace {
 
 // Mutes OpenMesh's omerr() (add_face reports refused faces there) while alive.
@@ -39,18 +51,6 @@ class MuteOpenMeshErrors {
 };
 
 Vec3 tri_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a) % (c - a); }
-
-Vec3 centroid(const Mesh& mesh, FaceHandle f) {
-  Vec3 c(0, 0, 0);
-  for (auto v : mesh.fv_range(f)) c += mesh.point(v);
-  return c / 3.0;
-}
-
-Vec3 face_normal(const Mesh& mesh, FaceHandle f) {
-  auto it = mesh.cfv_iter(f);
-  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
-  return tri_normal(a, b, c);
-}
 
 // Deletes the faces of every fan but the largest at non-manifold vertices; true if any was deleted.
 size_t fix_nonmanifold_vertices(Mesh& mesh) {

@@ -53,9 +53,7 @@ Vec3 smoothing_target(const Mesh& mesh, VertexHandle v) {
 }
 
 Vec3 unit_normal(const Mesh& mesh, FaceHandle f) {
-  auto it = mesh.cfv_begin(f);
-  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
-  const Vec3 n = (b - a) % (c - a);
+  const Vec3 n = face_normal(mesh, f);
   const double len = n.norm();
   return len > 0 ? n / len : Vec3(0, 0, 0);
 }
@@ -199,14 +197,12 @@ std::size_t cut_face(Mesh& trial, FaceHandle f) {
 std::size_t cut_pair(Mesh& mesh, const CloudQuery& cloud, std::pair<int, int> pair) {
   const FaceHandle fa(pair.first), fb(pair.second);
   if (mesh.status(fa).deleted() || mesh.status(fb).deleted()) return 0;
-  const auto centroid = [&](FaceHandle f) {
-    Vec3 c(0, 0, 0);
-    for (VertexHandle v : mesh.fv_range(f)) c += mesh.point(v);
-    return c / 3.0;
-  };
   const bool ba = touches_border(mesh, fa), bb = touches_border(mesh, fb);
-  bool a_first = ba != bb ? ba : cloud(centroid(fa)).distance >= cloud(centroid(fb)).distance;
+  const bool a_first = ba != bb ? ba : cloud(centroid(mesh, fa)).distance >= cloud(centroid(mesh, fb)).distance;
   for (const FaceHandle f : a_first ? std::array{fa, fb} : std::array{fb, fa}) {
+    // A face without a border vertex cannot cut its mesh apart (each corner's fan stays a chain
+    // joining the other two corners): no trial copy is needed.
+    if (!touches_border(mesh, f)) return cut_face(mesh, f);
     Mesh trial = mesh;
     const std::size_t removed = cut_face(trial, f);
     if (removed == 0) continue;

@@ -27,6 +27,11 @@ using CloudQuery = std::function<CloudHit(const edgefront::Vec3&)>;
 /// The (up to) k input samples nearest to a point, nearest first, written into `out`.
 using CloudNeighbors = std::function<void(const edgefront::Vec3&, std::size_t k, std::vector<CloudHit>& out)>;
 
+/// The centroid of face f (a triangle).
+edgefront::Vec3 centroid(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
+/// The (unnormalized) normal of face f: twice its area along its unit normal.
+edgefront::Vec3 face_normal(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
+
 struct BorderParams {
   double max_support_distance = 0;  ///< faces whose centroid is farther from the cloud are removed
   double max_edge_length = 0;       ///< faces with a longer edge are removed
