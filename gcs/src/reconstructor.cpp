@@ -1160,6 +1160,13 @@ struct Reconstructor::Impl {
     return cs;
   }
 
+  // A face farther than this from every sample is unsupported (ell: the mean edge length).
+  double support_distance(double ell) const { return opt.unsupported_distance * std::max(ell, sample_spacing); }
+  // Faces added across a border (loop merges, slit zips, hole fills) may lie up to 1.5 times as
+  // far from the samples as a face may before it is removed: a hysteresis, so that the strip
+  // across a sparsely sampled stretch is not refused by the test that tore it open.
+  double bridge_distance(double ell) const { return 1.5 * support_distance(ell); }
+
   // `ell`: mean_edge_length() of the mesh as it is. Returns false when the pass was not due (the
   // mesh is then unchanged).
   bool topology_pass(bool force, double ell) {
@@ -1169,11 +1176,8 @@ struct Reconstructor::Impl {
       return false;
     const auto t0 = Clock::now();
     topology_last_live = live;
-    const double support = opt.unsupported_distance * std::max(ell, sample_spacing);
-    // Faces added across a border (loop merges, slit zips, hole fills) may lie up to 1.5 times as
-    // far from the samples as a face may before it is removed: a hysteresis, so that the strip
-    // across a sparsely sampled stretch is not refused by the test that tore it open.
-    const double bridge = 1.5 * support;
+    const double support = support_distance(ell);
+    const double bridge = bridge_distance(ell);
     const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
     const size_t trim_rings = opt.border_trim_rings;
     bool changed = false;
@@ -1340,7 +1344,7 @@ struct Reconstructor::Impl {
       const auto t_untangle = Clock::now();
       detail::UntangleParams up;
       up.max_move = 0.5 * ell;
-      up.fill_support = 1.5 * opt.unsupported_distance * std::max(ell, sample_spacing);  // the topology pass's bridge
+      up.fill_support = bridge_distance(ell);  // as the topology pass's hole fills
       const detail::UntangleReport u = detail::untangle(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, up);
       r.crossing_pairs_found = u.pairs_before;
       r.crossing_pairs_left = u.pairs_after;

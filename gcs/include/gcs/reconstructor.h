@@ -153,7 +153,8 @@ struct ReconstructOptions {
   /// 5K-vertex mesh is 1.8-3x closer to the true surface (Chamfer-L1), while its distance to the
   /// noisy points themselves grows (bench/results/gcs-noise.md).
   /// Clean clouds are left as they are: the synthetic shapes, CGAL's kitten.xyz and the vertex sets
-  /// of CGAL's six sample meshes estimate below 0.002 (CGAL's sphere_20k: 0.56). >= 0 (0 smooths every cloud), not NaN; infinity turns it off.
+  /// of CGAL's six sample meshes estimate below 0.002 (CGAL's sphere_20k: 0.56). >= 0 (0 smooths
+  /// every cloud), not NaN; infinity turns it off.
   double smooth_noise_ratio = 0.05;
   /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
   /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
