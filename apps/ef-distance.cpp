@@ -18,8 +18,7 @@
 /// the MDF's fast mode (DistanceOptions::fast): about 2x the time of --method dijkstra, errors a
 /// few times those of the default (vertices and points only). --point takes every method but
 /// dijkstra; --loop only mdf and dijkstra.
-/// --max-distance takes a non-negative number or "inf" (the default); an empty value is refused
-/// (CLI11 would read it as 0).
+/// --max-distance takes a non-negative number or "inf" (the default).
 /// --png renders the field (colormap, isolines at a nice step, grey where not reached) with the
 /// sources (points or the loop) into a picture (apps/common/app_render.h).
 ///
@@ -122,13 +121,13 @@ void append_number(std::string& text, double x) {
   text.append(buf, ptr);
 }
 
-/// CLI11 validator of --max-distance: a non-negative number or inf. Empty text is refused here
-/// (CLI11 itself would assign 0), as are NaN and numbers beyond the double range.
+/// CLI11 validator of --max-distance: a non-negative number or inf; NaN and numbers beyond the
+/// double range are refused (an empty value is refused for every option by run_app).
 std::string check_max_distance(std::string& text) {
   double value = 0;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (text.empty() || ec != std::errc() || ptr != end || !(value >= 0)) {
+  if (ec != std::errc() || ptr != end || !(value >= 0)) {
     return "'" + text + "' is not a non-negative number (or inf)";  // CLI11 prefixes the option
   }
   return {};

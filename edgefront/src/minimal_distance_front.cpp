@@ -179,12 +179,12 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& o) {
   }
 }
 
-// Checks source points; returns the vertices of their faces (each once).
 void check_finite_vertex(const Vec3& position, int v) {
   if (!std::isfinite(position[0]) || !std::isfinite(position[1]) || !std::isfinite(position[2]))
     throw InvalidInput("distance: vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
 }
 
+// Checks source points; returns the vertices of their faces (each once).
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points) {
   if (points.empty()) throw InvalidInput("distance: no source points given");
   std::vector<VertexHandle> verts;
