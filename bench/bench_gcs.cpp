@@ -234,10 +234,19 @@ int main(int argc, char** argv) {
         size_t two_closed = 0;
         for (size_t seed = 1; seed <= seeds; ++seed) {
           g_seed = seed;
-          const edgefront::MeshStats s = edgefront::compute_stats(run(nested, 4000).mesh);
-          const bool ok = s.components == 2 && s.border_loops == 0 && s.nonmanifold_vertices == 0;
+          const Mesh mesh = run(nested, 4000).mesh;
+          const edgefront::MeshStats s = edgefront::compute_stats(mesh);
+          // Which spheres: vertices within r < 0.75 are on the inner one (radius 0.5), the others
+          // on the outer (radius 1); the orientation against the samples' (outward / inward) normals.
+          size_t inner = 0;
+          for (auto v : mesh.vertices()) inner += mesh.point(v).norm() < 0.75;
+          const double oriented = gcs::orientation_consistency(mesh, nested).raw;
+          const bool ok = s.components == 2 && s.border_loops == 0 && s.nonmanifold_vertices == 0 && inner > 0 &&
+                          inner < mesh.n_vertices() && oriented > 0.99;
           two_closed += ok;
-          std::printf("  seed %zu: %zu component(s), %zu border loop(s)%s\n", seed, s.components, s.border_loops,
+          std::printf("  seed %zu: %zu component(s), %zu border loop(s), %zu of %zu vertices on the inner sphere, "
+                      "orientation consistency %.4f%s\n",
+                      seed, s.components, s.border_loops, inner, mesh.n_vertices(), oriented,
                       ok ? "  two closed spheres" : "");
         }
         g_seed = 1;

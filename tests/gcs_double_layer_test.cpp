@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -220,6 +221,85 @@ TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
   strip.garbage_collection();
   EXPECT_EQ(strip.n_faces(), 64u);
   EXPECT_EQ(edgefront::compute_stats(strip).components, 1u);
+}
+
+TEST(GcsOpposedFaces, CutOffPieceOnAPartOfTheCloudOfItsOwnIsKept) {
+  // The strip of PiecesCutOffByTheRemovalGoToo: its 3-cell piece (x > 17) is cut off. When the
+  // samples nearest to that piece lie on a part of the cloud of their own (nested spheres' inner
+  // sphere, reached through a removed tunnel), the piece is a separate surface and stays; when the
+  // whole cloud is one part, it goes as before.
+  Mesh strip;
+  std::vector<VertexHandle> v;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 20; ++i) v.push_back(strip.add_vertex(Vec3(i, j, 0)));
+  const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * 21 + i)]; };
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 20; ++i) {
+      strip.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      strip.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  // Sample index: the cell's column (0 ... 19).
+  const auto cloud = [](const Vec3& q) {
+    return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, q[0] > 16 && q[0] < 17 ? -1.0 : 1.0), q,
+                                 static_cast<size_t>(q[0])};
+  };
+  gcs::detail::OpposedParams p;
+  p.max_distance = 0.5;
+  size_t asked = 0;
+  Mesh one_part = strip;
+  p.sample_part = [&asked](size_t) {
+    ++asked;
+    return 0;
+  };
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(one_part, gcs::detail::face_nearest(one_part, cloud), p), 4u + 12u);
+  EXPECT_GT(asked, 0u);
+  EXPECT_EQ(edgefront::compute_stats(one_part).components, 1u);
+  // Columns 17-19 on a part of their own: kept. A part of the largest piece's own (columns 0-3)
+  // changes nothing, since most of that piece's samples are on part 0.
+  p.sample_part = [](size_t column) { return column >= 17 ? 2 : column <= 3 ? 1 : 0; };
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(strip, gcs::detail::face_nearest(strip, cloud), p), 4u);
+  strip.garbage_collection();
+  EXPECT_EQ(strip.n_faces(), 64u + 12u);
+  EXPECT_EQ(edgefront::compute_stats(strip).components, 2u);
+  // Nothing to remove: not asked at all.
+  asked = 0;
+  Mesh whole = strip;
+  p.sample_part = [&asked](size_t) {
+    ++asked;
+    return 0;
+  };
+  const auto upward = [](const Vec3& q) { return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, 1), q, 0}; };
+  EXPECT_EQ(gcs::detail::remove_opposed_faces(whole, gcs::detail::face_nearest(whole, upward), p), 0u);
+  EXPECT_EQ(asked, 0u);
+}
+
+TEST(GcsCloudParts, NestedSpheresAreTwoPartsAConnectedCloudOne) {
+  const PointCloud nested = cloud_of("nested-spheres", 6000);
+  const std::vector<int> parts =
+      gcs::detail::cloud_parts(nested.points, edgefront::PointIndex(nested.points));
+  ASSERT_EQ(parts.size(), nested.size());
+  // Inner sphere radius 0.5, outer 1: every point of a sphere shares its label, the two differ.
+  const int outer = parts[0];
+  int inner = -1;
+  size_t inner_points = 0;
+  for (size_t i = 0; i < nested.size(); ++i) {
+    if (nested.points[i].norm() > 0.75) {
+      ASSERT_EQ(parts[i], outer) << "point " << i;
+      continue;
+    }
+    if (inner < 0) inner = parts[i];
+    ASSERT_EQ(parts[i], inner) << "point " << i;
+    ++inner_points;
+  }
+  EXPECT_GT(inner_points, 500u);
+  EXPECT_NE(inner, outer);
+  EXPECT_EQ(parts[0], 0);  // labels in the order of first points
+  EXPECT_EQ(*std::max_element(parts.begin(), parts.end()), 1);
+  for (const char* shape : {"torus", "vault-shell", "cylinder", "thin-plate"}) {
+    const PointCloud c = cloud_of(shape, 4000);
+    for (int label : gcs::detail::cloud_parts(c.points, edgefront::PointIndex(c.points))) ASSERT_EQ(label, 0) << shape;
+  }
+  EXPECT_TRUE(gcs::detail::cloud_parts({}, edgefront::PointIndex(std::vector<Vec3>{})).empty());
 }
 
 struct SheetCase {

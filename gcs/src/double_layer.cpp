@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <numeric>
 #include <queue>
 #include <tuple>
 #include <vector>
@@ -64,6 +66,34 @@ int oriented_nearest_after(const Mesh& mesh, VertexGrid& grid, const Vec3& sampl
   return found >= 0 ? found : first;
 }
 
+namespace {
+
+// Clears split[c] for the pieces whose faces' nearest samples lie mostly on another part of the
+// cloud than the largest component's (OpposedParams::sample_part).
+void spare_separate_parts(const Mesh& mesh, const edgefront::ComponentLabels& labels,
+                          const std::vector<size_t>& faces, const FaceNearest& nearest,
+                          const std::function<int(std::size_t)>& sample_part, std::vector<char>& split) {
+  const int largest = static_cast<int>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+  // (component, part) -> faces, for the largest component and the pieces to be removed only.
+  std::map<std::pair<int, int>, size_t> count;
+  for (auto f : mesh.faces()) {
+    const int c = labels.vertex_component[mesh.cfv_begin(f)->idx()];
+    const size_t sample = nearest[static_cast<size_t>(f.idx())].index;
+    if ((c == largest || split[static_cast<size_t>(c)]) && sample != CloudHit::kNoSample)
+      ++count[{c, sample_part(sample)}];
+  }
+  std::vector<std::pair<size_t, int>> dominant(labels.count, {0, -1});  // (faces, part)
+  for (const auto& [key, n] : count) {
+    auto& d = dominant[static_cast<size_t>(key.first)];
+    if (n > d.first) d = {n, key.second};
+  }
+  const int largest_part = dominant[static_cast<size_t>(largest)].second;
+  for (size_t c = 0; c < split.size(); ++c)
+    if (split[c] && dominant[c].second >= 0 && dominant[c].second != largest_part) split[c] = 0;
+}
+
+}  // namespace
+
 std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const OpposedParams& params) {
   EF_CHECK(nearest.size() >= mesh.n_faces(), "remove_opposed_faces: a nearest sample per face is needed");
   std::vector<FaceHandle> doomed;
@@ -94,12 +124,17 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
     for (auto f : mesh.faces()) ++faces[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])];
     const double largest = static_cast<double>(*std::max_element(faces.begin(), faces.end()));
     std::vector<char> split(labels.count, 0);
+    bool any = false;
     for (auto v : touched) {
       if (mesh.status(v).deleted()) continue;
       const int c = labels.vertex_component[static_cast<size_t>(v.idx())];
       if (c >= 0 && static_cast<double>(faces[static_cast<size_t>(c)]) < params.split_fraction * largest)
+      {
         split[static_cast<size_t>(c)] = 1;
+        any = true;
+      }
     }
+    if (any && params.sample_part) spare_separate_parts(mesh, labels, faces, nearest, params.sample_part, split);
     for (auto f : mesh.faces()) {
       if (!split[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
       mesh.delete_face(f, true);
@@ -107,6 +142,33 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
     }
   }
   return removed;
+}
+
+std::vector<int> cloud_parts(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::size_t k) {
+  EF_CHECK(index.size() == points.size(), "cloud_parts: sizes differ");
+  const std::size_t n = points.size();
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  const auto root = [&parent](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<edgefront::PointIndex::Neighbor> knn;
+  for (std::size_t i = 0; i < n; ++i) {
+    index.k_nearest(points[i], k + 1, knn);
+    for (const auto& nb : knn) {
+      const std::size_t a = root(i), b = root(nb.index);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  // Roots are the smallest index of their set, so labels go in the order of first points.
+  std::vector<int> label(n, -1);
+  int parts = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t r = root(i);
+    label[i] = r == i ? parts++ : label[r];
+  }
+  return label;
 }
 
 double normal_flux(const std::vector<Vec3>& points, const std::vector<Vec3>& normals) {

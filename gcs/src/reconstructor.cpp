@@ -534,6 +534,14 @@ struct Reconstructor::Impl {
     return subsample.empty() ? oriented_normal(k) : subsample.normals[k];
   }
 
+  // The part of the searched cloud (detail::cloud_parts) that tree point k lies on; the parts
+  // are found on the first call (only a pass that would remove a cut-off piece asks).
+  std::vector<int> query_parts;
+  int query_point_part(size_t k) {
+    if (query_parts.empty()) query_parts = detail::cloud_parts(*query_points, *tree);
+    return query_parts[k];
+  }
+
   detail::CloudHit cloud_query(const Vec3& p) {
     const PointIndex::Neighbor nb = tree->nearest(p);
     return {std::sqrt(nb.distance2), query_point_normal(nb.index), (*query_points)[nb.index], nb.index};
@@ -1206,7 +1214,10 @@ struct Reconstructor::Impl {
           detail::CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
           if (hit.index != detail::CloudHit::kNoSample) hit.normal = query_oriented_normal(hit.index);
         }
-        tally(faces_removed, detail::remove_opposed_faces(mesh, nearest, {.max_distance = support}));
+        tally(faces_removed,
+              detail::remove_opposed_faces(mesh, nearest,
+                                           {.max_distance = support,
+                                            .sample_part = [this](size_t k) { return query_point_part(k); }}));
       }
     }
     if (opt.merge_borders) {

@@ -14,6 +14,7 @@
 //    normal are removed (a signed support test), which removes what is left of that layer.
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "border_topology.h"
@@ -48,17 +49,29 @@ struct OpposedParams {
   double split_fraction = 0.25;
   std::size_t min_component_faces = 8;   ///< then components smaller than this are removed
   double min_component_fraction = 0.05;  ///< ... or smaller than this share of the largest
+  /// The part of the cloud (cloud_parts) that sample i belongs to, or empty. Given, a piece that
+  /// split_fraction would remove is kept when most of its faces' nearest samples lie on another
+  /// part of the cloud than most of the largest component's: a separate surface (nested spheres'
+  /// inner one, reached through a tunnel whose faces were removed), not a fragment of the largest
+  /// one's layer. Called only when some piece would be removed.
+  std::function<int(std::size_t)> sample_part;
 };
 
 /// Removes the faces whose normal points against the (oriented) normal of the input sample
 /// nearest to their centroid, then cleans non-manifold fans and tiny components (clean_topology),
 /// then removes the pieces that the removal cut off and that have fewer than split_fraction of the
-/// largest component's faces.
+/// largest component's faces (unless they lie on a part of the cloud of their own, sample_part).
 /// `nearest` holds every face's nearest sample by face index (as remove_unsupported_faces found it,
 /// or face_nearest), its distance and its oriented normal (NaN normal: that face is not judged);
 /// the mesh must not have moved since. Never removes 90% or more of the faces. Returns the number
 /// of faces removed. \throws edgefront::InternalError when `nearest` has fewer entries than faces.
 std::size_t remove_opposed_faces(edgefront::Mesh& mesh, const FaceNearest& nearest, const OpposedParams& params);
+
+/// The parts of a point cloud that lie apart: the connected components of its symmetric
+/// k-nearest-neighbour graph, labelled 0, 1, ... in the order of their first point. Nested spheres'
+/// two spheres are two parts, a connected scan is one. `index` is a PointIndex over `points`.
+std::vector<int> cloud_parts(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
+                             std::size_t k = 8);
 
 /// How much the normals point away from the points' centroid c: the sum of n.(p - c) / |n| over
 /// the points with a usable normal, divided by their count times the largest |p - c|. About 0.5-1
