@@ -8,7 +8,10 @@
 //    (--case sphere --seeds N: the sphere case with seeds 1..N.)
 // 6. (--case nested only) nested spheres (shapes::sample "nested-spheres", 20K points) at 4K
 //    vertices: components, border loops, genus per component (target: two closed spheres); with
-//    --seeds N also one line per seed 1..N and how many ended as two closed spheres.
+//    --seeds N also one line per seed 1..N and how many ended as two closed spheres oriented as
+//    the samples (outer outward, inner into the cavity), with the cloud's normals and without
+//    them (the orientation without normals comes from the twist repair's global orientation:
+//    add --twist).
 // 2. sphere_20k.xyz at 10K vertices: valence-6 share, valence 5-7 share, median minimum angle.
 // 3. 100K vertices from a 1M-point synthetic cloud (shapes::sample "bumpy-sphere"): time.
 // 4. Runtime at a fixed target (20K vertices) for 100K-point vs 1M-point clouds of the same shape,
@@ -230,11 +233,21 @@ int main(int argc, char** argv) {
       so.points = 20000;
       const edgefront::PointCloud nested = edgefront::shapes::sample("nested-spheres", so);
       print_mesh("nested spheres (20K points) at 4K", run(nested, 4000));
-      if (seeds > 1) {  // --seeds N: how many of seeds 1..N end as two closed spheres
+      // --seeds N: how many of seeds 1..N end as two closed spheres oriented as the samples, from
+      // the oriented cloud and from its points alone (normals fitted; the orientation is judged
+      // against the true normals).
+      const edgefront::PointCloud bare = [&] {
+        edgefront::PointCloud c = nested;
+        c.normals.clear();
+        return c;
+      }();
+      for (const edgefront::PointCloud* input : {&nested, &bare}) {
+        if (seeds <= 1) break;
+        std::printf("  %s:\n", input == &nested ? "with normals" : "without normals");
         size_t two_closed = 0;
         for (size_t seed = 1; seed <= seeds; ++seed) {
           g_seed = seed;
-          const Mesh mesh = run(nested, 4000).mesh;
+          const Mesh mesh = run(*input, 4000).mesh;
           const edgefront::MeshStats s = edgefront::compute_stats(mesh);
           // Which spheres: vertices within r < 0.75 are on the inner one (radius 0.5), the others
           // on the outer (radius 1); the orientation against the samples' (outward / inward) normals.

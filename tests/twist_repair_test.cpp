@@ -344,6 +344,63 @@ TEST(TwistRepair, InsideOutClosedMeshIsTurnedOutward) {
   EXPECT_GT(volume, 0);
 }
 
+// Spheres as separate components (centre, radius, outward or not), and their signed volumes.
+struct Ball {
+  Vec3 centre;
+  double radius;
+  bool outward;
+};
+Mesh balls(const std::vector<Ball>& parts) {
+  const Mesh unit = edgefront::shapes::icosphere(2);
+  Mesh m;
+  for (const Ball& b : parts) {
+    std::vector<edgefront::VertexHandle> id;
+    for (auto v : unit.vertices()) id.push_back(m.add_vertex(b.centre + b.radius * unit.point(v)));
+    for (FaceHandle f : unit.faces()) {
+      std::vector<edgefront::VertexHandle> t;
+      for (auto v : unit.fv_range(f)) t.push_back(id[static_cast<size_t>(v.idx())]);
+      if (!b.outward) std::swap(t[1], t[2]);
+      m.add_face(t);
+    }
+  }
+  return m;
+}
+std::vector<double> component_volumes(const Mesh& m) {
+  const edgefront::ComponentLabels labels = edgefront::connected_components(m);
+  std::vector<double> volume(labels.count, 0);
+  for (FaceHandle f : m.faces()) {
+    auto it = m.cfv_begin(f);
+    const auto c = static_cast<size_t>(labels.vertex_component[static_cast<size_t>(it->idx())]);
+    const Vec3 a = m.point(*it++), b = m.point(*it++), d = m.point(*it);
+    volume[c] += OpenMesh::dot(a, OpenMesh::cross(b, d)) / 6;
+  }
+  return volume;
+}
+
+TEST(TwistRepair, ClosedSurfaceInsideAnotherFacesIntoItsCavity) {
+  // A hollow ball (outer R 1, inner 0.5), a solid ball in its cavity (0.25) and a ball beside it:
+  // without reference normals, outward, into the cavity, outward, outward, whichever way each
+  // came in. Component labels follow the vertices, i.e. the order of the parts.
+  const std::vector<double> sign = {1, -1, 1, 1};
+  for (int turned : {0, 1, 2, 5, 10, 15}) {  // bit k: ball k comes in turned the other way
+    std::vector<Ball> parts = {{Vec3(0, 0, 0), 1.0, true}, {Vec3(0, 0, 0), 0.5, false},
+                               {Vec3(0.05, 0, 0), 0.25, true}, {Vec3(3, 0, 0), 0.5, true}};
+    size_t wrong = 0;
+    for (size_t k = 0; k < parts.size(); ++k)
+      if (turned >> k & 1) {
+        parts[k].outward = !parts[k].outward;
+        ++wrong;
+      }
+    Mesh m = balls(parts);
+    const auto r = twist::repair(m);
+    EXPECT_EQ(r.repairs, 0u) << "turned " << turned;  // nothing twisted: only whole components turn
+    EXPECT_EQ(r.components_flipped, wrong) << "turned " << turned;
+    const std::vector<double> volume = component_volumes(m);
+    ASSERT_EQ(volume.size(), 4u);
+    for (size_t k = 0; k < 4; ++k) EXPECT_GT(sign[k] * volume[k], 0) << "turned " << turned << ", ball " << k;
+  }
+}
+
 TEST(TwistRepair, IncrementalRepairerFindsTheRegionFromAChangedFace) {
   twist::TwistedShape s = twist::flipped_disk_plate();
   const auto regions = twist::detect(s.mesh);

@@ -674,6 +674,53 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
   report.faces_removed += removed;
 }
 
+/// The winding number of a closed surface given by its faces around p: the sum of the faces'
+/// signed solid angles seen from p over 4 pi (Van Oosterom & Strackee's formula), +-1 inside
+/// (the sign of the surface's orientation), 0 outside.
+double winding_number(const Mesh& mesh, const std::vector<FaceHandle>& faces, const Vec3& p) {
+  double sum = 0;
+  for (FaceHandle f : faces) {
+    const auto q = detail::face_points(mesh, f);
+    const Vec3 a = q[0] - p, b = q[1] - p, c = q[2] - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double num = OpenMesh::dot(a, OpenMesh::cross(b, c));
+    const double den = la * lb * lc + OpenMesh::dot(a, b) * lc + OpenMesh::dot(b, c) * la + OpenMesh::dot(c, a) * lb;
+    sum += 2 * std::atan2(num, den);
+  }
+  return sum / (4 * std::numbers::pi);
+}
+
+/// For each closed group (key: group root), how many other closed groups enclose it: a group
+/// whose bounding box lies in another's and one of whose vertices that other surrounds (winding
+/// number above 1/2 in magnitude). O(faces of the enclosing candidates) per group.
+std::unordered_map<size_t, int> nesting_depths(const Mesh& mesh,
+                                               const std::unordered_map<size_t, std::vector<FaceHandle>>& closed) {
+  struct Box {
+    Vec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    bool inside(const Box& o) const {
+      for (int k = 0; k < 3; ++k)
+        if (lo[k] < o.lo[k] || hi[k] > o.hi[k]) return false;
+      return true;
+    }
+  };
+  std::unordered_map<size_t, Box> box;
+  for (const auto& [g, faces] : closed)
+    for (FaceHandle f : faces)
+      for (const Vec3& q : detail::face_points(mesh, f)) {
+        box[g].lo.minimize(q);
+        box[g].hi.maximize(q);
+      }
+  std::unordered_map<size_t, int> depth;
+  for (const auto& [g, faces] : closed) {
+    const Vec3 p = mesh.point(*mesh.cfv_begin(faces.front()));
+    int d = 0;
+    for (const auto& [h, other] : closed)
+      if (h != g && box[g].inside(box[h]) && std::abs(winding_number(mesh, other, p)) > 0.5) ++d;
+    depth[g] = d;
+  }
+  return depth;
+}
+
 /// The global orientation convention (see repair.h).
 void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, RepairReport& report) {
   const size_t nv = mesh.n_vertices();
@@ -726,13 +773,27 @@ void orient_globally(Mesh& mesh, const RepairOptions& o, const DupList& dups, Re
   std::vector<size_t> roots;
   for (const auto& [root, acc] : comps) roots.push_back(root);
   std::sort(roots.begin(), roots.end());
+  // Without reference normals, how deep each closed group lies inside others: a closed surface
+  // inside an odd number of others bounds a cavity (the inner sphere of a hollow ball) and faces
+  // into it (negative volume); the others face outward.
+  std::unordered_map<size_t, int> depth;
+  if (!o.detect.reference) {
+    std::unordered_map<size_t, std::vector<FaceHandle>> closed;
+    for (size_t root : roots)
+      if (!group_open[comps[root].group]) {
+        auto& faces = closed[comps[root].group];
+        faces.insert(faces.end(), comps[root].faces.begin(), comps[root].faces.end());
+      }
+    if (closed.size() > 1) depth = nesting_depths(mesh, closed);
+  }
   for (size_t root : roots) {
     Acc& acc = comps[root];
     bool flip = false;
     if (o.detect.reference) {
       flip = acc.vote < 0;
     } else if (!group_open[acc.group]) {
-      flip = group_volume[acc.group] < 0;
+      const bool cavity = depth[acc.group] % 2 == 1;
+      flip = cavity ? group_volume[acc.group] > 0 : group_volume[acc.group] < 0;
     }
     if (!flip) continue;
     detail::cut_and_reverse(mesh, acc.faces, true, nullptr);

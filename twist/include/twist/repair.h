@@ -9,8 +9,10 @@
 /// Global orientation convention, per group of components that were one component before the
 /// cuts: with reference normals, each component is flipped when its area-weighted vote against
 /// the nearest reference normals is negative; without them, a closed group gets positive signed
-/// volume (outward normals), and an open group keeps the orientation of its larger side (the
-/// smaller side was the one flipped).
+/// volume (outward normals), unless it lies inside an odd number of other closed groups: then it
+/// bounds a cavity (the inner sphere of a hollow ball) and gets negative volume (normals into the
+/// cavity); an open group keeps the orientation of its larger side (the smaller side was the one
+/// flipped).
 ///
 /// Face handles change (faces of the flipped side are re-added); vertex handles of untouched
 /// vertices stay valid unless `garbage_collect` removes deleted vertices (only those of removed
