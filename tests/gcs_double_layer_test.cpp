@@ -194,9 +194,8 @@ TEST(GcsOpposedFaces, TheSupportTestHandsItsNearestSamplesOver) {
   EXPECT_THROW(gcs::detail::remove_opposed_faces(m, short_list, p), edgefront::InternalError);
 }
 
-TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
-  // A 20 x 2 strip facing +z; the cloud's normal is -z over the cells with 16 < x < 17, so those
-  // faces go, which cuts the strip into 16 cells (64 faces) and 3 cells (12 faces, < 25%).
+// A 20 x 2 strip of unit cells in z = 0 facing +z (80 faces).
+Mesh strip_20x2() {
   Mesh strip;
   std::vector<VertexHandle> v;
   for (int j = 0; j <= 2; ++j)
@@ -207,6 +206,13 @@ TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
       strip.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
       strip.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
     }
+  return strip;
+}
+
+TEST(GcsOpposedFaces, PiecesCutOffByTheRemovalGoToo) {
+  // A 20 x 2 strip facing +z; the cloud's normal is -z over the cells with 16 < x < 17, so those
+  // faces go, which cuts the strip into 16 cells (64 faces) and 3 cells (12 faces, < 25%).
+  Mesh strip = strip_20x2();
   const auto cloud = [](const Vec3& q) {
     return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, q[0] > 16 && q[0] < 17 ? -1.0 : 1.0)};
   };
@@ -228,16 +234,7 @@ TEST(GcsOpposedFaces, CutOffPieceOnAPartOfTheCloudOfItsOwnIsKept) {
   // samples nearest to that piece lie on a part of the cloud of their own (nested spheres' inner
   // sphere, reached through a removed tunnel), the piece is a separate surface and stays; when the
   // whole cloud is one part, it goes as before.
-  Mesh strip;
-  std::vector<VertexHandle> v;
-  for (int j = 0; j <= 2; ++j)
-    for (int i = 0; i <= 20; ++i) v.push_back(strip.add_vertex(Vec3(i, j, 0)));
-  const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * 21 + i)]; };
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 20; ++i) {
-      strip.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-      strip.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-    }
+  Mesh strip = strip_20x2();
   // Sample index: the cell's column (0 ... 19).
   const auto cloud = [](const Vec3& q) {
     return gcs::detail::CloudHit{std::abs(q[2]), Vec3(0, 0, q[0] > 16 && q[0] < 17 ? -1.0 : 1.0), q,
