@@ -330,3 +330,123 @@ TEST(GcsJoinComponents, ASmallPlanarCloudEndsAsOneSheet) {
 }
 
 }  // namespace
+
+// Two 6 x 6 sheets facing each other across a gap of 2: A on z = 0 facing +z, B on z = 2 facing
+// -z (the two walls of a narrow gap, e.g. homer's legs), each with the same cell (2, 2) missing
+// and the hole's rim bent toward the other sheet (A's to z = 0.5, B's to z = 1.5), as the loop
+// leaves it. The holes' loops are close, of equal length and run opposite.
+Mesh two_sheets_with_facing_holes() {
+  Mesh m;
+  for (const bool upper : {false, true}) {
+    std::vector<VertexHandle> v;
+    for (int j = 0; j <= 6; ++j)
+      for (int i = 0; i <= 6; ++i) {
+        const bool rim = (i == 2 || i == 3) && (j == 2 || j == 3);
+        const double z = upper ? (rim ? 1.5 : 2.0) : (rim ? 0.5 : 0.0);
+        v.push_back(m.add_vertex(Vec3(i, j, z)));
+      }
+    const auto at = [&](int i, int j) { return v[static_cast<size_t>(j * 7 + i)]; };
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) {
+        if (i == 2 && j == 2) continue;
+        if (upper) {
+          m.add_face(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+          m.add_face(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+        } else {
+          m.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+          m.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+      }
+  }
+  return m;
+}
+
+// The planes z = 0 and z = 2 as the cloud.
+gcs::detail::CloudHit two_planes(const Vec3& p) { return {std::min(std::abs(p[2]), std::abs(p[2] - 2.0)), Vec3(0, 0, 1)}; }
+
+TEST(GcsMergeHoles, TwoHolesFacingEachOtherAcrossAGapAreFilledNotJoined) {
+  gcs::detail::MergeParams mp;
+  mp.mean_edge_length = 1.0;
+  mp.max_support_distance = 1.5;
+  {
+    // Without the rule (hole_max_vertices 0) the two holes are joined by a tube across the gap:
+    // the sheets become one piece (in a closed surface, a handle).
+    Mesh m = two_sheets_with_facing_holes();
+    ASSERT_EQ(edgefront::compute_stats(m).components, 2u);
+    ASSERT_EQ(edgefront::compute_stats(m).border_loops, 4u);
+    EXPECT_EQ(gcs::detail::merge_border_loops(m, two_planes, mp), 1u);
+    m.garbage_collection();
+    EXPECT_EQ(edgefront::compute_stats(m).components, 1u);
+  }
+  for (const size_t trim : {0, 2}) {
+    // Both loops are holes a fan closes: not joined (neither as they are nor trimmed); the hole
+    // fill then closes each sheet's hole.
+    Mesh m = two_sheets_with_facing_holes();
+    mp.hole_max_vertices = 8;
+    mp.max_trim_rings = trim;
+    const size_t faces = m.n_faces();
+    EXPECT_EQ(gcs::detail::merge_border_loops(m, two_planes, mp), 0u);
+    EXPECT_EQ(m.n_faces(), faces);
+    EXPECT_EQ(gcs::detail::fill_small_holes(m, two_planes, 8, 1.5, 0.5), 2u);
+    m.garbage_collection();
+    const edgefront::MeshStats s = edgefront::compute_stats(m);
+    EXPECT_EQ(s.components, 2u);
+    EXPECT_EQ(s.border_loops, 2u);  // the sheets' outer borders
+    EXPECT_EQ(s.nonmanifold_vertices, 0u);
+    for (const auto& c : s.per_component) EXPECT_EQ(c.genus, 0);
+  }
+  {
+    // A pair of which only one loop is such a hole is still joined (a torn tube's rim is not).
+    Mesh m = two_sheets_with_facing_holes();
+    mp.hole_max_vertices = 3;  // the 4-vertex holes do not count as holes
+    mp.max_trim_rings = 0;
+    EXPECT_EQ(gcs::detail::merge_border_loops(m, two_planes, mp), 1u);
+  }
+}
+
+TEST(GcsFillChecked, HolesAreFilledOneAtATimeAndTheTriangulationOnlyWhereFlagged) {
+  // A 10 x 6 grid with two one-cell holes (4-vertex loops), at x = 2 and x = 7.
+  const Mesh start = grid_without(10, 6, {{2, 2}, {7, 2}});
+  ASSERT_EQ(edgefront::compute_stats(start).border_loops, 3u);
+  {
+    // The fill of the hole at x = 7 is not accepted (say it crosses something): the other hole is
+    // still filled (one at a time, not all or nothing).
+    Mesh m = start;
+    const auto accept = [&](Mesh& trial) {  // only fills whose new faces lie at x < 5
+      for (auto f : trial.faces())
+        if (static_cast<size_t>(f.idx()) >= start.n_faces() && gcs::detail::centroid(trial, f)[0] > 5) return false;
+      return true;
+    };
+    EXPECT_EQ(gcs::detail::fill_small_holes_checked(m, plane, 8, 1.5, 0.5, {}, accept), 1u);
+    m.garbage_collection();
+    EXPECT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+    size_t near_right_hole = 0;  // faces within the right hole's cell
+    for (auto f : m.faces()) {
+      const Vec3 c = gcs::detail::centroid(m, f);
+      near_right_hole += c[0] > 7 && c[0] < 8 && c[1] > 2 && c[1] < 3;
+    }
+    EXPECT_EQ(near_right_hole, 0u);
+    EXPECT_EQ(m.n_faces(), start.n_faces() + 4);  // the left hole's fan
+  }
+  {
+    // A fan is refused (agreement above 1 is impossible): the holes stay open, except where a
+    // vertex is flagged, where the triangulation of least area (two triangles, no new vertex) closes it.
+    Mesh m = start;
+    const size_t vertices = m.n_vertices();
+    EXPECT_EQ(gcs::detail::fill_small_holes_checked(m, plane, 8, 1.5, 1.01, {}, [](Mesh&) { return true; }), 0u);
+    std::vector<char> flagged(m.n_vertices(), 0);
+    for (auto v : m.vertices())
+      if (m.is_boundary(v) && m.point(v)[0] == 8 && m.point(v)[1] == 3) flagged[static_cast<size_t>(v.idx())] = 1;
+    EXPECT_EQ(gcs::detail::fill_small_holes_checked(m, plane, 8, 1.5, 1.01, flagged, [](Mesh&) { return true; }), 1u);
+    EXPECT_EQ(m.n_vertices(), vertices);
+    m.garbage_collection();
+    EXPECT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+    EXPECT_EQ(m.n_faces(), start.n_faces() + 2);
+    m.update_face_normals();
+    for (auto f : m.faces()) EXPECT_GT(m.normal(f)[2], 0.99);
+    // Off the samples: refused.
+    Mesh far = start;
+    EXPECT_EQ(gcs::detail::fill_small_holes_checked(far, [](const Vec3& p) { return gcs::detail::CloudHit{std::abs(p[2]) + 2.0, Vec3(0, 0, 1)}; },
+                                                    8, 1.5, 1.01, flagged, [](Mesh&) { return true; }), 0u);
+  }
+}

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "../gcs/src/detail/untangle.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
+#include "edgefront/mesh_stats.h"
 #include "edgefront/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
@@ -144,6 +146,52 @@ TEST(GcsUntangle, ACutThatWouldSplitTheMeshIsNotMade) {
   EXPECT_EQ(v.components, 1u);
   EXPECT_TRUE(v.edge_manifold && v.vertex_manifold);
   EXPECT_EQ(v.self_intersecting_pairs.value_or(1), 0u);
+}
+
+// A closed cube of half side h around c (12 triangles, facing out), added to m.
+void add_cube(Mesh& m, const Vec3& c, double h) {
+  std::vector<VertexHandle> v;
+  for (int k = 0; k < 8; ++k) v.push_back(m.add_vertex(c + h * Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
+  const int faces[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                            {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  for (const auto& f : faces) m.add_face(v[f[0]], v[f[1]], v[f[2]]);
+}
+
+TEST(GcsUntangle, EachHoleIsFilledOnItsOwnWhenItsFillCrossesNothing) {
+  // An 8 x 8 sheet on z = 0 with a one-cell hole at (1, 1), pierced at cell (5, 5) by a small
+  // closed cube (the cloud: the cube's surface, and the plane 0.5 off the sheet, so the sheet's
+  // two faces there are the ones farther from the samples and are cut). The cut leaves a hole the
+  // cube passes through: filling it crosses the cube again, so it stays open. The other hole's
+  // fill crosses nothing and is kept (before, one crossing fill made the step keep none).
+  Mesh m;
+  add_grid(m, 8, Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  for (auto f : m.faces()) {
+    const Vec3 c = gcs::detail::centroid(m, f);
+    if (c[0] > 1 && c[0] < 2 && c[1] > 1 && c[1] < 2) m.delete_face(f, false);
+  }
+  m.garbage_collection();
+  add_cube(m, Vec3(5.5, 5.5, 0), 0.3);
+  ASSERT_EQ(edgefront::compute_stats(m).border_loops, 2u);
+  ASSERT_GT(gcs::count_self_intersections(m), 0u);
+  const auto cloud = [](const Vec3& p) {
+    Vec3 q;
+    for (int k = 0; k < 3; ++k) q[k] = std::abs(p[k] - 5.5 * (k < 2)) - 0.3;
+    const Vec3 out(std::max(q[0], 0.0), std::max(q[1], 0.0), std::max(q[2], 0.0));
+    const double cube = std::abs(out.norm() + std::min(std::max({q[0], q[1], q[2]}), 0.0));
+    gcs::detail::CloudHit h;
+    h.distance = std::min(cube, std::abs(p[2]) + 0.5);
+    h.normal = Vec3(0, 0, 1);
+    return h;
+  };
+  const gcs::detail::UntangleReport r = gcs::detail::untangle(m, cloud, params(0.05));
+  EXPECT_EQ(r.pairs_after, 0u);
+  EXPECT_EQ(r.faces_removed, 2u);  // the sheet's two faces in the cube's cell
+  EXPECT_EQ(r.holes_filled, 1u);
+  m.garbage_collection();
+  const edgefront::MeshStats s = edgefront::compute_stats(m);
+  EXPECT_EQ(s.border_loops, 2u);  // the sheet's outer border and the cut hole
+  EXPECT_EQ(s.components, 2u);
+  EXPECT_EQ(gcs::count_self_intersections(m), 0u);
 }
 
 TEST(GcsUntangle, AMeshWithoutCrossingsIsUntouchedAndBadParametersAreRefused) {

@@ -1,6 +1,7 @@
 #include "detail/border_topology.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -288,6 +289,32 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
 
 namespace {
 
+// True when the fan around the centroid of the simple loop `loop` (its own triangle for 3
+// vertices) would close it: the centroid (written to `center`) lies within max_support_distance of
+// the cloud and the fan agrees with the faces around (mean cosine >= min_normal_agreement; for 3
+// vertices > min(0, min_normal_agreement)). See fill_small_holes.
+bool fan_fits(const Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance,
+              double min_normal_agreement, Vec3& center) {
+  const size_t n = loop.vertices.size();
+  if (n < 3 || !is_simple(loop)) return false;
+  Vec3 c(0, 0, 0);
+  for (auto v : loop.vertices) c += mesh.point(v);
+  c /= static_cast<double>(n);
+  center = c;
+  if (cloud(c).distance > max_support_distance) return false;
+  double agreement = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const Vec3 nf = tri_normal(mesh.point(loop.vertices[k]), mesh.point(loop.vertices[(k + 1) % n]), c);
+    const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[k]);
+    const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+    if (!(nf.norm() > 0) || !(na.norm() > 0)) return false;
+    agreement += (nf | na) / (nf.norm() * na.norm());
+  }
+  // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
+  // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
+  return agreement / static_cast<double>(n) >= (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement);
+}
+
 enum class PairMerge { not_candidate, refused, merged };
 
 // Joins loops A and B by a strip when they are simple, disjoint, not joined by an edge, of similar
@@ -336,6 +363,13 @@ PairMerge merge_pair(Mesh& mesh, const CloudQuery& cloud, const Loop& A, const L
   const Vec3 tA = mesh.point(loop_vertex(A, long(i0) + 1)) - mesh.point(loop_vertex(A, long(i0) - 1));
   const Vec3 tB = mesh.point(loop_vertex(B, long(k0) + 1)) - mesh.point(loop_vertex(B, long(k0) - 1));
   if ((tA | tB) >= 0) return PairMerge::not_candidate;
+  // Two holes that fans would close (see MergeParams::hole_max_vertices).
+  if (nA <= params.hole_max_vertices && nB <= params.hole_max_vertices) {
+    Vec3 centre;
+    if (fan_fits(mesh, cloud, A, params.max_support_distance, params.hole_min_agreement, centre) &&
+        fan_fits(mesh, cloud, B, params.max_support_distance, params.hole_min_agreement, centre))
+      return PairMerge::not_candidate;
+  }
   const Strip strip{[&](size_t i) { return loop_vertex(A, long(i0 + i)); },
                     [&](size_t j) { return loop_vertex(B, long(k0) - long(j)); },
                     [&](size_t i) { return loop_halfedge(A, long(i0 + i)); },
@@ -458,24 +492,9 @@ namespace {
 // centroid lies on the cloud and the fan agrees with the faces around (see fill_small_holes).
 bool fill_loop(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance,
                double min_normal_agreement) {
+  Vec3 c;
+  if (!fan_fits(mesh, cloud, loop, max_support_distance, min_normal_agreement, c)) return false;
   const size_t n = loop.vertices.size();
-  if (n < 3 || !is_simple(loop)) return false;
-  Vec3 c(0, 0, 0);
-  for (auto v : loop.vertices) c += mesh.point(v);
-  c /= static_cast<double>(n);
-  if (cloud(c).distance > max_support_distance) return false;
-  double agreement = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const Vec3 nf = tri_normal(mesh.point(loop.vertices[k]), mesh.point(loop.vertices[(k + 1) % n]), c);
-    const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[k]);
-    const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
-    if (!(nf.norm() > 0) || !(na.norm() > 0)) return false;
-    agreement += (nf | na) / (nf.norm() * na.norm());
-  }
-  // A triangular hole (left where a thin neck was cut, e.g. between nested spheres) is closed by
-  // its own triangle whenever that does not fold back over its neighbours (mean cosine > 0).
-  if (agreement / static_cast<double>(n) < (n == 3 ? std::min(0.0, min_normal_agreement) : min_normal_agreement))
-    return false;
   const MuteOpenMeshErrors mute;
   if (n == 3) return mesh.add_face(loop.vertices[0], loop.vertices[1], loop.vertices[2]).is_valid();
   const VertexHandle center = mesh.add_vertex(c);
@@ -523,6 +542,109 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
                  return fill_loop(m, cloud, wider, max_support_distance, min_normal_agreement);
                })) {
       return filled + 1;  // the trimming may have changed other loops' halfedges
+    }
+  }
+  return filled;
+}
+
+namespace {
+
+// Closes the simple loop `loop` by the triangulation of least total area over its vertices (see
+// fill_small_holes_checked): an O(n^3) dynamic programme over the sub-polygons v_i ... v_j, where
+// a diagonal that is an edge of the mesh already cannot be used. Leaves the mesh unchanged and
+// returns false when no triangulation passes the checks or OpenMesh refuses a face.
+bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance) {
+  const size_t n = loop.vertices.size();
+  if (n < 3 || !is_simple(loop)) return false;
+  const auto p = [&](size_t k) { return mesh.point(loop.vertices[k]); };
+  const auto usable = [&](size_t i, size_t j) {  // the chord v_i v_j, i < j
+    return j == i + 1 || (i == 0 && j == n - 1) || !mesh.find_halfedge(loop.vertices[i], loop.vertices[j]).is_valid();
+  };
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  std::vector<double> cost(n * n, kNone);
+  std::vector<size_t> split(n * n, 0);
+  for (size_t i = 0; i + 1 < n; ++i) cost[i * n + i + 1] = 0;
+  for (size_t len = 2; len < n; ++len) {
+    for (size_t i = 0; i + len < n; ++i) {
+      const size_t j = i + len;
+      if (!usable(i, j)) continue;
+      for (size_t k = i + 1; k < j; ++k) {
+        const double c = cost[i * n + k] + cost[k * n + j];
+        if (!(c < kNone)) continue;
+        const double area = tri_normal(p(i), p(k), p(j)).norm();
+        if (!(area > 0)) continue;
+        if (c + area < cost[i * n + j]) {
+          cost[i * n + j] = c + area;
+          split[i * n + j] = k;
+        }
+      }
+    }
+  }
+  if (!(cost[n - 1] < kNone)) return false;
+  std::vector<std::array<size_t, 3>> tris;
+  std::vector<std::pair<size_t, size_t>> todo{{0, n - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j < i + 2) continue;
+    const size_t k = split[i * n + j];
+    tris.push_back({i, k, j});
+    todo.push_back({i, k});
+    todo.push_back({k, j});
+  }
+  // Checks: on the cloud; along the loop, not folded back on the mean.
+  double agreement = 0;
+  for (const auto& t : tris) {
+    const Vec3 nf = tri_normal(p(t[0]), p(t[1]), p(t[2]));
+    if (cloud((p(t[0]) + p(t[1]) + p(t[2])) / 3.0).distance > max_support_distance) return false;
+    for (size_t e = 0; e < 3; ++e) {
+      const size_t a = t[e], b = t[(e + 1) % 3];
+      if (!(b == a + 1 || (a == n - 1 && b == 0))) continue;  // a loop edge v_a -> v_a+1
+      const FaceHandle adj = mesh.opposite_face_handle(loop.halfedges[a]);
+      const Vec3 na = adj.is_valid() ? face_normal(mesh, adj) : Vec3(0, 0, 0);
+      if (!(na.norm() > 0)) return false;
+      agreement += (nf | na) / (nf.norm() * na.norm());
+    }
+  }
+  if (!(agreement > 0)) return false;
+  std::vector<FaceHandle> added;
+  const MuteOpenMeshErrors mute;
+  for (const auto& t : tris) {
+    const FaceHandle f = mesh.add_face(loop.vertices[t[0]], loop.vertices[t[1]], loop.vertices[t[2]]);
+    if (!f.is_valid()) {
+      for (auto g : added) mesh.delete_face(g, false);
+      return false;
+    }
+    added.push_back(f);
+  }
+  return true;
+}
+
+}  // namespace
+
+size_t fill_small_holes_checked(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices, double max_support_distance,
+                                double min_normal_agreement, const std::vector<char>& triangulate_at,
+                                const std::function<bool(Mesh&)>& accept) {
+  size_t filled = 0;
+  for (const Loop& loop : border_loops(mesh)) {
+    const size_t n = loop.vertices.size();
+    if (n < 3 || n > max_vertices) continue;
+    Mesh trial = mesh;
+    if (fill_loop(trial, cloud, loop, max_support_distance, min_normal_agreement) && accept(trial)) {
+      mesh = std::move(trial);
+      ++filled;
+      continue;
+    }
+    bool flagged = false;
+    for (auto v : loop.vertices) {
+      const size_t i = static_cast<size_t>(v.idx());
+      flagged = flagged || (i < triangulate_at.size() && triangulate_at[i] != 0);
+    }
+    if (!flagged) continue;
+    trial = mesh;
+    if (fill_loop_least_area(trial, cloud, loop, max_support_distance) && accept(trial)) {
+      mesh = std::move(trial);
+      ++filled;
     }
   }
   return filled;

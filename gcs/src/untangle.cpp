@@ -237,17 +237,28 @@ UntangleReport untangle(Mesh& mesh, const CloudQuery& cloud, const UntangleParam
 
   // Cutting: a pair ends when one of its faces goes.
   if (p.cut && !pairs.empty()) {
+    // The corners of the faces that may go: the holes the cut leaves pass through them.
+    std::vector<char> cut_corner(mesh.n_vertices(), 0);
+    for (const auto& [a, b] : pairs)
+      for (const int f : {a, b})
+        for (VertexHandle v : mesh.fv_range(FaceHandle(f))) cut_corner[static_cast<std::size_t>(v.idx())] = 1;
     std::size_t removed = 0;
     for (const auto& pair : pairs) removed += cut_pair(mesh, cloud, pair);
     report.faces_removed += removed;
     pairs = self_intersecting_face_pairs(mesh);  // the pairs whose faces could not go
     if (removed > 0 && p.fill_max_vertices >= 3) {
-      Mesh filled = mesh;
-      const std::size_t n = fill_small_holes(filled, cloud, p.fill_max_vertices, p.fill_support, 0.5);
-      if (n > 0 && self_intersecting_face_pairs(filled) == pairs) {
-        mesh = std::move(filled);
-        report.holes_filled += n;
-      }
+      // One hole at a time, each kept when it makes no pair cross.
+      // A fill that crosses a face (the surface the cut face crossed can pass through the hole) is
+      // smoothed like the input (no cut) and kept when that leaves no new crossing.
+      UntangleParams smooth_only = p;
+      smooth_only.cut = false;
+      report.holes_filled += fill_small_holes_checked(mesh, cloud, p.fill_max_vertices, p.fill_support, 0.5, cut_corner,
+                                                      [&](Mesh& filled) {
+                                                        if (self_intersecting_face_pairs(filled) == pairs) return true;
+                                                        if (!pairs.empty()) return false;
+                                                        const UntangleReport r = untangle(filled, cloud, smooth_only);
+                                                        return r.pairs_after == 0;
+                                                      });
     }
   }
   report.pairs_after = pairs.size();

@@ -88,6 +88,14 @@ struct MergeParams {
   /// the gap or slid past each other) is tried again with 1 ... this many rings of faces removed
   /// along both loops (on a copy; kept only when the strip is then added). 0 = off.
   std::size_t max_trim_rings = 0;
+  /// Two holes are not a handle: a pair of loops of at most this many vertices each, both of which
+  /// the fan of fill_small_holes would close (its centre within max_support_distance of the cloud,
+  /// mean cosine >= hole_min_agreement with the faces around), is not joined, neither as it is nor
+  /// after trimming. Such loops are holes in a surface (e.g. two holes facing each other across the
+  /// narrow gap between two surfaces, or in two layers of a fold), not the rims of a torn tube,
+  /// whose fans would stand across the tube's walls. 0 = off (every close, similar pair is tried).
+  std::size_t hole_max_vertices = 0;
+  double hole_min_agreement = 0.5;
 };
 
 /// Joins pairs of border loops that are close, of similar length and orientation-compatible
@@ -133,6 +141,21 @@ struct TrimParams {
 /// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
                              double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
+
+/// Closes small holes one at a time, each on a copy of the mesh that is kept only when `accept`
+/// (called with the copy, which it may change) returns true, e.g. when the fill crosses nothing. A border loop of 3 ...
+/// max_vertices distinct vertices is first tried with the fan of fill_small_holes (same checks);
+/// when that is refused or not accepted and the loop passes through a vertex flagged in
+/// `triangulate_at` (indexed by vertex index; may be shorter than the vertex array: unflagged),
+/// it is tried with the triangulation of least area over its own vertices (no new vertex, no
+/// diagonal that is an edge already): every face's centroid within max_support_distance of the
+/// cloud, and the faces along the loop, on the mean, not folded back over the faces they border
+/// (mean cosine > 0). The loops are the mesh's on entry, in border_loops order; filling one does
+/// not change the others. Returns the number of loops filled.
+std::size_t fill_small_holes_checked(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
+                                     double max_support_distance, double min_normal_agreement,
+                                     const std::vector<char>& triangulate_at,
+                                     const std::function<bool(edgefront::Mesh&)>& accept);
 
 /// Closes elongated holes (slits in a closed surface: a sparsely sampled stretch whose faces were
 /// removed): a border loop of min_vertices ... max_vertices distinct vertices is filled by one

@@ -33,9 +33,12 @@ struct UntangleParams {
   /// else the one whose centroid is farther from the cloud, else the other; pieces this cuts off
   /// that the border creation would remove too (fewer than 8 faces or 5% of the largest piece's)
   /// go, and a cut that would cut off a larger piece is not made (the pair is left). Then border
-  /// loops of at most `fill_max_vertices` vertices (fill_small_holes with `fill_support` and normal
-  /// agreement 0.5; this includes holes that were there before) are filled when the fills create
-  /// no crossing.
+  /// loops of at most `fill_max_vertices` vertices (this includes holes that were there before) are
+  /// filled one at a time (detail::fill_small_holes_checked): by the fan of fill_small_holes
+  /// (`fill_support`, normal agreement 0.5), or, for a loop through a corner of a face that may
+  /// have been cut, by the least-area triangulation of its vertices; a fill is kept when it makes
+  /// no pair cross, or when the smoothing above (no cut) undoes every crossing it makes (the
+  /// surface the cut face crossed may pass through the hole).
   bool cut = true;
   std::size_t fill_max_vertices = 8;
   double fill_support = 0;
