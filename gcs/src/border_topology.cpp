@@ -363,13 +363,6 @@ PairMerge merge_pair(Mesh& mesh, const CloudQuery& cloud, const Loop& A, const L
   const Vec3 tA = mesh.point(loop_vertex(A, long(i0) + 1)) - mesh.point(loop_vertex(A, long(i0) - 1));
   const Vec3 tB = mesh.point(loop_vertex(B, long(k0) + 1)) - mesh.point(loop_vertex(B, long(k0) - 1));
   if ((tA | tB) >= 0) return PairMerge::not_candidate;
-  // Two holes that fans would close (see MergeParams::hole_max_vertices).
-  if (nA <= params.hole_max_vertices && nB <= params.hole_max_vertices) {
-    Vec3 centre;
-    if (fan_fits(mesh, cloud, A, params.max_support_distance, params.hole_min_agreement, centre) &&
-        fan_fits(mesh, cloud, B, params.max_support_distance, params.hole_min_agreement, centre))
-      return PairMerge::not_candidate;
-  }
   const Strip strip{[&](size_t i) { return loop_vertex(A, long(i0 + i)); },
                     [&](size_t j) { return loop_vertex(B, long(k0) - long(j)); },
                     [&](size_t i) { return loop_halfedge(A, long(i0 + i)); },

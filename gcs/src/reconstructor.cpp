@@ -1225,7 +1225,6 @@ struct Reconstructor::Impl {
       mp.mean_edge_length = ell;
       mp.max_support_distance = bridge;
       mp.max_trim_rings = trim_rings;
-      mp.hole_max_vertices = 8;  // two holes the fill below would close are not joined
       tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
       // zip_slits zips within and across loops; otherwise torn-off pieces of an open sheet are
       // joined back (join_components: only across components).

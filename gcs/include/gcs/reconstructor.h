@@ -12,10 +12,8 @@
 /// changes are on). Topology (neural-mesh style, Ivrissimtzis et al. 2004): triangles that no
 /// sample supports and overlong edges are removed, creating borders; two border loops that are
 /// close, of similar length and orientation-compatible are joined by a strip of triangles,
-/// creating a handle (optionally, slits within one loop are zipped the same way), unless both
-/// are holes the small-hole fill closes (two holes facing each other across a narrow gap are not
-/// a handle); border loops of at most 8 vertices whose fan would lie on the samples are
-/// closed, and so are slits of up to 64 vertices whose zipping strip would lie on the samples (see
+/// creating a handle (optionally, slits within one loop are zipped the same way); border loops
+/// of at most 8 vertices whose fan would lie on the samples are closed, and so are slits of up to 64 vertices whose zipping strip would lie on the samples (see
 /// ReconstructOptions).
 ///
 /// After each batch of splits the registered Operations (operation.h) are called with the
@@ -84,12 +82,7 @@ struct ReconstructOptions {
   double unsupported_distance = 1.5;
   /// Edges longer than this times the mean edge length are removed with their faces.
   double long_edge_factor = 10.0;
-  /// Join close, similar, orientation-compatible border loops by a triangle strip (handles). A
-  /// pair of loops of at most 8 vertices both of which the small-hole fill would close (each fan
-  /// on the samples and agreeing with the faces around) is not joined: those are two holes, e.g.
-  /// facing each other across the narrow gap between two parts of a closed surface (homer's legs)
-  /// or in two layers of a fold, where the strip would build a handle across empty space; the
-  /// fill closes them instead.
+  /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
   bool merge_borders = true;
   /// Experimental, off by default: also zip slits, i.e. close the gap between two chains of one
   /// border loop that run within 2 mean edge lengths of each other in opposite directions (a torn

@@ -88,14 +88,6 @@ struct MergeParams {
   /// the gap or slid past each other) is tried again with 1 ... this many rings of faces removed
   /// along both loops (on a copy; kept only when the strip is then added). 0 = off.
   std::size_t max_trim_rings = 0;
-  /// Two holes are not a handle: a pair of loops of at most this many vertices each, both of which
-  /// the fan of fill_small_holes would close (its centre within max_support_distance of the cloud,
-  /// mean cosine >= hole_min_agreement with the faces around), is not joined, neither as it is nor
-  /// after trimming. Such loops are holes in a surface (e.g. two holes facing each other across the
-  /// narrow gap between two surfaces, or in two layers of a fold), not the rims of a torn tube,
-  /// whose fans would stand across the tube's walls. 0 = off (every close, similar pair is tried).
-  std::size_t hole_max_vertices = 0;
-  double hole_min_agreement = 0.5;
 };
 
 /// Joins pairs of border loops that are close, of similar length and orientation-compatible
