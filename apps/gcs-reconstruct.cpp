@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
                "thin closed shells with input normals: a sample that no vertex nearby faces is skipped instead of "
                "pulling the other wall's vertex (better coverage and Chamfer on vault shells, but not closed, and "
                "sometimes more self-intersections; off by default)");
+  bool ignore_normals = false;
+  app.add_flag("--ignore-normals", ignore_normals,
+               "reconstruct from the points alone, as if the file had no normals (they are fitted to the points "
+               "and oriented instead; for files whose normals are unreliable)");
   bool keep_noise = false;
   app.add_flag("--keep-noise", keep_noise,
                "do not smooth a noisy cloud before the loop (by default a cloud whose estimated noise exceeds 5% of "
@@ -101,7 +105,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
-    const edgefront::PointCloud cloud = edgefront::read_points(input);
+    edgefront::PointCloud cloud = edgefront::read_points(input);
+    if (ignore_normals) cloud.normals.clear();
     options.target_vertices = vertices;
     options.seed = seed;
     options.progress_interval = 50;

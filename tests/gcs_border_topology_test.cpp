@@ -42,6 +42,35 @@ Mesh grid_without(int nx, int ny, const std::set<std::pair<int, int>>& holes) {
 // The plane z = 0 as the cloud.
 gcs::detail::CloudHit plane(const Vec3& p) { return {std::abs(p[2]), Vec3(0, 0, 1)}; }
 
+TEST(GcsCleanTopology, TheLargestPieceOnAPartOfTheCloudOfItsOwnIsKept) {
+  // A 30 x 2 strip without columns 20 and 27: pieces of 80 (columns 0-19), 24 (21-26) and 8 faces
+  // (28-29). The sample nearest to a face is numbered by its column.
+  const Mesh start = grid_without(30, 2, {{20, 0}, {20, 1}, {27, 0}, {27, 1}});
+  const auto cloud = [](const Vec3& p) {
+    return gcs::detail::CloudHit{std::abs(p[2]), Vec3(0, 0, 1), p, static_cast<size_t>(p[0])};
+  };
+  const auto pieces = [](const Mesh& m) { return edgefront::compute_stats(m).components; };
+  ASSERT_EQ(pieces(start), 3u);
+  {  // the cloud in one part (or no parts known): both small pieces are under half of 80 faces
+    Mesh m = start;
+    EXPECT_EQ(gcs::detail::clean_topology(m, 1, 0.5), 32u);
+    Mesh n = start;
+    const gcs::detail::FaceNearest nearest = gcs::detail::face_nearest(n, cloud);
+    EXPECT_EQ(gcs::detail::clean_topology(n, 1, 0.5, {&nearest, [](size_t) { return 0; }}), 32u);
+    EXPECT_EQ(pieces(n), 1u);
+  }
+  {  // columns 21-29 a part of the cloud of their own: its largest piece (24 faces) is a separate
+     // surface and stays; the 8-face one is a fragment, judged as before, and goes
+    Mesh m = start;
+    const gcs::detail::FaceNearest nearest = gcs::detail::face_nearest(m, cloud);
+    EXPECT_EQ(gcs::detail::clean_topology(m, 1, 0.5, {&nearest, [](size_t column) { return column > 20 ? 1 : 0; }}),
+              8u);
+    EXPECT_EQ(pieces(m), 2u);
+    m.garbage_collection();
+    EXPECT_EQ(m.n_faces(), 80u + 24u);
+  }
+}
+
 gcs::detail::ZipParams unit_params() {
   gcs::detail::ZipParams zp;
   zp.mean_edge_length = 1.0;

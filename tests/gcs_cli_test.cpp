@@ -15,6 +15,7 @@
 #include "render/image.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/point_cloud_io.h"
 #include "gcs/evaluation.h"
 
 namespace {
@@ -58,6 +59,22 @@ TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
   ASSERT_EQ(run(q(vault()) + " -o " + q(d) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
   ASSERT_EQ(run(q(vault()) + " -o " + q(e) + " --vertices 150 --seed 7 --no-twist").exit_code, 0);
   EXPECT_EQ(eftest::slurp(d), eftest::slurp(e));
+}
+
+TEST_F(GcsCli, IgnoreNormalsReconstructsFromThePointsAlone) {
+  // The bundled vault's points written without their normals give the same file as the vault
+  // read with --ignore-normals, and another file than the vault with its normals.
+  edgefront::PointCloud bare = edgefront::read_points(vault());
+  ASSERT_TRUE(bare.has_normals());
+  bare.normals.clear();
+  const fs::path points = dir_ / "points.xyz";
+  edgefront::write_points(bare, points);
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off", c = dir_ / "c.off";
+  ASSERT_EQ(run(q(points) + " -o " + q(a) + " --vertices 200").exit_code, 0);
+  ASSERT_EQ(run(q(vault()) + " -o " + q(b) + " --vertices 200 --ignore-normals").exit_code, 0);
+  ASSERT_EQ(run(q(vault()) + " -o " + q(c) + " --vertices 200").exit_code, 0);
+  EXPECT_EQ(eftest::slurp(a), eftest::slurp(b));
+  EXPECT_NE(eftest::slurp(b), eftest::slurp(c));
 }
 
 TEST_F(GcsCli, NoOrientWinnersSwitchesTheOrientedWinnersOff) {

@@ -176,6 +176,48 @@ TEST(GcsReconstructor, NestedSpheresEndAsTwoClosedSpheresOrientedAsTheirSamples)
   }
 }
 
+// A small sphere (radius 0.2) beside a large one: at 800 vertices it has a few dozen faces, far
+// below 5% of the large sphere's, and the small-component rule deleted it (every seed). It lies
+// on a part of the cloud of its own, so it is judged against the largest piece on that part.
+TEST(GcsReconstructor, SmallSeparateSurfaceIsKept) {
+  PointCloud cloud = cloud_of("icosphere", 10000);
+  edgefront::shapes::SampleOptions o;
+  o.points = 400;
+  o.shape.radius = 0.2;
+  o.seed = 2;
+  const PointCloud small = edgefront::shapes::sample("icosphere", o);
+  for (size_t i = 0; i < small.size(); ++i) {
+    cloud.points.push_back(small.points[i] + Vec3(2.5, 0, 0));
+    cloud.normals.push_back(small.normals[i]);
+  }
+  for (std::uint64_t seed : {1, 2, 3}) {
+    gcs::ReconstructOptions options;
+    options.target_vertices = 800;
+    options.seed = seed;
+    const gcs::ReconstructResult res = gcs::reconstruct(cloud, options);
+    const std::string what = "seed " + std::to_string(seed);
+    expect_manifold(res.mesh, what);
+    const edgefront::MeshStats s = edgefront::compute_stats(res.mesh);
+    EXPECT_EQ(s.components, 2u) << what;
+    EXPECT_LE(s.border_loops, 1u) << what;
+    // The small sphere's piece: a few dozen vertices, on average at its radius (a coarse mesh of
+    // it strays by up to half the radius).
+    size_t on_small = 0;
+    double radius = 0;
+    for (auto v : res.mesh.vertices()) {
+      const Vec3& p = res.mesh.point(v);
+      if (p[0] > 2.0) {
+        ++on_small;
+        radius += (p - Vec3(2.5, 0, 0)).norm();
+      } else {
+        EXPECT_NEAR(p.norm(), 1.0, 0.05) << what;
+      }
+    }
+    ASSERT_GE(on_small, 8u) << what;
+    EXPECT_NEAR(radius / static_cast<double>(on_small), 0.2, 0.03) << what;
+  }
+}
+
 TEST(GcsReconstructor, SameSeedSameMeshOtherSeedOtherMesh) {
   const PointCloud cloud = cloud_of("torus", 2000);
   const gcs::ReconstructResult a = gcs::reconstruct(cloud, small(250));

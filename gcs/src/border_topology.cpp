@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <vector>
@@ -216,7 +217,35 @@ bool zip_strip(Mesh& mesh, const CloudQuery& cloud, const Strip& st, double max_
 
 }  // namespace
 
-size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
+std::vector<char> separate_surfaces(const Mesh& mesh, const edgefront::ComponentLabels& labels,
+                                    const std::vector<size_t>& faces, const SeparateParts& parts) {
+  // (component, part) -> faces; each component's part is the one most of its faces lie on.
+  std::map<std::pair<int, int>, size_t> count;
+  for (auto f : mesh.faces()) {
+    const size_t sample = (*parts.nearest)[static_cast<size_t>(f.idx())].index;
+    if (sample != CloudHit::kNoSample)
+      ++count[{labels.vertex_component[mesh.cfv_begin(f)->idx()], parts.sample_part(sample)}];
+  }
+  std::vector<std::pair<size_t, int>> dominant(labels.count, {0, -1});  // (faces, part)
+  for (const auto& [key, n] : count) {
+    auto& d = dominant[static_cast<size_t>(key.first)];
+    if (n > d.first) d = {n, key.second};
+  }
+  const size_t largest = static_cast<size_t>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+  std::map<int, size_t> lead;  // part -> its largest component (the first of equals)
+  for (size_t c = 0; c < labels.count; ++c) {
+    const int part = dominant[c].second;
+    if (part < 0) continue;
+    const auto it = lead.find(part);
+    if (it == lead.end() || faces[c] > faces[it->second]) lead[part] = c;
+  }
+  std::vector<char> separate(labels.count, 0);
+  for (const auto& [part, c] : lead)
+    if (part != dominant[largest].second) separate[c] = 1;
+  return separate;
+}
+
+size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction, const SeparateParts& parts) {
   size_t removed = fix_nonmanifold_vertices(mesh);
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   if (labels.count > 1) {
@@ -224,12 +253,20 @@ size_t clean_topology(Mesh& mesh, size_t min_faces, double min_fraction) {
     for (auto f : mesh.faces()) ++faces[labels.vertex_component[mesh.fv_begin(f)->idx()]];
     const size_t largest = static_cast<size_t>(std::max_element(faces.begin(), faces.end()) - faces.begin());
     min_faces = std::max(min_faces, static_cast<size_t>(min_fraction * static_cast<double>(faces[largest])));
+    std::vector<char> doomed(labels.count, 0);
+    bool any = false;
+    for (size_t c = 0; c < labels.count; ++c) {
+      doomed[c] = c != largest && faces[c] < min_faces;
+      any = any || doomed[c];
+    }
+    if (any && parts) {
+      const std::vector<char> separate = separate_surfaces(mesh, labels, faces, parts);
+      for (size_t c = 0; c < labels.count; ++c) doomed[c] = doomed[c] && !separate[c];
+    }
     for (auto f : mesh.faces()) {
-      const size_t c = static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()]);
-      if (c != largest && faces[c] < min_faces) {
-        mesh.delete_face(f, true);
-        ++removed;
-      }
+      if (!doomed[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
+      mesh.delete_face(f, true);
+      ++removed;
     }
   }
   // Vertices left without faces (possible when a deleted component had isolated vertices).
@@ -251,7 +288,10 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
   const bool film_test = params.film_samples > 0 && neighbors;
   size_t live_faces = 0;
   const double max_edge2 = params.max_edge_length * params.max_edge_length;
-  if (nearest) nearest->assign(mesh.n_faces(), CloudHit{});
+  // The nearest samples are kept for the caller, and for clean_topology's sparing of separate parts.
+  FaceNearest own;
+  FaceNearest* const record = nearest ? nearest : params.sample_part ? &own : nullptr;
+  if (record) record->assign(mesh.n_faces(), CloudHit{});
   for (auto f : mesh.faces()) {
     ++live_faces;
     const Vec3 c = centroid(mesh, f);
@@ -259,7 +299,7 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
     if (film_test) neighbors(c, params.film_samples, near);
     const CloudHit hit =
         !film_test ? cloud(c) : near.empty() ? CloudHit{std::numeric_limits<double>::infinity(), {}, {}} : near.front();
-    if (nearest) (*nearest)[static_cast<size_t>(f.idx())] = hit;
+    if (record) (*record)[static_cast<size_t>(f.idx())] = hit;
     bool remove = hit.distance > params.max_support_distance;
     if (!remove && hit.distance >= params.normal_check_distance && std::isfinite(hit.normal[0])) {
       const Vec3 n = face_normal(mesh, f);
@@ -284,7 +324,8 @@ size_t remove_unsupported_faces(Mesh& mesh, const CloudQuery& cloud, const Borde
   }
   if (doomed.empty() || doomed.size() * 10 >= live_faces * 9) return 0;  // never wipe out the mesh
   for (auto f : doomed) mesh.delete_face(f, true);
-  return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+  return doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction,
+                                        {record, params.sample_part});
 }
 
 namespace {

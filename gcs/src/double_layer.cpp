@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <numeric>
 #include <queue>
 #include <tuple>
@@ -66,34 +65,6 @@ int oriented_nearest_after(const Mesh& mesh, VertexGrid& grid, const Vec3& sampl
   return found >= 0 ? found : first;
 }
 
-namespace {
-
-// Clears split[c] for the pieces whose faces' nearest samples lie mostly on another part of the
-// cloud than the largest component's (OpposedParams::sample_part).
-void spare_separate_parts(const Mesh& mesh, const edgefront::ComponentLabels& labels,
-                          const std::vector<size_t>& faces, const FaceNearest& nearest,
-                          const std::function<int(std::size_t)>& sample_part, std::vector<char>& split) {
-  const int largest = static_cast<int>(std::max_element(faces.begin(), faces.end()) - faces.begin());
-  // (component, part) -> faces, for the largest component and the pieces to be removed only.
-  std::map<std::pair<int, int>, size_t> count;
-  for (auto f : mesh.faces()) {
-    const int c = labels.vertex_component[mesh.cfv_begin(f)->idx()];
-    const size_t sample = nearest[static_cast<size_t>(f.idx())].index;
-    if ((c == largest || split[static_cast<size_t>(c)]) && sample != CloudHit::kNoSample)
-      ++count[{c, sample_part(sample)}];
-  }
-  std::vector<std::pair<size_t, int>> dominant(labels.count, {0, -1});  // (faces, part)
-  for (const auto& [key, n] : count) {
-    auto& d = dominant[static_cast<size_t>(key.first)];
-    if (n > d.first) d = {n, key.second};
-  }
-  const int largest_part = dominant[static_cast<size_t>(largest)].second;
-  for (size_t c = 0; c < split.size(); ++c)
-    if (split[c] && dominant[c].second >= 0 && dominant[c].second != largest_part) split[c] = 0;
-}
-
-}  // namespace
-
 std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const OpposedParams& params) {
   EF_CHECK(nearest.size() >= mesh.n_faces(), "remove_opposed_faces: a nearest sample per face is needed");
   std::vector<FaceHandle> doomed;
@@ -113,7 +84,8 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
   for (auto f : doomed)
     for (auto v : mesh.fv_range(f)) touched.push_back(v);
   for (auto f : doomed) mesh.delete_face(f, true);
-  size_t removed = doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction);
+  size_t removed = doomed.size() + clean_topology(mesh, params.min_component_faces, params.min_component_fraction,
+                                                  {&nearest, params.sample_part});
   // Pieces of the kept layer that hung on the removed one only: components that lost faces here
   // and have less than split_fraction of the largest component's faces go too (the loop regrows
   // the sheet over their samples; left alone they stay apart, since loop merging joins only loops
@@ -134,7 +106,10 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
         any = true;
       }
     }
-    if (any && params.sample_part) spare_separate_parts(mesh, labels, faces, nearest, params.sample_part, split);
+    if (any && params.sample_part) {
+      const std::vector<char> separate = separate_surfaces(mesh, labels, faces, {&nearest, params.sample_part});
+      for (size_t c = 0; c < labels.count; ++c) split[c] = split[c] && !separate[c];
+    }
     for (auto f : mesh.faces()) {
       if (!split[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
       mesh.delete_face(f, true);

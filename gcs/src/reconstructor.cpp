@@ -1200,6 +1200,7 @@ struct Reconstructor::Impl {
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
       bp.film_samples = encloses ? opt.film_samples : 0;
+      bp.sample_part = [this](size_t k) { return query_point_part(k); };
       // The support test's nearest sample per face goes on to the opposed-face test (same
       // centroids: nothing moves in between), with the sample's oriented normal.
       detail::FaceNearest nearest;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "edgefront/mesh.h"
+#include "edgefront/mesh_stats.h"
 
 namespace gcs::detail {
 
@@ -50,6 +51,9 @@ struct BorderParams {
 
   std::size_t min_component_faces = 8;  ///< components with fewer faces are removed
   double min_component_fraction = 0.05;  ///< ... or with fewer than this share of the largest's faces
+  /// ... unless they lie on a part of the cloud of their own (see clean_topology; empty: no
+  /// component is spared): the part of the cloud of a sample index.
+  std::function<int(std::size_t)> sample_part;
 };
 
 /// The sample nearest to each face's centroid, indexed by face index (entries of faces that are
@@ -72,10 +76,29 @@ std::size_t remove_unsupported_faces(edgefront::Mesh& mesh, const CloudQuery& cl
 /// test did not run, e.g. in tests).
 FaceNearest face_nearest(const edgefront::Mesh& mesh, const CloudQuery& cloud);
 
+/// Where the faces' nearest samples lie in the cloud: `nearest` by face index (FaceNearest) and
+/// the part of the cloud (double_layer.h: cloud_parts) of a sample index. Empty (no nearest or no
+/// sample_part): nothing is known, no piece is spared.
+struct SeparateParts {
+  const FaceNearest* nearest = nullptr;
+  std::function<int(std::size_t)> sample_part;
+  explicit operator bool() const { return nearest && sample_part; }
+};
+
+/// For each component of `labels` (face counts `faces`), whether it is a separate surface: the
+/// largest of the components whose faces' nearest samples lie mostly on one part of the cloud,
+/// for every part but the one most of the largest component's faces lie on (nested spheres' inner
+/// sphere, a leg of a one-sided scan seen apart from the body). Other pieces, fragments of some
+/// surface, are judged as before by the rules that remove small pieces.
+std::vector<char> separate_surfaces(const edgefront::Mesh& mesh, const edgefront::ComponentLabels& labels,
+                                    const std::vector<std::size_t>& faces, const SeparateParts& parts);
+
 /// Deletes faces until no vertex has more than one fan (keeps each vertex's largest fan) and
 /// removes components other than the largest with fewer than max(min_faces, min_fraction x the
-/// largest's face count) faces. Returns the number of faces removed.
-std::size_t clean_topology(edgefront::Mesh& mesh, std::size_t min_faces, double min_fraction = 0);
+/// largest's face count) faces, but the separate surfaces (with `parts`: separate_surfaces).
+/// Returns the number of faces removed.
+std::size_t clean_topology(edgefront::Mesh& mesh, std::size_t min_faces, double min_fraction = 0,
+                           const SeparateParts& parts = {});
 
 struct MergeParams {
   double mean_edge_length = 0;

@@ -50,10 +50,9 @@ struct OpposedParams {
   std::size_t min_component_faces = 8;   ///< then components smaller than this are removed
   double min_component_fraction = 0.05;  ///< ... or smaller than this share of the largest
   /// The part of the cloud (cloud_parts) that sample i belongs to, or empty. Given, a piece that
-  /// split_fraction would remove is kept when most of its faces' nearest samples lie on another
-  /// part of the cloud than most of the largest component's: a separate surface (nested spheres'
-  /// inner one, reached through a tunnel whose faces were removed), not a fragment of the largest
-  /// one's layer. Called only when some piece would be removed.
+  /// split_fraction or the small-component rule would remove is kept when it is a separate surface
+  /// (border_topology.h: separate_surfaces; nested spheres' inner one, reached through a tunnel
+  /// whose faces were removed), not a fragment of the largest one's layer.
   std::function<int(std::size_t)> sample_part;
 };
 
