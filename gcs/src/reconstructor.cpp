@@ -32,6 +32,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
 #include "gcs/cloud_noise.h"
+#include "gcs/cloud_normals.h"
 #include "twist/repair.h"
 
 namespace gcs {
@@ -493,34 +494,13 @@ struct Reconstructor::Impl {
     return n ? sum / static_cast<double>(n) : bbox_diagonal * 0.1;
   }
 
-  // The input normal of point i, or (without input normals) the normal of a plane fitted to its
-  // 20 nearest points, computed once on first use; NaN where the neighbourhood is not flat. (A
-  // cloud without normals is never subsampled: the tree indices are cloud indices here.)
+  // The input normal of point i, or (without input normals) its fitted normal (fit_normals,
+  // cloud_normals.h: unsigned, NaN where the neighbourhood has no one normal), all fitted on
+  // first use. (A cloud without normals is never subsampled: the tree indices are cloud indices.)
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
-    if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
-    Vec3& n = fitted_normal[i];
-    if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
-    tree->k_nearest(cloud.points[i], 20, knn);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) c += Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]);
-    c /= static_cast<double>(knn.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) {
-      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]) - c;
-      cov += q * q.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const Eigen::Vector3d e = eig.eigenvectors().col(0);
-    const Eigen::Vector3d ev = eig.eigenvalues();
-    // Not flat enough (noise comparable to the spacing): no usable normal (marked by a NaN).
-    if (!(ev[0] < 0.05 * ev[1])) {
-      n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
-      return n;
-    }
-    n = Vec3(e[0], e[1], e[2]);
-    if (!(n.sqrnorm() > 0.5)) n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
-    return n;
+    if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree);
+    return fitted_normal[i];
   }
 
   const Vec3& oriented_normal(size_t i) const { return cloud.has_normals() ? cloud.normals[i] : oriented_fitted[i]; }

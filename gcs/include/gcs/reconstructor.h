@@ -107,9 +107,10 @@ struct ReconstructOptions {
   /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
   /// nearest), and faces that face against the nearest sample's normal are removed with the
   /// unsupported ones. The samples' normals are the input normals; without them, normals fitted to
-  /// each point's 20 neighbours and oriented consistently over the neighbour graph (outward, or for
-  /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
-  /// graph is not connected.
+  /// each point's neighbours (gcs::fit_normals with its defaults, cloud_normals.h) and oriented
+  /// consistently over the neighbour graph (outward, or for a nearly flat open cloud along the
+  /// positive side of its thinnest axis); not used when the cloud falls into parts that lie apart
+  /// (nested spheres).
   bool orient_winners = true;
   /// With orient_winners and input normals: the winner is the nearest vertex facing the sample's
   /// side among its 32 nearest (within four grid cells, about four mean edges, of the nearest)
