@@ -25,7 +25,8 @@ constexpr double kThroughResiduals = 2.0, kThroughSpread = 0.02;
 
 }  // namespace
 
-std::vector<Vec3> fit_normals(const std::vector<Vec3>& points, const PointIndex& index, const NormalFitOptions& o) {
+std::vector<Vec3> fit_normals(const std::vector<Vec3>& points, const PointIndex& index, const NormalFitOptions& o,
+                              std::vector<double>* residuals) {
   if (o.neighbours < kMinNeighbours || o.neighbours > kMaxNeighbours)
     throw InvalidInput("fit_normals: neighbours must be in [8, 256] (got " + std::to_string(o.neighbours) + ")");
   if (!(o.max_residual > 0)) throw InvalidInput("fit_normals: max_residual must be > 0");
@@ -33,6 +34,7 @@ std::vector<Vec3> fit_normals(const std::vector<Vec3>& points, const PointIndex&
   const std::size_t n = points.size();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<Vec3> out(n, Vec3(nan, nan, nan));
+  if (residuals) residuals->assign(n, nan);
   if (n < kMinNeighbours) return out;
   const std::size_t k = std::min(o.neighbours, n);
   detail::QuadricFitter fitter(points, index);
@@ -69,7 +71,9 @@ std::vector<Vec3> fit_normals(const std::vector<Vec3>& points, const PointIndex&
     if (!(best_ratio <= o.max_residual)) continue;
     const detail::LocalQuadric& q = fits[best];
     const Eigen::Vector3d m = o.quadric_normal ? q.normal_at(p) : q.n;
-    if (m.allFinite()) out[i] = Vec3(m[0], m[1], m[2]);
+    if (!m.allFinite()) continue;
+    out[i] = Vec3(m[0], m[1], m[2]);
+    if (residuals) (*residuals)[i] = q.residual;
   }
   return out;
 }

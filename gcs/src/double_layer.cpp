@@ -191,9 +191,14 @@ double normal_flux(const std::vector<Vec3>& points, const std::vector<Vec3>& nor
 }
 
 bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
-                    std::size_t k) {
+                    std::size_t k, const std::vector<double>* noise) {
   const std::size_t n = points.size();
   EF_CHECK(normals.size() == n && index.size() == n, "orient_normals: sizes differ");
+  EF_CHECK(!noise || noise->size() == n, "orient_normals: noise and points differ in size");
+  const auto noise2 = [&](std::size_t i) {
+    const double s = noise ? (*noise)[i] : 0.0;
+    return std::isfinite(s) ? s * s : 0.0;
+  };
   const auto usable = [&](std::size_t i) { return std::isfinite(normals[i][0]) && normals[i].sqrnorm() > 0; };
   // The k-nearest-neighbour graph made symmetric (CSR): a point that is among another's k nearest
   // is linked both ways, so one far from everybody's list is still reached.
@@ -220,10 +225,13 @@ bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex
   // the two points (an arc, a crease, the two walls of a thin shell) the reflection takes the one
   // consistently oriented normal into the other, so agree() is near +1 for a consistent pair and
   // near -1 for an inconsistent one, however far the normals turn; along a flat surface (chord in
-  // the tangent plane) it is n_i . n_j (Hoppe's criterion). Coincident points: n_i . n_j.
+  // the tangent plane) it is n_i . n_j (Hoppe's criterion). Noise: two points a little apart along
+  // the normal are not two walls, so the reflection term is damped by the points' noise (the chord
+  // counts as kNoiseChord noise deviations longer); coincident points: n_i . n_j.
+  constexpr double kNoiseChord = 3;
   const auto agree = [&](std::size_t i, std::size_t j) {
     const Vec3 d = points[j] - points[i];
-    const double l2 = d.sqrnorm();
+    const double l2 = d.sqrnorm() + kNoiseChord * kNoiseChord * (noise2(i) + noise2(j));
     const double c = normals[i] | normals[j];
     return l2 > 0 ? c - 2 * (normals[i] | d) * (normals[j] | d) / l2 : c;
   };

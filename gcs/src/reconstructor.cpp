@@ -218,6 +218,7 @@ struct Reconstructor::Impl {
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
+  std::vector<double> fitted_residual;  // their fits' residuals (the noise for orient_normals)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
   bool encloses = false;  // oriented, and the oriented normals point outward as around a volume
   std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
@@ -350,7 +351,7 @@ struct Reconstructor::Impl {
     if (opt.orient_winners && !cloud.has_normals()) {
       for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
       oriented_fitted = fitted_normal;
-      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted);
+      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8, &fitted_residual);
     }
     if (oriented) {
       encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
@@ -499,7 +500,7 @@ struct Reconstructor::Impl {
   // first use. (A cloud without normals is never subsampled: the tree indices are cloud indices.)
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
-    if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree);
+    if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
     return fitted_normal[i];
   }
 

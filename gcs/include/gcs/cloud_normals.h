@@ -53,8 +53,10 @@ struct NormalFitOptions {
 
 /// Unit normals of `points` (unsigned: either sign), NaN (all three coordinates) where undefined.
 /// `index` is a PointIndex over exactly `points`. Deterministic. \throws edgefront::InvalidInput
-/// for bad options or an index of another size.
+/// for bad options or an index of another size. With `residuals`, also the residual (standard
+/// deviation of the heights around the fit) of the fit each normal came from, NaN with the normal.
 std::vector<edgefront::Vec3> fit_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
-                                         const NormalFitOptions& options = {});
+                                         const NormalFitOptions& options = {},
+                                         std::vector<double>* residuals = nullptr);
 
 }  // namespace gcs
