@@ -191,7 +191,7 @@ double normal_flux(const std::vector<Vec3>& points, const std::vector<Vec3>& nor
 }
 
 bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
-                    std::size_t k, const std::vector<double>* noise) {
+                    std::size_t k, const std::vector<double>* noise, bool refined) {
   const std::size_t n = points.size();
   EF_CHECK(normals.size() == n && index.size() == n, "orient_normals: sizes differ");
   EF_CHECK(!noise || noise->size() == n, "orient_normals: noise and points differ in size");
@@ -233,7 +233,7 @@ bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex
     const Vec3 d = points[j] - points[i];
     const double l2 = d.sqrnorm() + kNoiseChord * kNoiseChord * (noise2(i) + noise2(j));
     const double c = normals[i] | normals[j];
-    return l2 > 0 ? c - 2 * (normals[i] | d) * (normals[j] | d) / l2 : c;
+    return refined && l2 > 0 ? c - 2 * (normals[i] | d) * (normals[j] | d) / l2 : c;
   };
   // Prim's spanning tree, cheapest edge = best agreement either way; each point takes the sign
   // that agrees with the point it was reached from. Ties by index.
@@ -259,7 +259,7 @@ bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex
       for (const std::size_t j : adj[i])
         if (!done[j]) queue.emplace(1.0 - std::abs(agree(i, j)), j, i);
     }
-    if (reached == total || wide > 16 * (k + 1) || wide / 2 >= n) break;
+    if (!refined || reached == total || wide > 16 * (k + 1) || wide / 2 >= n) break;
     for (std::size_t i = 0; i < n; ++i) {
       if (done[i] || !usable(i)) continue;
       index.k_nearest(points[i], wide, knn);

@@ -218,7 +218,7 @@ struct Reconstructor::Impl {
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
-  std::vector<double> fitted_residual;  // their fits' residuals (the noise for orient_normals)
+  std::vector<double> fitted_residual;  // with quadric_normals: their fits' residuals (orient_normals' noise)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
   bool encloses = false;  // oriented, and the oriented normals point outward as around a volume
   std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
@@ -351,7 +351,8 @@ struct Reconstructor::Impl {
     if (opt.orient_winners && !cloud.has_normals()) {
       for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
       oriented_fitted = fitted_normal;
-      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8, &fitted_residual);
+      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8,
+                                        opt.quadric_normals ? &fitted_residual : nullptr, opt.quadric_normals);
     }
     if (oriented) {
       encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
@@ -495,13 +496,40 @@ struct Reconstructor::Impl {
     return n ? sum / static_cast<double>(n) : bbox_diagonal * 0.1;
   }
 
-  // The input normal of point i, or (without input normals) its fitted normal (fit_normals,
-  // cloud_normals.h: unsigned, NaN where the neighbourhood has no one normal), all fitted on
-  // first use. (A cloud without normals is never subsampled: the tree indices are cloud indices.)
+  // The input normal of point i, or (without input normals) its fitted normal: with
+  // quadric_normals fit_normals' (cloud_normals.h), all fitted on first use; else the normal of a
+  // plane fitted to its 20 nearest points, computed once on first use, NaN where the neighbourhood
+  // is not flat. Either is unsigned, NaN where undefined. (A cloud without normals is never
+  // subsampled: the tree indices are cloud indices here.)
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
-    if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
-    return fitted_normal[i];
+    if (opt.quadric_normals) {
+      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
+      return fitted_normal[i];
+    }
+    if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
+    Vec3& n = fitted_normal[i];
+    if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
+    tree->k_nearest(cloud.points[i], 20, knn);
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const PointIndex::Neighbor& nb : knn) c += Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]);
+    c /= static_cast<double>(knn.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const PointIndex::Neighbor& nb : knn) {
+      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]) - c;
+      cov += q * q.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d e = eig.eigenvectors().col(0);
+    const Eigen::Vector3d ev = eig.eigenvalues();
+    // Not flat enough (noise comparable to the spacing): no usable normal (marked by a NaN).
+    if (!(ev[0] < 0.05 * ev[1])) {
+      n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+      return n;
+    }
+    n = Vec3(e[0], e[1], e[2]);
+    if (!(n.sqrnorm() > 0.5)) n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+    return n;
   }
 
   const Vec3& oriented_normal(size_t i) const { return cloud.has_normals() ? cloud.normals[i] : oriented_fitted[i]; }

@@ -93,8 +93,10 @@ double normal_flux(const std::vector<edgefront::Vec3>& points, const std::vector
 /// keeps noise along the normal from reading as two walls. Points that the k-nearest graph leaves
 /// apart (islands cut off by undefined normals, a small densely sampled detail) are linked by
 /// wider searches to points up to 4 times those points' k-th-neighbour distance away.
+/// `refined` false: neither (Hoppe's n_i . n_j, the k-nearest graph as it is; the reconstructor
+/// with ReconstructOptions::quadric_normals off).
 bool orient_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
                     std::vector<edgefront::Vec3>& normals, std::size_t k = 8,
-                    const std::vector<double>* noise = nullptr);
+                    const std::vector<double>* noise = nullptr, bool refined = true);
 
 }  // namespace gcs::detail
