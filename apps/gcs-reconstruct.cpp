@@ -1,6 +1,6 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
-///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners]
+///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners] [--quadric-normals]
 ///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
 ///                   [--no-delaunay-flips] [--keep-crossings]
@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
                "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
                "ending as a torn double layer)");
+  app.add_flag("--quadric-normals", options.quadric_normals,
+               "a cloud without normals: fit them by a quadric at each point (defined wherever the surface has "
+               "a normal at the sampling scale) instead of a plane through 20 neighbours that must be flat (off by "
+               "default: on CGAL's models the loop's border tests then open more holes)");
   app.add_flag("--skip-unfaced-samples", options.skip_unfaced_samples,
                "thin closed shells with input normals: a sample that no vertex nearby faces is skipped instead of "
                "pulling the other wall's vertex (better coverage and Chamfer on vault shells, but not closed, and "

@@ -25,7 +25,8 @@
 //    without the surface fit (ReconstructOptions::fit_surface), judged by gcs::evaluate against the
 //    5,210 points (as gcs-eval: exact distances, 100K samples, seed 1); with --reference DIR also
 //    DIR/kitten-advancing-front.off and DIR/kitten-poisson.off (bench/cgal_reconstruct_reference).
-// --twist registers the twist repair (gcs::TwistOperation, default options) as gcs-reconstruct
+// --quadric-normals sets ReconstructOptions::quadric_normals (clouds without normals: the nested
+// spheres' second block). --twist registers the twist repair (gcs::TwistOperation, default options) as gcs-reconstruct
 // does without --no-twist (the cases above run without it), and prints the time spent in it.
 // --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case; --points P
 // replaces the 1M-point cloud of cases 3 and 5 by a P-point one. Single thread. Case 3 also prints
@@ -122,10 +123,12 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
 
 bool g_fit = true;  // ReconstructOptions::fit_surface
 bool g_twist = false;  // --twist: the twist repair registered as in gcs-reconstruct
+bool g_quadric = false;  // --quadric-normals: ReconstructOptions::quadric_normals
 
 gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
   o.fit_surface = g_fit;
+  o.quadric_normals = g_quadric;
   o.target_vertices = target;
   if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
   o.seed = g_seed;
@@ -170,6 +173,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--eval")) eval = true;
     else if (!std::strcmp(argv[i], "--twist")) g_twist = true;
+    else if (!std::strcmp(argv[i], "--quadric-normals")) g_quadric = true;
     else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::stoul(argv[++i]);
     else if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--case") && i + 1 < argc) only = argv[++i];

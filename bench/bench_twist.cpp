@@ -3,7 +3,7 @@
 ///
 ///   bench_twist [--vertices N] [--points P] [--seeds S] [--first-seed S0] [--shapes a,b,...]
 ///               [--thickness t] [--side-weight W] [--thin-wall E] [--margin M] [--max-retwists K] [--regrow]
-///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals]
+///               [--min-flagged K] [--global-index] [--border-ratio R] [--no-normals] [--quadric-normals]
 ///               [--edge-per-thickness K] [--retest-all] [--no-orient-winners] [--rejoin]
 ///               [--no-rejoin] [--peel N] [--turned N] [--stacked-rounds N] [--no-post] [--only-repair] [--explain 1|2]
 ///               [--keep-crossings] [--skip-unfaced-samples] [--trace] [--dump PREFIX]
@@ -31,6 +31,7 @@
 /// orientation: `twist::count_same_orientation_layers`, "stacked / facing" under the two
 /// `twist::LayerRule`s), border loops and components, the regions
 /// repaired, and the share of the run spent in the twist operation.
+/// `--quadric-normals` sets `ReconstructOptions::quadric_normals` (with `--no-normals`).
 /// `--no-orient-winners` runs GCS with `ReconstructOptions::orient_winners` off (plain winners, as
 /// in the published loop): with oriented samples the oriented winner search keeps most runs from
 /// twisting at all, so this is the setting that shows what the repair does on a twisted GCS.
@@ -395,7 +396,7 @@ int main(int argc, char** argv) {
   bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
   bool resolve_crossings = true;  // ReconstructOptions::resolve_self_intersections
   bool skip_unfaced = false;      // ReconstructOptions::skip_unfaced_samples
-  bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true;
+  bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true, quadric = false;
   double edge_per_thickness = 0;
   std::string only, cloud_path, explain_mesh;
   for (int i = 1; i < argc; ++i) {
@@ -422,6 +423,7 @@ int main(int argc, char** argv) {
     else if (a == "--edge-per-thickness") edge_per_thickness = std::stod(next());
     else if (a == "--retest-all") retest_all = true;
     else if (a == "--no-orient-winners") orient_winners = false;
+    else if (a == "--quadric-normals") quadric = true;
     else if (a == "--cloud") cloud_path = next();
     else if (a == "--explain") explain = std::stoi(next());
     else if (a == "--only-repair") only_repair = true;
@@ -517,6 +519,7 @@ int main(int argc, char** argv) {
       ro.target_vertices = case_vertices;
       ro.seed = seed;
       ro.orient_winners = orient_winners;
+      ro.quadric_normals = quadric;
       ro.project_to_samples = ro.fit_surface = post;
       ro.resolve_self_intersections = resolve_crossings;
       ro.skip_unfaced_samples = skip_unfaced;

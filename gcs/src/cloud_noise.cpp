@@ -12,6 +12,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
+#include "detail/local_quadric.h"
 
 namespace gcs {
 
@@ -20,17 +21,21 @@ using edgefront::PointCloud;
 using edgefront::PointIndex;
 using edgefront::Vec3;
 
+using detail::LocalQuadric;
+using detail::QuadricFitter;
+
 namespace {
 
 constexpr std::size_t kMinNeighbours = 8;
 constexpr std::size_t kMaxNeighbours = 256;
-constexpr double kSameSideCos = 0.5;  // neighbours' normals within 60 degrees
 // estimate_noise looks at a cloud of more than this many times max_points in patches.
 constexpr std::size_t kPatchesAbove = 4;
 // The quadric's misfit to a clean surface grows with the neighbourhood: with twice the neighbours
 // its square is at least this many times larger (8 for a smooth surface evenly sampled; 4.2-12 on
 // CGAL's scanned models' vertex sets, median residuals at 10 and 20 neighbours), while noise stays.
 constexpr double kMisfitGrowth = 4;
+
+Eigen::Vector3d eig(const Vec3& p) { return {p[0], p[1], p[2]}; }
 
 void check_cloud(const PointCloud& cloud, const char* who) {
   if (cloud.size() < kMinNeighbours)
@@ -51,110 +56,6 @@ void check_neighbours(std::size_t k, const char* who) {
     throw InvalidInput(std::string(who) + ": neighbours must be in [" + std::to_string(kMinNeighbours) + ", " +
                        std::to_string(kMaxNeighbours) + "] (got " + std::to_string(k) + ")");
 }
-
-// The quadric z = a x^2 + b xy + c y^2 + d x + e y + f fitted to a point's neighbours, in the frame
-// (origin, u, v, n) of their principal axes.
-struct LocalQuadric {
-  Eigen::Vector3d origin, u, v, n;
-  Eigen::Matrix<double, 6, 1> coef;
-  double residual = 0;  // standard deviation of the heights around the fit (6 parameters corrected)
-
-  double height(double x, double y) const {
-    return coef[0] * x * x + coef[1] * x * y + coef[2] * y * y + coef[3] * x + coef[4] * y + coef[5];
-  }
-};
-
-Eigen::Vector3d eig(const Vec3& p) { return {p[0], p[1], p[2]}; }
-
-class QuadricFitter {
- public:
-  explicit QuadricFitter(const PointCloud& cloud) : cloud_(cloud), index_(cloud.points), normals_(cloud.has_normals()) {}
-
-  const PointIndex& index() const { return index_; }
-
-  // Fits to point i's k nearest neighbours (on its side). False when the neighbourhood is too small
-  // or degenerate.
-  bool fit(std::size_t i, std::size_t k, LocalQuadric& q) {
-    gather(i, k, k);
-    if (normals_ && pts_.size() < k) gather(i, 2 * k, k);  // the other wall took some places
-    return fit_gathered(q);
-  }
-
-  // The same, with the neighbours taken among `candidates` (the nearest points of a point close
-  // to i: one k-d tree query serves the points around it); fewer than k of them on i's side: fit().
-  bool fit_from(std::size_t i, std::size_t k, const std::vector<PointIndex::Neighbor>& candidates, LocalQuadric& q) {
-    near_.clear();
-    for (const PointIndex::Neighbor& h : candidates) {
-      if (normals_ && (cloud_.normals[h.index] | cloud_.normals[i]) < kSameSideCos) continue;
-      near_.push_back({h.index, (cloud_.points[h.index] - cloud_.points[i]).sqrnorm()});
-    }
-    if (near_.size() < k) return fit(i, k, q);  // e.g. the other wall of a thin shell in the cell
-    std::nth_element(near_.begin(), near_.begin() + static_cast<std::ptrdiff_t>(k), near_.end(),
-                     [](const PointIndex::Neighbor& a, const PointIndex::Neighbor& b) {
-                       return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
-                     });
-    pts_.clear();
-    for (std::size_t j = 0; j < k; ++j) pts_.push_back(eig(cloud_.points[near_[j].index]));
-    return fit_gathered(q);
-  }
-
- private:
-  bool fit_gathered(LocalQuadric& q) {
-    const std::size_t m = pts_.size();
-    if (m < kMinNeighbours) return false;
-    q.origin.setZero();
-    for (const Eigen::Vector3d& p : pts_) q.origin += p;
-    q.origin /= static_cast<double>(m);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Eigen::Vector3d& p : pts_) cov += (p - q.origin) * (p - q.origin).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
-    const Eigen::Vector3d ev = es.eigenvalues();  // ascending
-    if (!(ev[1] > 1e-12 * ev[2])) return false;    // collinear or coincident neighbours
-    q.n = es.eigenvectors().col(0);
-    q.v = es.eigenvectors().col(1);
-    q.u = es.eigenvectors().col(2);
-    // Least squares by the normal equations, in coordinates scaled to the neighbourhood's extent
-    // (well conditioned: every entry of a row is at most about 1).
-    const double scale = 1.0 / std::sqrt(ev[2] / static_cast<double>(m));
-    Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> atb = Eigen::Matrix<double, 6, 1>::Zero(), row;
-    double btb = 0;
-    for (const Eigen::Vector3d& p : pts_) {
-      const Eigen::Vector3d d = (p - q.origin) * scale;
-      const double x = d.dot(q.u), y = d.dot(q.v), z = d.dot(q.n);
-      row << x * x, x * y, y * y, x, y, 1;
-      ata.selfadjointView<Eigen::Lower>().rankUpdate(row);
-      atb += z * row;
-      btb += z * z;
-    }
-    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(ata.selfadjointView<Eigen::Lower>());
-    if (ldlt.info() != Eigen::Success) return false;
-    Eigen::Matrix<double, 6, 1> c = ldlt.solve(atb);
-    if (!c.allFinite()) return false;
-    const double ss = std::max(0.0, btb - c.dot(atb)) / (scale * scale);
-    // Back to unscaled coordinates: z = s z', x' = s x.
-    q.coef << c[0] * scale, c[1] * scale, c[2] * scale, c[3], c[4], c[5] / scale;
-    q.residual = std::sqrt(ss / static_cast<double>(m - 6));
-    return std::isfinite(q.residual);
-  }
-
-  void gather(std::size_t i, std::size_t query, std::size_t k) {
-    index_.k_nearest(cloud_.points[i], query, hits_);
-    pts_.clear();
-    for (const PointIndex::Neighbor& h : hits_) {
-      if (pts_.size() == k) break;
-      if (normals_ && (cloud_.normals[h.index] | cloud_.normals[i]) < kSameSideCos) continue;
-      pts_.push_back(eig(cloud_.points[h.index]));
-    }
-  }
-
-  const PointCloud& cloud_;
-  PointIndex index_;
-  bool normals_;
-  std::vector<PointIndex::Neighbor> hits_;
-  std::vector<PointIndex::Neighbor> near_;
-  std::vector<Eigen::Vector3d> pts_;
-};
 
 double median(std::vector<double>& v) {
   if (v.empty()) return 0;

@@ -166,19 +166,26 @@ double normal_flux(const std::vector<Vec3>& points, const std::vector<Vec3>& nor
 }
 
 bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::vector<Vec3>& normals,
-                    std::size_t k) {
+                    std::size_t k, const std::vector<double>* noise, bool refined) {
   const std::size_t n = points.size();
   EF_CHECK(normals.size() == n && index.size() == n, "orient_normals: sizes differ");
+  EF_CHECK(!noise || noise->size() == n, "orient_normals: noise and points differ in size");
+  const auto noise2 = [&](std::size_t i) {
+    const double s = noise ? (*noise)[i] : 0.0;
+    return std::isfinite(s) ? s * s : 0.0;
+  };
   const auto usable = [&](std::size_t i) { return std::isfinite(normals[i][0]) && normals[i].sqrnorm() > 0; };
   // The k-nearest-neighbour graph made symmetric (CSR): a point that is among another's k nearest
   // is linked both ways, so one far from everybody's list is still reached.
   std::vector<edgefront::PointIndex::Neighbor> knn;
   std::vector<std::vector<std::size_t>> adj(n);
   std::size_t total = 0;
+  std::vector<double> reach2(n, 0);  // squared distance from a usable point to its k-th neighbour
   for (std::size_t i = 0; i < n; ++i) {
     if (!usable(i)) continue;
     ++total;
     index.k_nearest(points[i], k + 1, knn);
+    reach2[i] = knn.empty() ? 0.0 : knn.back().distance2;
     for (const auto& nb : knn) {
       if (nb.index == i || !usable(nb.index)) continue;
       adj[i].push_back(nb.index);
@@ -188,24 +195,55 @@ bool orient_normals(const std::vector<Vec3>& points, const edgefront::PointIndex
   std::size_t seed = 0;
   while (seed < n && !usable(seed)) ++seed;
   if (seed == n) return false;
-  // Prim's spanning tree, cheapest edge = most parallel normals; each point takes the sign that
-  // agrees with the point it was reached from. Ties by index.
-  using Item = std::tuple<double, std::size_t, std::size_t>;  // (1 - |cos|, to, from)
+  // How well normal j, carried to point i, agrees with normal i: n_i . R n_j with R the reflection
+  // in the plane that bisects the chord from p_i to p_j. On a surface that bends evenly between
+  // the two points (an arc, a crease, the two walls of a thin shell) the reflection takes the one
+  // consistently oriented normal into the other, so agree() is near +1 for a consistent pair and
+  // near -1 for an inconsistent one, however far the normals turn; along a flat surface (chord in
+  // the tangent plane) it is n_i . n_j (Hoppe's criterion). Noise: two points a little apart along
+  // the normal are not two walls, so the reflection term is damped by the points' noise (the chord
+  // counts as kNoiseChord noise deviations longer); coincident points: n_i . n_j.
+  constexpr double kNoiseChord = 3;
+  const auto agree = [&](std::size_t i, std::size_t j) {
+    const Vec3 d = points[j] - points[i];
+    const double l2 = d.sqrnorm() + kNoiseChord * kNoiseChord * (noise2(i) + noise2(j));
+    const double c = normals[i] | normals[j];
+    return refined && l2 > 0 ? c - 2 * (normals[i] | d) * (normals[j] | d) / l2 : c;
+  };
+  // Prim's spanning tree, cheapest edge = best agreement either way; each point takes the sign
+  // that agrees with the point it was reached from. Ties by index.
+  using Item = std::tuple<double, std::size_t, std::size_t>;  // (1 - |agree|, to, from)
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
   std::vector<char> done(n, 0);
   std::size_t reached = 0;
   queue.emplace(0.0, seed, seed);
-  while (!queue.empty()) {
-    const auto [cost, i, from] = queue.top();
-    queue.pop();
-    if (done[i]) continue;
-    done[i] = 1;
-    ++reached;
-    if ((normals[i] | normals[from]) < 0) normals[i] = -normals[i];
-    for (const std::size_t j : adj[i])
-      if (!done[j]) queue.emplace(1.0 - std::abs(normals[i] | normals[j]), j, i);
+  // Usable points that the graph leaves apart (islands that undefined normals cut off, a small
+  // densely sampled detail whose k nearest are all its own) are linked to reached points among
+  // their 4(k + 1) nearest, then 8(k + 1), then 16(k + 1), by links at most kLinkReach times as
+  // long as the reached point's distance to its k-th neighbour: a part of the cloud that lies
+  // farther apart (the inner sphere of nested spheres) stays apart.
+  constexpr double kLinkReach = 4;
+  for (std::size_t wide = 4 * (k + 1);; wide *= 2) {
+    while (!queue.empty()) {
+      const auto [cost, i, from] = queue.top();
+      queue.pop();
+      if (done[i]) continue;
+      done[i] = 1;
+      ++reached;
+      if (agree(i, from) < 0) normals[i] = -normals[i];
+      for (const std::size_t j : adj[i])
+        if (!done[j]) queue.emplace(1.0 - std::abs(agree(i, j)), j, i);
+    }
+    if (!refined || reached == total || wide > 16 * (k + 1) || wide / 2 >= n) break;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (done[i] || !usable(i)) continue;
+      index.k_nearest(points[i], wide, knn);
+      for (const auto& nb : knn)
+        if (done[nb.index] && usable(nb.index) && nb.distance2 <= kLinkReach * kLinkReach * reach2[nb.index])
+          queue.emplace(1.0 - std::abs(agree(i, nb.index)), i, nb.index);
+    }
   }
-  if (reached != total) return false;  // the graph falls apart: no one orientation
+  if (reached != total) return false;  // parts lying apart: no one orientation
   // Global sign: outward (sum of n.(p - c) > 0, which is 3 x the volume for a closed surface);
   // when that sum is small (an open, nearly flat sheet) the normals point along the positive side
   // of the cloud's thinnest principal axis (its largest coordinate positive).

@@ -32,6 +32,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
 #include "gcs/cloud_noise.h"
+#include "gcs/cloud_normals.h"
 #include "twist/repair.h"
 
 namespace gcs {
@@ -217,6 +218,7 @@ struct Reconstructor::Impl {
   // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
   double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
+  std::vector<double> fitted_residual;  // with quadric_normals: their fits' residuals (orient_normals' noise)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
   bool encloses = false;  // oriented, and the oriented normals point outward as around a volume
   std::vector<Vec3> oriented_fitted;  // without input normals: the fitted normals, oriented
@@ -349,7 +351,8 @@ struct Reconstructor::Impl {
     if (opt.orient_winners && !cloud.has_normals()) {
       for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
       oriented_fitted = fitted_normal;
-      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted);
+      oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8,
+                                        opt.quadric_normals ? &fitted_residual : nullptr, opt.quadric_normals);
     }
     if (oriented) {
       encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
@@ -493,11 +496,17 @@ struct Reconstructor::Impl {
     return n ? sum / static_cast<double>(n) : bbox_diagonal * 0.1;
   }
 
-  // The input normal of point i, or (without input normals) the normal of a plane fitted to its
-  // 20 nearest points, computed once on first use; NaN where the neighbourhood is not flat. (A
-  // cloud without normals is never subsampled: the tree indices are cloud indices here.)
+  // The input normal of point i, or (without input normals) its fitted normal: with
+  // quadric_normals fit_normals' (cloud_normals.h), all fitted on first use; else the normal of a
+  // plane fitted to its 20 nearest points, computed once on first use, NaN where the neighbourhood
+  // is not flat. Either is unsigned, NaN where undefined. (A cloud without normals is never
+  // subsampled: the tree indices are cloud indices here.)
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
+    if (opt.quadric_normals) {
+      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
+      return fitted_normal[i];
+    }
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
     Vec3& n = fitted_normal[i];
     if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;

@@ -107,10 +107,21 @@ struct ReconstructOptions {
   /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
   /// nearest), and faces that face against the nearest sample's normal are removed with the
   /// unsupported ones. The samples' normals are the input normals; without them, normals fitted to
-  /// each point's 20 neighbours and oriented consistently over the neighbour graph (outward, or for
-  /// a nearly flat open cloud along the positive side of its thinnest axis); not used when that
-  /// graph is not connected.
+  /// each point's neighbours (see quadric_normals) and oriented consistently over the neighbour
+  /// graph (outward, or for a nearly flat open cloud along the positive side of its thinnest
+  /// axis); not used when that graph is not connected.
   bool orient_winners = true;
+  /// Without input normals: fit them by gcs::fit_normals (a quadric's normal at the point, defined
+  /// wherever the surface has one at the sampling scale; cloud_normals.h) and orient them with the
+  /// reflection agreement and island links (detail::orient_normals refined). Off by default: the
+  /// plane through each point's 20 nearest, NaN unless its smallest eigenvalue is < 5% of the
+  /// middle one, oriented by Hoppe's criterion. Measured (bench/results/gcs.md, session 13
+  /// gcsnormals): the normals are far better (CGAL's models' vertex sets: 86-100% within 30 degrees
+  /// of the truth, 0-7% NaN, against 9-96% and 4-91%), and kitten.xyz without normals, the nested
+  /// spheres and the synthetic vault shells without normals reconstruct better with them; but on
+  /// CGAL's models the loop's border tests (the normal gate, the film test), which the undefined
+  /// normals used to switch off, then open 3-41 border loops where the default leaves 0-3.
+  bool quadric_normals = false;
   /// With orient_winners and input normals: the winner is the nearest vertex facing the sample's
   /// side among its 32 nearest (within four grid cells, about four mean edges, of the nearest)
   /// instead of 8 (two cells), and a sample none of them faces is skipped (no winner, no move, no

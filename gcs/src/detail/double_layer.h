@@ -85,7 +85,17 @@ double normal_flux(const std::vector<edgefront::Vec3>& points, const std::vector
 /// give (an open, nearly flat sheet), along the positive side of the thinnest principal axis.
 /// Normals with a NaN or zero are left alone and skipped. Returns false (normals then partly
 /// flipped, not to be used) when the graph does not connect all usable points.
+/// The sign carried along an edge is the one that makes the two normals mirror images in the plane
+/// bisecting the edge (see agree() in the source): across a crease or between the two walls of a
+/// thin shell this is right where Hoppe's n_i . n_j is not. `noise` (optional, per point: the
+/// standard deviation of the points' heights around their fitted surface, as fit_normals gives)
+/// keeps noise along the normal from reading as two walls. Points that the k-nearest graph leaves
+/// apart (islands cut off by undefined normals, a small densely sampled detail) are linked by
+/// wider searches to points up to 4 times those points' k-th-neighbour distance away.
+/// `refined` false: neither (Hoppe's n_i . n_j, the k-nearest graph as it is; the reconstructor
+/// with ReconstructOptions::quadric_normals off).
 bool orient_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
-                    std::vector<edgefront::Vec3>& normals, std::size_t k = 8);
+                    std::vector<edgefront::Vec3>& normals, std::size_t k = 8,
+                    const std::vector<double>* noise = nullptr, bool refined = true);
 
 }  // namespace gcs::detail
