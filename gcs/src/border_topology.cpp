@@ -160,6 +160,22 @@ struct Strip {
   size_t nA = 0, nB = 0;
 };
 
+// Adds the faces in order; when OpenMesh refuses one, removes those added and returns false (the
+// mesh is then as before, up to the deleted faces' garbage).
+bool add_all_or_none(Mesh& mesh, const std::vector<std::array<VertexHandle, 3>>& faces) {
+  std::vector<FaceHandle> added;
+  const MuteOpenMeshErrors mute;  // a refused face is handled here, not printed
+  for (const auto& t : faces) {
+    const FaceHandle f = mesh.add_face(t[0], t[1], t[2]);
+    if (!f.is_valid()) {
+      for (auto g : added) mesh.delete_face(g, false);
+      return false;
+    }
+    added.push_back(f);
+  }
+  return true;
+}
+
 // Plans the zipper triangles of a strip (advancing on the side whose next diagonal is shorter),
 // checks that every triangle is non-degenerate, lies within `max_support_distance` of the cloud and
 // that the triangles agree with the faces they border (mean cosine >= min_normal_agreement), then
@@ -202,17 +218,9 @@ bool zip_strip(Mesh& mesh, const CloudQuery& cloud, const Strip& st, double max_
     if (cloud(c).distance > max_support_distance) return false;
   }
   if (agreement / static_cast<double>(plan.size()) < min_normal_agreement) return false;
-  std::vector<FaceHandle> added;
-  const MuteOpenMeshErrors mute;  // a refused face is handled below, not printed
-  for (const Tri& t : plan) {
-    const FaceHandle f = mesh.add_face(t.a, t.b, t.c);
-    if (!f.is_valid()) {
-      for (auto g : added) mesh.delete_face(g, false);
-      return false;
-    }
-    added.push_back(f);
-  }
-  return true;
+  std::vector<std::array<VertexHandle, 3>> faces;
+  for (const Tri& t : plan) faces.push_back({t.a, t.b, t.c});
+  return add_all_or_none(mesh, faces);
 }
 
 }  // namespace
@@ -641,17 +649,9 @@ bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop,
     }
   }
   if (!(agreement > 0)) return false;
-  std::vector<FaceHandle> added;
-  const MuteOpenMeshErrors mute;
-  for (const auto& t : tris) {
-    const FaceHandle f = mesh.add_face(loop.vertices[t[0]], loop.vertices[t[1]], loop.vertices[t[2]]);
-    if (!f.is_valid()) {
-      for (auto g : added) mesh.delete_face(g, false);
-      return false;
-    }
-    added.push_back(f);
-  }
-  return true;
+  std::vector<std::array<VertexHandle, 3>> faces;
+  for (const auto& t : tris) faces.push_back({loop.vertices[t[0]], loop.vertices[t[1]], loop.vertices[t[2]]});
+  return add_all_or_none(mesh, faces);
 }
 
 }  // namespace
