@@ -51,18 +51,14 @@
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
+#include "bench_timing.h"
 
 namespace {
 
 using edgefront::Mesh;
 using edgefront::Vec3;
 
-// CPU time of this thread (the machine is shared: wall times are inflated by other jobs).
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using efbench::cpu_seconds;
 
 double g_last_cpu = 0;  // CPU seconds of the last run()
 int g_smoothing = -1;   // --smoothing K: smoothing passes per basic step (-1: the default)

@@ -38,17 +38,14 @@
 #include "edgefront/shapes.h"
 #include "gcs/cloud_noise.h"
 #include "gcs/cloud_normals.h"
+#include "bench_timing.h"
 
 namespace {
 
 using edgefront::PointIndex;
 using edgefront::Vec3;
 
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using efbench::cpu_seconds;
 
 // The reconstructor's fit before gcsnormals (reconstructor.cpp point_normal at main 84332ad).
 std::vector<Vec3> old_normals(const std::vector<Vec3>& pts, const PointIndex& index) {

@@ -100,8 +100,7 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
     for (auto v : touched) {
       if (mesh.status(v).deleted()) continue;
       const int c = labels.vertex_component[static_cast<size_t>(v.idx())];
-      if (c >= 0 && static_cast<double>(faces[static_cast<size_t>(c)]) < params.split_fraction * largest)
-      {
+      if (c >= 0 && static_cast<double>(faces[static_cast<size_t>(c)]) < params.split_fraction * largest) {
         split[static_cast<size_t>(c)] = 1;
         any = true;
       }

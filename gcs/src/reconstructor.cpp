@@ -544,7 +544,7 @@ struct Reconstructor::Impl {
   }
 
   // The part of the searched cloud (detail::cloud_parts) that tree point k lies on; the parts
-  // are found on the first call (only a pass that would remove a cut-off piece asks).
+  // are found on the first call (only a pass that would remove a piece asks).
   std::vector<int> query_parts;
   int query_point_part(size_t k) {
     if (query_parts.empty()) query_parts = detail::cloud_parts(*query_points, *tree);
@@ -1209,7 +1209,9 @@ struct Reconstructor::Impl {
       bp.min_component_faces = 8;
       bp.normal_check_distance = normal_gate * ell;
       bp.film_samples = encloses ? opt.film_samples : 0;
-      bp.sample_part = [this](size_t k) { return query_point_part(k); };
+      // Both removals spare a piece lying on a part of the cloud of its own (a separate surface).
+      const auto sample_part = [this](size_t k) { return query_point_part(k); };
+      bp.sample_part = sample_part;
       // The support test's nearest sample per face goes on to the opposed-face test (same
       // centroids: nothing moves in between), with the sample's oriented normal.
       detail::FaceNearest nearest;
@@ -1225,9 +1227,7 @@ struct Reconstructor::Impl {
           if (hit.index != detail::CloudHit::kNoSample) hit.normal = query_oriented_normal(hit.index);
         }
         tally(faces_removed,
-              detail::remove_opposed_faces(mesh, nearest,
-                                           {.max_distance = support,
-                                            .sample_part = [this](size_t k) { return query_point_part(k); }}));
+              detail::remove_opposed_faces(mesh, nearest, {.max_distance = support, .sample_part = sample_part}));
       }
     }
     if (opt.merge_borders) {

@@ -12,9 +12,10 @@
 /// changes are on). Topology (neural-mesh style, Ivrissimtzis et al. 2004): triangles that no
 /// sample supports and overlong edges are removed, creating borders; two border loops that are
 /// close, of similar length and orientation-compatible are joined by a strip of triangles,
-/// creating a handle (optionally, slits within one loop are zipped the same way); border loops
-/// of at most 8 vertices whose fan would lie on the samples are closed, and so are slits of up to 64 vertices whose zipping strip would lie on the samples (see
-/// ReconstructOptions).
+/// creating a handle (optionally, slits within one loop are zipped the same way); border loops of
+/// at most 8 vertices whose fan would lie on the samples are closed, and so are slits of up to 64
+/// vertices whose zipping strip would lie on the samples (see ReconstructOptions). A piece lying on
+/// a part of the cloud of its own is a separate surface, not debris, and is not removed as such.
 ///
 /// After each batch of splits the registered Operations (operation.h) are called with the
 /// elements changed since their last call; the loop then re-synchronizes its own state.

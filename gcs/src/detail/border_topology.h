@@ -158,8 +158,8 @@ std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std
                              double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
 
 /// Closes small holes one at a time, each on a copy of the mesh that is kept only when `accept`
-/// (called with the copy, which it may change) returns true, e.g. when the fill crosses nothing. A border loop of 3 ...
-/// max_vertices distinct vertices is first tried with the fan of fill_small_holes (same checks);
+/// (called with the copy, which it may change) returns true, e.g. when the fill crosses nothing.
+/// A border loop of 3 ... max_vertices distinct vertices is first tried with the fan of fill_small_holes (same checks);
 /// when that is refused or not accepted and the loop passes through a vertex flagged in
 /// `triangulate_at` (indexed by vertex index; may be shorter than the vertex array: unflagged),
 /// it is tried with the triangulation of least area over its own vertices (no new vertex, no
