@@ -13,9 +13,9 @@
 /// reached) and colors: a colormap over [0, largest finite distance] with dark isoline
 /// bands every 1/20 of that range, grey where not reached (for MeshLab and similar viewers). A
 /// one-line summary (method, time, reached vertices, peak front, stop reason) goes to stderr.
-/// --method windows is the MDF with per-edge windows (DistanceOptions::windows): near-exact
+/// --method windows is the MDF with per-edge windows (DistanceMethod::Windows): near-exact
 /// distances from vertices and points at about 3-4x the time of the default. --method fast is
-/// the MDF's fast mode (DistanceOptions::fast): about 2x the time of --method dijkstra, errors a
+/// the MDF's fast mode (DistanceMethod::Fast): about 2x the time of --method dijkstra, errors a
 /// few times those of the default (vertices and points only). --point takes every method but
 /// dijkstra; --loop only mdf and dijkstra.
 /// --max-distance takes a non-negative number or "inf" (the default).
@@ -183,10 +183,6 @@ int main(int argc, char** argv) {
     if (source_text.empty() && loop_text.empty() && point_texts.empty()) {
       throw edgefront::apps::AppUsageError("one of --source, --loop or --point is required");
     }
-    if (!point_texts.empty() && method == "dijkstra") {
-      throw edgefront::apps::AppUsageError(
-          "--point needs --method mdf, windows or fast (Dijkstra runs from vertices and loops)");
-    }
     if (!loop_text.empty() && (method == "windows" || method == "fast")) {
       throw edgefront::apps::AppUsageError("--method " + method + " takes --source or --point, not --loop");
     }
@@ -206,8 +202,7 @@ int main(int argc, char** argv) {
     edgefront::DistanceOptions options;
     options.max_distance = max_distance;
     options.directions = false;
-    options.windows = method == "windows";
-    options.fast = method == "fast";
+    options.method = edgefront::parse_distance_method(method);
     edgefront::FrontSource source;
     std::vector<edgefront::SurfacePoint> points;
     if (!source_text.empty()) {
@@ -224,9 +219,8 @@ int main(int argc, char** argv) {
 
     const auto t0 = std::chrono::steady_clock::now();
     const edgefront::DistanceField field =
-        method == "dijkstra"  ? edgefront::dijkstra_distance(mesh, source, options)
-        : points.empty()      ? edgefront::geodesic_distance(mesh, source, options)
-                              : edgefront::geodesic_distance(mesh, points, options);
+        points.empty() ? edgefront::geodesic_distance(mesh, source, options)
+                       : edgefront::geodesic_distance(mesh, points, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EF_CHECK(field.distance.size() == n, "the distance field does not have one value per vertex");
 

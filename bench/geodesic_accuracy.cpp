@@ -21,8 +21,8 @@
 // cylinders and cones (made by cgal_geodesic_reference from the meshes that --write-shapes writes)
 // are compared too, and against the closed form.
 //
-// --fast runs the MDF with DistanceOptions::fast (the "MDF" columns are then the fast mode);
-// --windows with DistanceOptions::windows.
+// --fast runs the MDF with DistanceMethod::Fast (the "MDF" columns are then the fast mode);
+// --windows with DistanceMethod::Windows.
 //
 // Output: markdown on stdout. Exit codes: 0 done (targets missed are reported, not fatal),
 // 1 error, 2 usage.
@@ -56,6 +56,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using edgefront::DistanceField;
+using edgefront::DistanceMethod;
 using edgefront::DistanceOptions;
 using edgefront::FrontSource;
 using edgefront::Mesh;
@@ -244,15 +245,15 @@ struct Timed {
   double seconds = 0;
 };
 
-// --windows: the MDF runs with DistanceOptions::windows; --fast: with DistanceOptions::fast.
+// --windows: DistanceMethod::Windows; --fast: DistanceMethod::Fast.
 bool g_windows = false;
 bool g_fast = false;
 
 Timed run_mdf(const Mesh& mesh, int source, const DistanceOptions& options = {}) {
   const auto t0 = std::chrono::steady_clock::now();
   DistanceOptions o = options;
-  o.windows = o.windows || g_windows;
-  o.fast = o.fast || g_fast;
+  if (g_windows) o.method = DistanceMethod::Windows;
+  if (g_fast) o.method = DistanceMethod::Fast;
   DistanceField f = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(source)), o);
   return {std::move(f), seconds_since(t0)};
 }
@@ -285,8 +286,7 @@ SymmetryStats symmetry(const Mesh& mesh, int pairs, std::uint64_t seed) {
     while (b == a) b = usable[rng() % usable.size()];
     DistanceOptions o;
     o.directions = false;
-    o.windows = g_windows;
-    o.fast = g_fast;
+    o.method = g_fast ? DistanceMethod::Fast : g_windows ? DistanceMethod::Windows : DistanceMethod::Mdf;
     o.target = VertexHandle(b);
     const double dab = edgefront::geodesic_distance(mesh, FrontSource::vertex(VertexHandle(a)), o)
                            .distance[static_cast<size_t>(b)];

@@ -11,7 +11,7 @@
 //    with default options (directions on) and with directions off, and with the edge front not
 //    tracked (DistanceOptions::track_front off, directions on). Also a sanity check of the
 //    MDF's values: Euclidean <= MDF <= Dijkstra (up to 1e-9 relative). And the fast mode
-//    (DistanceOptions::fast, directions on): time, ratio to Dijkstra, the same bounds, and its mean
+//    (DistanceMethod::Fast, directions on): time, ratio to Dijkstra, the same bounds, and its mean
 //    relative difference from the default MDF.
 // 2. d_max queries: the same query (source at the centre vertex, d_max D, default 0.5) on a
 //    planar grid of SMALL x SMALL cells (default 100) and one of LARGE x LARGE cells (default
@@ -21,7 +21,7 @@
 //    counted), time of the first query and mean time of Q repeated queries (default 200). For
 //    contrast, the free functions geodesic_distance and dijkstra_distance with max_distance.
 //
-// --windows: the MDF runs with DistanceOptions::windows (windows per edge).
+// --windows: the MDF runs with DistanceMethod::Windows (windows per edge).
 // --fast-only: part 1 times only the fast mode and Dijkstra (directions on), by thread CPU time
 //    (medians of 2R runs each per source, the order rotated every repetition): Dijkstra over the
 //    mesh's halfedges, the GeodesicRingTable's build, the fast mode on the table, Dijkstra on the
@@ -197,7 +197,7 @@ struct Args {
   int queries = 200;
   bool full = true;
   bool dmax_part = true;
-  bool windows = false;  // --windows: the MDF with DistanceOptions::windows
+  bool windows = false;  // --windows: DistanceMethod::Windows
   bool fast_only = false;  // --fast-only: part 1 times only Dijkstra and the fast mode
 };
 
@@ -252,12 +252,11 @@ void full_field(const Args& a) {
     const FrontSource src = FrontSource::vertex(VertexHandle(s));
     DistanceOptions with_dir, no_dir;
     no_dir.directions = false;
-    with_dir.windows = no_dir.windows = a.windows;
+    with_dir.method = no_dir.method = a.windows ? edgefront::DistanceMethod::Windows : edgefront::DistanceMethod::Mdf;
     DistanceOptions untracked = with_dir;
     untracked.track_front = false;
     DistanceOptions fast = with_dir;
-    fast.fast = true;
-    fast.windows = false;
+    fast.method = edgefront::DistanceMethod::Fast;
     std::vector<double> td, tm, tdn, tmn, tmu, tf, cd, cm;
     DistanceField mdf, dij, fst;
     for (int r = 0; r < a.reps; ++r) {
@@ -370,7 +369,7 @@ void full_field(const Args& a) {
             << min_cpu_mdf / min_cpu_dij << ".\n"
             << "With the edge front not tracked (`DistanceOptions::track_front = false`, directions on): "
             << std::setprecision(3) << mean_untracked << "; the same distances: " << (untracked_same ? "yes" : "**NO**")
-            << ".\nFast mode (`DistanceOptions::fast`, directions on) / Dijkstra: **" << std::setprecision(3) << mean_fast
+            << ".\nFast mode (`DistanceMethod::Fast`, directions on) / Dijkstra: **" << std::setprecision(3) << mean_fast
             << "**.\n";
 }
 
@@ -379,7 +378,7 @@ void full_field(const Args& a) {
 void fast_only(const Mesh& mesh, const std::vector<int>& sources, const Args& a) {
   const size_t n = mesh.n_vertices();
   DistanceOptions dij_opt, fast_opt;
-  fast_opt.fast = true;
+  fast_opt.method = edgefront::DistanceMethod::Fast;
   // The five runs: Dijkstra over the mesh's halfedges, the ring table's build, the fast mode on it,
   // Dijkstra on it, and the per-call fast mode (build + query).
   enum { kDij, kBuild, kQuery, kTableDij, kPerCall, kRuns };
@@ -387,7 +386,7 @@ void fast_only(const Mesh& mesh, const std::vector<int>& sources, const Args& a)
             << " runs each, their order rotated every repetition. Dijkstra: binary heap over the mesh's "
                "halfedges (`dijkstra_distance`); table: `GeodesicRingTable` build; query: the fast mode on the "
                "table; table Dijkstra: `dijkstra_distance(mesh, table, ...)`; per call: `geodesic_distance(mesh, "
-               "source, {.fast = true})` (build + query).\n\n"
+               "source, {.method = DistanceMethod::Fast})` (build + query).\n\n"
             << "| source | Dijkstra | table build | query | table Dijkstra | per call | build / Dijkstra | **query / "
                "table Dijkstra** | query / Dijkstra | table Dijkstra / Dijkstra | per call / Dijkstra | fast: below "
                "Euclidean / above Dijkstra | query = per call |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -522,7 +521,7 @@ void dmax_queries(const Args& a) {
 
   DistanceOptions opt;
   opt.max_distance = a.dmax;
-  opt.windows = a.windows;
+  if (a.windows) opt.method = edgefront::DistanceMethod::Windows;
   // First query on each grid, with a callback that checks distances against the Euclidean ones.
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# scripts/main.sh: THE main-job command. Installs missing dependencies and builds Release into
-# build/ (scripts/setup.sh; extra arguments go to it), then runs the main job: run_main_job below.
+# scripts/main.sh: THE main-job command. Installs missing dependencies, configures Release in
+# build/ and builds only what the main job needs (scripts/setup.sh --target gcs-reconstruct; extra
+# arguments go to it), then runs the main job: run_main_job below.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -30,7 +31,7 @@ run_main_job() {
 }
 # ---------------------------------------------------------------------------------------------
 
-"$ROOT/scripts/setup.sh" "$@"
+"$ROOT/scripts/setup.sh" --target gcs-reconstruct "$@"
 mkdir -p out
 run_main_job
 echo "main: done"

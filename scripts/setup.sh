@@ -7,6 +7,7 @@
 #   scripts/setup.sh --with-cgal           also install libcgal-dev (only the cgal_* benchmarks use it)
 #   scripts/setup.sh --deps-only           install the packages, do not build
 #   scripts/setup.sh -DEDGEFRONT_WERROR=ON extra -D options are passed to the cmake configure step
+#   scripts/setup.sh --target gcs-reconstruct   build only this target (and what it needs)
 #
 # Runs as root, or through sudo when not root (sudo is used only then). The build folder can be
 # moved with EDGEFRONT_BUILD_DIR (default: build).
@@ -23,16 +24,22 @@ CGAL_PACKAGES=(libcgal-dev)
 
 say() { printf 'setup: %s\n' "$*"; }
 die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
-usage() { sed -n '2,13s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }
+usage() { sed -n '2,14s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }
 
 with_cgal=0
 deps_only=0
 cmake_args=()
+targets=()
 while (($#)); do
   case $1 in
     --with-cgal) with_cgal=1 ;;
     --deps-only) deps_only=1 ;;
     -D?*) cmake_args+=("$1") ;;
+    --target)
+      (($# >= 2)) || die "--target needs a target name"
+      targets+=(--target "$2")
+      shift
+      ;;
     -h | --help) usage; exit 0 ;;
     *) die "unknown argument '$1' (see scripts/setup.sh --help)" ;;
   esac
@@ -91,6 +98,6 @@ install_missing_packages
 jobs=$(nproc 2>/dev/null || echo 2)
 say "configure: cmake -S . -B $BUILD_DIR -DCMAKE_BUILD_TYPE=Release ${cmake_args[*]}"
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}"
-say "build: cmake --build $BUILD_DIR -j$jobs"
-cmake --build "$BUILD_DIR" -j"$jobs"
+say "build: cmake --build $BUILD_DIR -j$jobs ${targets[*]}"
+cmake --build "$BUILD_DIR" -j"$jobs" "${targets[@]}"
 say "Release build ready in $BUILD_DIR/"

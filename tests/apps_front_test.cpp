@@ -302,11 +302,11 @@ TEST_F(AppsFrontTest, EfDistanceFromAVertexMatchesTheLibraryExactly) {
     EXPECT_NE(r.err.find(method + ", "), std::string::npos) << r.err;
     return std::make_pair(f, r.err);
   };
-  const auto [w, win_err] = mode_field("windows", {.windows = true});
+  const auto [w, win_err] = mode_field("windows", {.method = edgefront::DistanceMethod::Windows});
   EXPECT_NE(w, d);  // the two modes really differ on the torus
 
   // The fast mode also never goes below the straight distance and has no front.
-  const auto [f, fast_err] = mode_field("fast", {.fast = true});
+  const auto [f, fast_err] = mode_field("fast", {.method = edgefront::DistanceMethod::Fast});
   EXPECT_NE(f, e);  // not the edge paths
   for (size_t i = 0; i < f.size(); ++i) {
     EXPECT_GE(f[i], (mesh.point(VertexHandle(static_cast<int>(i))) - mesh.point(VertexHandle(7))).norm() * (1 - 1e-12)) << i;
@@ -440,10 +440,8 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
 edgefront::DistanceField library_field(const Mesh& mesh, const FrontSource& source, const std::string& method,
                                        edgefront::DistanceOptions options = {}) {
   options.directions = false;
-  options.windows = method == "windows";
-  options.fast = method == "fast";
-  return method == "dijkstra" ? edgefront::dijkstra_distance(mesh, source, options)
-                              : edgefront::geodesic_distance(mesh, source, options);
+  options.method = edgefront::parse_distance_method(method);
+  return edgefront::geodesic_distance(mesh, source, options);
 }
 
 // Every method: the library's field byte for byte, inf exactly on the other component, the
@@ -503,7 +501,7 @@ TEST_F(AppsFrontTest, EfDistanceEveryMethodOnTwoComponents) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(parse_distances(r.out),
               edgefront::geodesic_distance(torus, std::vector<edgefront::SurfacePoint>{p},
-                                           {.directions = false, .windows = method == "windows", .fast = method == "fast"})
+                                           {.directions = false, .method = edgefront::parse_distance_method(method)})
                   .distance)
         << method;
   }

@@ -141,7 +141,7 @@ TEST(GeodesicRingTable, ManyQueriesOnOneTable) {
     std::mt19937_64 rng(5);
     for (int trial = 0; trial < 6; ++trial) {
       const auto sources = eftest::random_vertices(mesh, rng, 1 + trial % 3);
-      DistanceOptions o{.fast = true};
+      DistanceOptions o{.method = DistanceMethod::Fast};
       if (trial == 1) o.max_distance = 0.5;
       if (trial == 2) o.target = sources.size() > 1 ? sources[1] : VertexHandle(7);
       if (trial == 3) o.directions = false;

@@ -40,8 +40,7 @@ struct Mode {
 };
 
 DistanceOptions with(DistanceOptions o, bool windows, bool fast) {
-  o.windows = windows;
-  o.fast = fast;
+  o.method = fast ? DistanceMethod::Fast : windows ? DistanceMethod::Windows : DistanceMethod::Mdf;
   return o;
 }
 
@@ -356,9 +355,9 @@ TEST(MdfRequirements, ReusedFrontMatchesFreshFieldsAcrossSourceKinds) {
       std::function<void()> reset;
       std::function<DistanceField()> fresh;
     };
-    const DistanceOptions plain{.windows = windows};
-    const DistanceOptions bounded{.max_distance = 0.4, .windows = windows};
-    const DistanceOptions targeted{.target = VertexHandle(60), .windows = windows};
+    const DistanceOptions plain{.method = windows ? DistanceMethod::Windows : DistanceMethod::Mdf};
+    const DistanceOptions bounded{.max_distance = 0.4, .method = plain.method};
+    const DistanceOptions targeted{.target = VertexHandle(60), .method = plain.method};
     const std::vector<Query> queries = {
         {[&] { front.reset(FrontSource::vertex(VertexHandle(60)), plain); },
          [&] { return geodesic_distance(mesh, FrontSource::vertex(VertexHandle(60)), plain); }},

@@ -144,7 +144,7 @@ TEST(Mdf, StraighterSecondSourcePassesASaddleUnbent) {
   const Mesh mesh = shapes::landscape(12, 1.0, 0.2, 6.0);
   for (const int s : {12, 61, 86, 98}) {
     const DistanceField f = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)));
-    const DistanceField w = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)), {.windows = true});
+    const DistanceField w = geodesic_distance(mesh, FrontSource::vertex(VertexHandle(s)), {.method = DistanceMethod::Windows});
     double worst = 0;
     for (VertexHandle v : mesh.vertices()) {
       if (v.idx() == s) continue;
@@ -583,9 +583,9 @@ void expect_reuse_gives_same_fields(const DistanceOptions& options) {
 
 TEST(Mdf, ReusedFrontGivesTheSameField) { expect_reuse_gives_same_fields({}); }
 
-// ---- DistanceOptions::windows: windows per edge (MMP/ICH) instead of one source per vertex ----
+// ---- DistanceMethod::Windows: windows per edge (MMP/ICH) instead of one source per vertex ----
 
-constexpr DistanceOptions kWindows{.windows = true};
+constexpr DistanceOptions kWindows{.method = DistanceMethod::Windows};
 
 TEST(MdfWindows, PlanarConvexRegionsAreExact) { expect_planar_exact(kWindows); }
 
@@ -723,9 +723,9 @@ TEST(MdfWindows, SphereAndSymmetry) {
   double sum = 0;
   for (int i = 0; i < 10; ++i) {
     const auto ab = eftest::random_vertices(mesh, rng, 2);
-    const double dab = geodesic_distance(mesh, FrontSource::vertex(ab[0]), {.target = ab[1], .windows = true})
+    const double dab = geodesic_distance(mesh, FrontSource::vertex(ab[0]), {.target = ab[1], .method = DistanceMethod::Windows})
                            .distance[ab[1].idx()];
-    const double dba = geodesic_distance(mesh, FrontSource::vertex(ab[1]), {.target = ab[0], .windows = true})
+    const double dba = geodesic_distance(mesh, FrontSource::vertex(ab[1]), {.target = ab[0], .method = DistanceMethod::Windows})
                            .distance[ab[0].idx()];
     sum += std::abs(dab - dba) / dab;
   }
@@ -738,7 +738,7 @@ TEST(MdfWindows, MaxDistanceAndTargetQueriesAreLocal) {
     const Mesh mesh = shapes::grid(shapes::GridOptions{.cells = cells, .half_size = cells / 20.0});
     const VertexHandle c = nearest_vertex(mesh, Vec3(0, 0, 0));
     MinimalDistanceFront front(mesh);
-    front.reset(FrontSource::vertex(c), DistanceOptions{.max_distance = 0.55, .windows = true});
+    front.reset(FrontSource::vertex(c), DistanceOptions{.max_distance = 0.55, .method = DistanceMethod::Windows});
     size_t settled = 0;
     front.set_settled_callback([&](VertexHandle v, double d, const Vec3&) {
       EXPECT_LE(d, 0.55);
@@ -753,7 +753,7 @@ TEST(MdfWindows, MaxDistanceAndTargetQueriesAreLocal) {
   EXPECT_GT(std::get<0>(small), 50u);
   const Mesh mesh = shapes::icosphere(3);
   const DistanceField t =
-      geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), {.target = VertexHandle(100), .windows = true});
+      geodesic_distance(mesh, FrontSource::vertex(VertexHandle(0)), {.target = VertexHandle(100), .method = DistanceMethod::Windows});
   EXPECT_EQ(t.stop, DistanceStop::TargetReached);
   EXPECT_EQ(t.order.back(), VertexHandle(100));
 }
@@ -790,9 +790,9 @@ TEST(MdfWindows, ReusedFrontAndLoopSource) {
 
 }  // namespace
 
-// ---- DistanceOptions::fast: one straight-line update per (settled vertex, neighbour) ----
+// ---- DistanceMethod::Fast: one straight-line update per (settled vertex, neighbour) ----
 
-constexpr DistanceOptions kFast{.fast = true};
+constexpr DistanceOptions kFast{.method = DistanceMethod::Fast};
 
 // Exact (1e-9) on planar convex regions from a vertex, directions included.
 TEST(MdfFast, PlanarConvexRegionsAreExact) { expect_planar_exact(kFast); }
@@ -858,7 +858,7 @@ TEST(MdfFast, DisconnectedPartsStopsAndPointSource) {
 TEST(MdfFast, BadInputLoopSourceAndNonManifoldVertex) {
   Mesh mesh = shapes::icosphere(1);
   auto with = [](DistanceOptions o) {
-    o.fast = true;
+    o.method = DistanceMethod::Fast;
     return o;
   };
   EXPECT_THROW(geodesic_distance(mesh, FrontSource::vertex(VertexHandle(1000)), kFast), InvalidInput);

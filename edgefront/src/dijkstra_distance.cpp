@@ -43,9 +43,10 @@ struct DijkstraRun {
 
   explicit DijkstraRun(size_t n) : dist(n, kInf), via(n, -1), done(n, 0) { out.distance.assign(n, kInf); }
 
-  void seed(int x, int vertex) {
-    dist[x] = 0;
-    heap.emplace(0.0, key_of(vertex, x));
+  void seed(int x, int vertex, double d = 0) {
+    if (!(d < dist[x])) return;
+    dist[x] = d;
+    heap.emplace(d, key_of(vertex, x));
   }
 
   void offer(int y, int vertex, int from, double d) {
@@ -105,22 +106,36 @@ struct DijkstraRun {
   }
 };
 
+// |x - y|; a vertex with a NaN or infinite coordinate is refused when an edge reaches it.
+double edge_length(const Mesh& mesh, int x, int y) {
+  const Vec3& px = mesh.point(VertexHandle(x));
+  const Vec3& py = mesh.point(VertexHandle(y));
+  const double len = (py - px).norm();
+  if (!std::isfinite(len)) {
+    detail::check_finite_vertex(px, x);
+    detail::check_finite_vertex(py, y);
+  }
+  return len;
+}
+
+// Dijkstra's run over the mesh's own edges, from the seeds in `dij`. A vertex with a NaN or
+// infinite coordinate is refused when an edge reaches it.
+DistanceField run_over_mesh(const Mesh& mesh, DijkstraRun& dij, const DistanceOptions& options) {
+  const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
+  return dij.run(
+      options,
+      [&](int v, auto&& f) {
+        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), edge_length(mesh, v, y.idx()));
+      },
+      point, [](int v) { return v; }, [](int, int) {});
+}
+
 }  // namespace
 
 DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
   validate_source(mesh, source);
   detail::check_distance_options(mesh, options);
   DijkstraRun dij(mesh.n_vertices());
-  const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
-  // |x - y|; a vertex with a NaN or infinite coordinate is refused when an edge reaches it.
-  const auto length = [&](int x, int y) {
-    const double len = (point(y) - point(x)).norm();
-    if (!std::isfinite(len)) {
-      detail::check_finite_vertex(point(x), x);
-      detail::check_finite_vertex(point(y), y);
-    }
-    return len;
-  };
   if (source.is_loop()) {
     for (HalfedgeHandle h : source.loop) {
       const int v = mesh.to_vertex_handle(h).idx();
@@ -135,7 +150,7 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
       HalfedgeHandle g = mesh.next_halfedge_handle(source.loop[i]);
       while (true) {
         const int y = mesh.to_vertex_handle(g).idx();
-        dij.offer(y, y, x, length(x, y));
+        dij.offer(y, y, x, edge_length(mesh, x, y));
         if (g == source.loop[(i + 1) % m]) break;
         g = mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(g));
       }
@@ -143,16 +158,23 @@ DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, con
     for (HalfedgeHandle h : source.loop) dij.out.order.push_back(mesh.to_vertex_handle(h));
   } else {
     for (VertexHandle v : source.vertices) {
-      detail::check_finite_vertex(point(v.idx()), v.idx());
+      detail::check_finite_vertex(mesh.point(v), v.idx());
       dij.seed(v.idx(), v.idx());
     }
   }
-  return dij.run(
-      options,
-      [&](int v, auto&& f) {
-        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), length(v, y.idx()));
-      },
-      point, [](int v) { return v; }, [](int, int) {});
+  return run_over_mesh(mesh, dij, options);
+}
+
+DistanceField dijkstra_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points,
+                                const DistanceOptions& options) {
+  detail::check_distance_options(mesh, options);
+  detail::check_points(mesh, points);
+  DijkstraRun dij(mesh.n_vertices());
+  for (const SurfacePoint& p : points) {
+    const Vec3 x = detail::point_of(mesh, p);
+    for (VertexHandle v : mesh.fv_range(p.face)) dij.seed(v.idx(), v.idx(), (mesh.point(v) - x).norm());
+  }
+  return run_over_mesh(mesh, dij, options);
 }
 
 DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,

@@ -1,4 +1,4 @@
-// The fast mode (DistanceOptions::fast): one rule over the rings of a GeodesicRingTable, or over
+// The fast mode (DistanceMethod::Fast): one rule over the rings of a GeodesicRingTable, or over
 // rings laid out from the mesh as their vertices settle (the per-call mode).
 
 #include <algorithm>
@@ -25,7 +25,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// ---- Fast mode (DistanceOptions::fast) ---------------------------------------------------------
+// ---- Fast mode (DistanceMethod::Fast) ---------------------------------------------------------
 //
 // A Dijkstra over per-mesh arrays whose relaxation is one straight line in polar coordinates. The
 // ring of a settled vertex x is developed into the plane by its corner angles (ring angle theta,
@@ -484,7 +484,7 @@ DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table
                                 const DistanceOptions& options) {
   if (source.is_loop()) {
     DistanceOptions o = options;
-    o.fast = false;  // a loop source runs the default mode
+    o.method = DistanceMethod::Mdf;  // a loop source runs the MDF
     return geodesic_distance(mesh, source, o);
   }
   return from_vertices(mesh, &table, source, options);

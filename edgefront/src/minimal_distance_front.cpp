@@ -68,7 +68,7 @@ double cross2(P2 a, P2 b) { return a.x * b.y - a.y * b.x; }
 double norm2(double x, double y) { return std::sqrt(x * x + y * y); }
 double dot2(P2 a, P2 b) { return a.x * b.x + a.y * b.y; }
 
-// A window (DistanceOptions::windows): the part [b0, b1] of a halfedge's edge lit straight from a
+// A window (DistanceMethod::Windows): the part [b0, b1] of a halfedge's edge lit straight from a
 // (pseudo) source, with the source unfolded into the halfedge's frame: its from-vertex at the
 // origin, its to-vertex at (|edge|, 0), its face (the one the window lights) at y > 0, so the
 // source lies at y <= 0. sigma: the distance already travelled at the source.
@@ -236,7 +236,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   bool line_source = false;
   std::function<void(VertexHandle, double, const Vec3&)> on_settled;
 
-  // Window mode (DistanceOptions::windows): the windows waiting in the heap (index -1 - w), their
+  // Window mode (DistanceMethod::Windows): the windows waiting in the heap (index -1 - w), their
   // free slots, and the settled vertices whose records were dropped (a window may still reach their
   // faces; they must not be reached again), in three stages (see forget_passed):
   //   gone (open = -1): the distance, while a window on one of its edges may still be shorter
@@ -284,9 +284,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   void check_options(const DistanceOptions& o) const {
     check_distance_options(mesh, o);
-    if (o.fast) {
-      throw InvalidInput("distance: DistanceOptions::fast is a mode of geodesic_distance (whole field, max_distance, "
-                         "target); the stepwise MinimalDistanceFront does not run it");
+    if (o.method == DistanceMethod::Fast || o.method == DistanceMethod::Dijkstra) {
+      throw InvalidInput(std::string("distance: method \"") + to_string(o.method) +
+                         "\" computes whole fields through geodesic_distance (with max_distance and target); the "
+                         "stepwise MinimalDistanceFront runs \"mdf\" and \"windows\"");
     }
   }
 
@@ -389,7 +390,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     clear_state(o);
     reset_structure(source);
     line_source = source.is_loop();
-    windowed = o.windows && !line_source;
+    windowed = o.method == DistanceMethod::Windows && !line_source;
     if (!line_source) {
       for (uint32_t v : sources) {
         offer(static_cast<int>(v), 0.0, mesh.point(VertexHandle(static_cast<int>(v))), 0.0, -1);
@@ -410,7 +411,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     const std::vector<VertexHandle> verts = check_points(mesh, points);
     clear_state(o);
     reset_structure(FrontSource::from_vertices(verts));
-    windowed = o.windows;
+    windowed = o.method == DistanceMethod::Windows;
     for (const SurfacePoint& p : points) {
       const Vec3 x = point_of(mesh, p);
       for (VertexHandle v : mesh.fv_range(p.face)) {
@@ -428,7 +429,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     note_memory();
   }
 
-  // ---- Windows (DistanceOptions::windows) ------------------------------------------------------
+  // ---- Windows (DistanceMethod::Windows) ------------------------------------------------------
   //
   // A window is carried across the face it lights when it leaves the heap, at the smallest distance
   // it gives a point of its interval: the face's third vertex takes the distance from the window's
@@ -1509,10 +1510,28 @@ DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const Dista
 }
 }  // namespace
 
+const char* to_string(DistanceMethod method) {
+  switch (method) {
+    case DistanceMethod::Mdf: return "mdf";
+    case DistanceMethod::Windows: return "windows";
+    case DistanceMethod::Fast: return "fast";
+    case DistanceMethod::Dijkstra: return "dijkstra";
+  }
+  return "unknown";
+}
+
+DistanceMethod parse_distance_method(const std::string& name) {
+  for (DistanceMethod m : {DistanceMethod::Mdf, DistanceMethod::Windows, DistanceMethod::Fast, DistanceMethod::Dijkstra}) {
+    if (name == to_string(m)) return m;
+  }
+  throw InvalidInput("distance: unknown method \"" + name + "\" (one of mdf, windows, fast, dijkstra)");
+}
+
 DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options) {
-  if (options.fast && !source.is_loop()) return detail::fast_distance(mesh, source, options);
+  if (options.method == DistanceMethod::Dijkstra) return dijkstra_distance(mesh, source, options);
+  if (options.method == DistanceMethod::Fast && !source.is_loop()) return detail::fast_distance(mesh, source, options);
   DistanceOptions o = options;
-  o.fast = false;  // a loop source runs the default mode
+  if (o.method == DistanceMethod::Fast) o.method = DistanceMethod::Mdf;  // a loop source runs the MDF
   MinimalDistanceFront front(mesh);
   front.reset(source, o);
   return collect(mesh, front, o);
@@ -1520,7 +1539,8 @@ DistanceField geodesic_distance(const Mesh& mesh, const FrontSource& source, con
 
 DistanceField geodesic_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points,
                                 const DistanceOptions& options) {
-  if (options.fast) return detail::fast_distance(mesh, points, options);
+  if (options.method == DistanceMethod::Dijkstra) return dijkstra_distance(mesh, points, options);
+  if (options.method == DistanceMethod::Fast) return detail::fast_distance(mesh, points, options);
   MinimalDistanceFront front(mesh);
   front.reset(points, options);
   return collect(mesh, front, options);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file geodesic_ring_table.h
-/// A per-mesh table of vertex rings for many fast distance queries (`DistanceOptions::fast`).
+/// A per-mesh table of vertex rings for many fast distance queries (`DistanceMethod::Fast`).
 ///
 /// The fast mode settles vertices in distance order and, for each settled vertex x, lays x's ring
 /// out in the plane by its corner angles (polar coordinates around x). `GeodesicRingTable` does
@@ -117,10 +117,10 @@ class GeodesicRingTable {
   size_t n_faces_ = 0, n_halfedges_ = 0;
 };
 
-/// The fast mode (`DistanceOptions::fast`, documented there) on a prebuilt table: the same field
-/// as `geodesic_distance(mesh, source, {.fast = true})` (which lays out each ring when its vertex
-/// settles, with the same code), bit for bit.
-/// `options.fast` is implied, `windows` and `track_front` are ignored; a loop source runs the
+/// The fast mode (`DistanceMethod::Fast`, documented there) on a prebuilt table: the same field
+/// as `geodesic_distance(mesh, source, {.method = DistanceMethod::Fast})` (which lays out each
+/// ring when its vertex settles, with the same code), bit for bit.
+/// `options.method` is taken as `Fast` and `track_front` is ignored; a loop source runs the
 /// default mode (the table is not used). \throws InvalidInput for a bad source or options, or a
 /// table that does not match the mesh (`GeodesicRingTable::check`); TopologyError when a
 /// non-manifold vertex settles.

@@ -21,7 +21,7 @@
 /// need not bend there). A value is never below the straight line from the real source, but it
 /// can fall slightly below the exact geodesic where a line strays from the faces its source was
 /// unfolded along.
-/// `DistanceOptions::windows` keeps windows per edge instead (MMP/ICH carried in the same front
+/// `DistanceMethod::Windows` keeps windows per edge instead (MMP/ICH carried in the same front
 /// order): below 5e-4% mean error on the scanned models, about 3-4x the time of the default.
 ///
 /// Accuracy (bench/results/geodesic-*.md): exact (1e-14) on planar meshes under any
@@ -39,6 +39,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "edgefront/front_source.h"
@@ -53,6 +54,30 @@ struct SurfacePoint {
   std::array<double, 3> bary = {1.0 / 3, 1.0 / 3, 1.0 / 3};
 };
 
+/// How `geodesic_distance` computes a field: four trade-offs between accuracy and time
+/// (README, "Geodesic distances: four modes"; bench/results/geodesic-*.md).
+enum class DistanceMethod {
+  /// The Minimal Distance Front: one virtual source (and a second, straighter one) per front
+  /// vertex, O(front) working memory, stepwise use (`MinimalDistanceFront`), loop sources.
+  Mdf,
+  /// The MDF carrying windows per edge instead (MMP/ICH in the same front order): near exact,
+  /// about 3-4x the MDF's time; vertex and surface-point sources (a loop source runs `Mdf`).
+  Windows,
+  /// A Dijkstra-like sweep with one straight-line unfolding per edge (see `DistanceOptions`):
+  /// whole fields only (`geodesic_distance`, with `max_distance` and `target`), O(mesh) memory;
+  /// a loop source runs `Mdf`.
+  Fast,
+  /// Dijkstra over mesh edges (`dijkstra_distance`): every path runs along edges, so it
+  /// overestimates (4-9% on real meshes); the baseline.
+  Dijkstra,
+};
+
+/// The method's name as the apps and the Python package spell it: "mdf", "windows", "fast",
+/// "dijkstra".
+const char* to_string(DistanceMethod method);
+/// The method named `name` (as `to_string` spells it). \throws InvalidInput for another name.
+DistanceMethod parse_distance_method(const std::string& name);
+
 /// Options of the Minimal Distance Front.
 struct DistanceOptions {
   /// Stop when the next vertex to settle is farther than this (the paper's d_max). >= 0, not NaN.
@@ -61,8 +86,11 @@ struct DistanceOptions {
   std::optional<VertexHandle> target = std::nullopt;
   /// Record, per vertex, the unit direction toward the source along the surface.
   bool directions = true;
-  /// Window propagation (as in exact MMP/ICH): every face edge the front crosses carries the
-  /// intervals lit straight from a (pseudo) source, with the source unfolded next to it, and they
+  /// The method (`geodesic_distance`; the stepwise `MinimalDistanceFront` runs `Mdf` and
+  /// `Windows` and refuses the others; `dijkstra_distance` ignores it).
+  ///
+  /// `DistanceMethod::Windows`, window propagation (as in exact MMP/ICH): every face edge the
+  /// front crosses carries the intervals lit straight from a (pseudo) source, with the source unfolded next to it, and they
   /// are carried on face by face in the same distance order as the vertices; saddle and border
   /// vertices become pseudo sources for the directions they shadow. Windows that shorten the
   /// distance by less than 1e-5 (relative) are dropped. Planar and developable meshes come out
@@ -70,19 +98,11 @@ struct DistanceOptions {
   /// below 5e-4% (bench/results/geodesic-windows.md). It costs about 3-4x the default (CPU); the
   /// working memory also holds the windows waiting in the queue and the last windows per crossed
   /// edge, and the settled vertices near the front (each is forgotten once the front is past its
-  /// distance plus its longest edge): O(front), like the default's. Off: one virtual source per vertex.
-  /// Vertex and surface-point sources only; a loop source ignores it.
-  bool windows = false;
-  /// Keep the Minimal Edge Front under the distances: `front_size`, `peak_front` and `validate`
-  /// follow it, and its loops count in the working memory. The distances do not need it. Off, the
-  /// front is not expanded: about 10% less time for a full field (bench/results/geodesic-speed.md,
-  /// session 8), the same distances, directions, order and stop; `peak_front` is then 0 for vertex
-  /// and point sources, and the working memory counts the distance records and the queue.
-  /// Non-manifold vertices are still refused (when they settle instead of when they are reached).
-  /// Ignored (kept on) in window mode, which expands the front to know where windows start.
-  bool track_front = true;
-  /// Fast mode, for `geodesic_distance` only (whole field, `max_distance`, `target`): a Dijkstra
-  /// over per-mesh arrays (O(mesh) memory, no edge front) with one straight-line update per
+  /// distance plus its longest edge): O(front), like the default's. Vertex and surface-point
+  /// sources only; a loop source runs `Mdf`.
+  ///
+  /// `DistanceMethod::Fast`, for `geodesic_distance` only (whole field, `max_distance`,
+  /// `target`): a Dijkstra over per-mesh arrays (O(mesh) memory, no edge front) with one straight-line update per
   /// settled vertex x and neighbour c. x's ring is laid out by its corner angles (polar
   /// coordinates) when it settles, or read from a prebuilt `GeodesicRingTable`
   /// (geodesic_ring_table.h) passed to `geodesic_distance(mesh, table, ...)`: the same fields bit
@@ -102,11 +122,19 @@ struct DistanceOptions {
   /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
   /// halfedges; the default mode: 5-6x); on a table (vertices in a locality order) about 0.8x
   /// `dijkstra_distance` and 2.4x `dijkstra_distance(mesh, table, ...)`, which the order speeds up
-  /// as much (bench/results/geodesic-speed.md, "Session 12 (mdf14)"). Not provided: the edge front (`peak_front` is 0), the
-  /// stepwise `MinimalDistanceFront` (its `reset` refuses the option), windows (ignored), loop
-  /// sources (they run the default mode). A vertex nearer the source than all its neighbours gets
+  /// as much (bench/results/geodesic-speed.md). Not provided: the edge front (`peak_front` is 0),
+  /// the stepwise `MinimalDistanceFront` (its `reset` refuses the method), loop sources (they run
+  /// `Mdf`). A vertex nearer the source than all its neighbours gets
   /// its first settled neighbour's distance.
-  bool fast = false;
+  DistanceMethod method = DistanceMethod::Mdf;
+  /// Keep the Minimal Edge Front under the distances: `front_size`, `peak_front` and `validate`
+  /// follow it, and its loops count in the working memory. The distances do not need it. Off, the
+  /// front is not expanded: about 10% less time for a full field (bench/results/geodesic-speed.md,
+  /// session 8), the same distances, directions, order and stop; `peak_front` is then 0 for vertex
+  /// and point sources, and the working memory counts the distance records and the queue.
+  /// Non-manifold vertices are still refused (when they settle instead of when they are reached).
+  /// `Mdf` only; ignored (kept on) by `Windows`, which expands the front to know where windows start.
+  bool track_front = true;
 };
 
 /// Why a distance computation stopped.
@@ -182,7 +210,12 @@ DistanceField geodesic_distance(const Mesh& mesh, const std::vector<SurfacePoint
                                 const DistanceOptions& options = {});
 
 /// Baseline: Dijkstra over mesh edges (binary heap, per-mesh arrays), the same sources and
-/// options. Every path runs along edges, so it overestimates (4-9% on real meshes).
+/// options (`method` is ignored). Every path runs along edges, so it overestimates (4-9% on real
+/// meshes). `geodesic_distance` with `DistanceMethod::Dijkstra` calls it.
 DistanceField dijkstra_distance(const Mesh& mesh, const FrontSource& source, const DistanceOptions& options = {});
+/// Dijkstra from surface points: each corner of a point's face starts at its straight distance
+/// from the point, then paths run along edges.
+DistanceField dijkstra_distance(const Mesh& mesh, const std::vector<SurfacePoint>& points,
+                                const DistanceOptions& options = {});
 
 }  // namespace edgefront
