@@ -41,6 +41,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "app_parse.h"
 #include "app_render.h"
@@ -121,18 +122,6 @@ void append_number(std::string& text, double x) {
   text.append(buf, ptr);
 }
 
-/// CLI11 validator of --max-distance: a non-negative number or inf; NaN and numbers beyond the
-/// double range are refused (an empty value is refused for every option by run_app).
-std::string check_max_distance(std::string& text) {
-  double value = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || !(value >= 0)) {
-    return "'" + text + "' is not a non-negative number (or inf)";  // CLI11 prefixes the option
-  }
-  return {};
-}
-
 std::string stop_name(edgefront::DistanceStop stop) {
   switch (stop) {
     case edgefront::DistanceStop::NotStarted: return "not started";
@@ -170,13 +159,14 @@ int main(int argc, char** argv) {
   CLI::Option* side_opt = app.add_option("--side", side, "side of the loop to measure on: left (default) or right")
                               ->check(CLI::IsMember({"left", "right"}));
   app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: inf, no limit)")
-      ->check(CLI::Validator(check_max_distance, ""));
+      ->check(edgefront::apps::real_range(0.0, std::numeric_limits<double>::infinity()));
   app.add_option("--method", method,
                  "mdf (Minimal Distance Front, default), windows (MDF with per-edge windows: near-exact, "
                  "3-4x slower; vertices and points only), fast (one update per neighbour: about 2x a Dijkstra, "
                  "less accurate than mdf; vertices and points only) or dijkstra (over edges)")
       ->check(CLI::IsMember({"mdf", "windows", "fast", "dijkstra"}));
-  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply");
+  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply")
+      ->check(edgefront::apps::output_file({".txt", ".ply"}));
   edgefront::apps::PngOutput png(app);
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -194,9 +184,6 @@ int main(int argc, char** argv) {
       throw edgefront::apps::AppUsageError("--side applies only to --loop");
     }
     const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
-    if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {
-      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + out_ext + "' (use .txt or .ply)");
-    }
 
     const edgefront::MeshReadResult read = edgefront::read_mesh(input);
     for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
@@ -289,5 +276,5 @@ int main(int argc, char** argv) {
       << "\n";
     std::cerr << s.str();
     return 0;
-  });
+  }, {"MESH"});
 }

@@ -14,8 +14,10 @@
 ///   if (png.requested()) png.write(scene);         // scene: mesh, field, lines, highlights
 /// \endcode
 ///
-/// Bad option values (a size that is not WxH within 1 ... 16384, an elevation outside [-90, 90],
-/// a FILE not ending in .png) are parse errors: exit code 2 with a one-line message.
+/// Bad option values (a size that is not WxH within 1 ... 16384 per side and 33554432 pixels in
+/// all, an azimuth or elevation that is NaN or out of range, a FILE not ending in .png or in a
+/// directory that does not exist) are parse errors: exit code 2 with a one-line message, before
+/// any work or write.
 
 #include <charconv>
 #include <chrono>
@@ -25,6 +27,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "edgefront/error.h"
 #include "render/render.h"
@@ -47,6 +50,13 @@ inline std::string parse_image_size(const std::string& text, int& width, int& he
     return "--size: " + text + " is out of range (each side 1 ... " + std::to_string(render::kMaxImageSide) +
            " pixels)";
   }
+  // The renderer's sample budget at the default supersampling.
+  const int supersample = render::RenderOptions{}.supersample;
+  const double max_pixels = render::kMaxSamples / (supersample * supersample);
+  if (static_cast<double>(width) * height > max_pixels) {
+    return "--size: " + text + " is too large (at most " + std::to_string(static_cast<long long>(max_pixels)) +
+           " pixels in all, e.g. 8192x4096)";
+  }
   return {};
 }
 
@@ -57,17 +67,13 @@ class PngOutput {
   explicit PngOutput(CLI::App& app) : app_name_(app.get_name()) {
     app.add_option("--png", path_, "also write a rendered picture (offscreen) to FILE.png")
         ->type_name("FILE")
-        ->check(CLI::Validator(
-            [](std::string& p) {
-              return lower_extension(p) == ".png" ? std::string() : "--png: '" + p + "' does not end in .png";
-            },
-            "FILE.png"));
+        ->check(output_file({".png"}));
     app.add_option("--azimuth", options_.azimuth_deg, "picture: camera azimuth in degrees around +y, 0 = from +z")
         ->capture_default_str()
-        ->check(CLI::Range(-3600.0, 3600.0));
+        ->check(real_range(-3600.0, 3600.0));
     app.add_option("--elevation", options_.elevation_deg, "picture: camera elevation in degrees, -90 ... 90")
         ->capture_default_str()
-        ->check(CLI::Range(-90.0, 90.0));
+        ->check(real_range(-90.0, 90.0));
     app.add_option("--size", size_, "picture: size in pixels, WIDTHxHEIGHT")
         ->capture_default_str()
         ->check(CLI::Validator(
