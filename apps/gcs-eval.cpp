@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
          "GT", gt_path,
          "ground truth: points (.xyz, .ply/.off/.obj without faces; normals optional) or a mesh with faces")
       ->required();
-  app.add_option("--samples", options.samples, "area-uniform samples per mesh surface")
+  app.add_option("--samples", options.samples,
+                 "area-uniform samples per mesh surface, 1 ... 1e8 (about 140 bytes each in memory: 1e8 need 14 GB)")
       ->default_val(options.samples)
       ->check(edgefront::apps::integer_range(1, 100000000));
   edgefront::apps::add_seed_option(app, "--seed", options.seed, "sampling seed");

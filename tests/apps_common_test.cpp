@@ -231,7 +231,7 @@ pid_t start_big_write(const fs::path& target) {
     const int null = ::open("/dev/null", O_WRONLY);
     ::dup2(null, 1);
     ::dup2(null, 2);
-    ::execl(app.c_str(), app.c_str(), "torus", "--points", "1000000", "-o", target.c_str(), static_cast<char*>(nullptr));
+    ::execl(app.c_str(), app.c_str(), "torus", "--points", "300000", "-o", target.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
   return pid;

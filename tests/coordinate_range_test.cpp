@@ -34,6 +34,12 @@ std::string invalid_input_of(const std::function<void()>& f) {
   return "";
 }
 
+shapes::SampleOptions points(size_t n) {
+  shapes::SampleOptions o;
+  o.points = n;
+  return o;
+}
+
 /// `mesh` scaled by `s` about the origin.
 Mesh scaled(Mesh mesh, double s) {
   for (const auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * s);
@@ -71,21 +77,21 @@ TEST(CoordinateRange, MeshVariantSkipsDeletedVerticesAndThrowsInvalidInput) {
 }
 
 TEST(CoordinateRange, TheReconstructorAndTheEvaluationRefuseOutOfRangeInput) {
-  PointCloud cloud = shapes::sample("icosphere", {.points = 200});
+  PointCloud cloud = shapes::sample("icosphere", points(200));
   for (Vec3& p : cloud.points) p *= 1e100;
   EXPECT_NE(invalid_input_of([&] { gcs::Reconstructor r(cloud); }).find("beyond +-1e75"), std::string::npos);
-  cloud = shapes::sample("icosphere", {.points = 200});
+  cloud = shapes::sample("icosphere", points(200));
   for (Vec3& p : cloud.points) p *= 1e-310;
   EXPECT_NE(invalid_input_of([&] { gcs::Reconstructor r(cloud); }).find("underflow"), std::string::npos);
 
   const Mesh sphere = shapes::make("icosphere");
   const Mesh huge = scaled(sphere, 1e300);
   EXPECT_NE(invalid_input_of([&] { gcs::evaluate(huge, gcs::GroundTruth::from_mesh(sphere)); })
-                .find("evaluation: the mesh: vertex"),
+                .find("evaluation: the result mesh: vertex"),
             std::string::npos);
   EXPECT_NE(invalid_input_of([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_mesh(huge)); }).find("overflow"),
             std::string::npos);
-  PointCloud tiny = shapes::sample("icosphere", {.points = 50});
+  PointCloud tiny = shapes::sample("icosphere", points(50));
   for (Vec3& p : tiny.points) p *= 1e-200;
   EXPECT_NE(invalid_input_of([&] { gcs::evaluate(sphere, gcs::GroundTruth::from_points(tiny)); }).find("underflow"),
             std::string::npos);

@@ -768,7 +768,7 @@ std::string io_error_of(F&& f) {
 TEST_F(MeshIoTest, FifosDevicesAndDirectoriesAreRefusedBeforeOpening) {
   for (const char* name : {"pipe.off", "pipe.ply", "pipe.xyz"}) {
     const fs::path fifo = dir_ / name;
-    FifoWithLateWriter guard(fifo, std::chrono::milliseconds(1500));
+    FifoWithLateWriter guard(fifo, std::chrono::milliseconds(300));
     const auto t0 = std::chrono::steady_clock::now();
     const std::string what = fifo.extension() == ".xyz" ? io_error_of([&] { read_points(fifo); })
                                                         : io_error_of([&] { read_mesh(fifo); });

@@ -36,7 +36,7 @@
 namespace edgefront::apps {
 
 /// Parses "WxH" (e.g. "800x600") into `width`, `height`; an empty string when it is valid, else
-/// what is wrong.
+/// what is wrong (without the option's name, which CLI11 puts in front).
 inline std::string parse_image_size(const std::string& text, int& width, int& height) {
   const size_t x = text.find_first_of("xX");
   const auto parse = [](const std::string& s, int& out) {
@@ -44,17 +44,17 @@ inline std::string parse_image_size(const std::string& text, int& width, int& he
     return !s.empty() && ec == std::errc() && ptr == s.data() + s.size();
   };
   if (x == std::string::npos || !parse(text.substr(0, x), width) || !parse(text.substr(x + 1), height)) {
-    return "--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 800x600)";
+    return "'" + text + "' is not WIDTHxHEIGHT (e.g. 800x600)";
   }
   if (width < 1 || height < 1 || width > render::kMaxImageSide || height > render::kMaxImageSide) {
-    return "--size: " + text + " is out of range (each side 1 ... " + std::to_string(render::kMaxImageSide) +
+    return text + " is out of range (each side 1 ... " + std::to_string(render::kMaxImageSide) +
            " pixels)";
   }
   // The renderer's sample budget at the default supersampling.
   const int supersample = render::RenderOptions{}.supersample;
   const double max_pixels = render::kMaxSamples / (supersample * supersample);
   if (static_cast<double>(width) * height > max_pixels) {
-    return "--size: " + text + " is too large (at most " + std::to_string(static_cast<long long>(max_pixels)) +
+    return text + " is too large (at most " + std::to_string(static_cast<long long>(max_pixels)) +
            " pixels in all, e.g. 8192x4096)";
   }
   return {};
@@ -95,7 +95,7 @@ class PngOutput {
   render::RenderOptions options() const {
     render::RenderOptions o = options_;
     const std::string error = parse_image_size(size_, o.width, o.height);
-    if (!error.empty()) throw edgefront::InvalidInput(error);
+    if (!error.empty()) throw edgefront::InvalidInput("--size: " + error);
     o.perspective = !orthographic_;
     return o;
   }

@@ -95,7 +95,7 @@ struct Slot {
 Slot g_slots[kSlots];
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
-extern "C" void remove_temporaries_and_reraise(int signal_number) {
+void remove_temporaries_and_reraise(int signal_number) {
   const int saved_errno = errno;
   for (Slot& slot : g_slots) {
     if (slot.state.load(std::memory_order_acquire) == kLive) ::unlink(slot.path);
@@ -146,13 +146,13 @@ void unregister_temporary(int slot) {
 /// run (killed while writing, or beyond the signal table). Best effort: errors are ignored.
 /// \note A process in another PID namespace writing the same target looks dead from here.
 void remove_stale_temporaries(const fs::path& target) {
-  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  std::string prefix(".");  // appended: GCC 12 reports a false -Wrestrict on "." + std::string&&
+  prefix.append(target.filename().string()).append(".tmp-");
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code ec;
-  fs::directory_iterator it(dir, ec);
-  if (ec) return;
   const long own = static_cast<long>(::getpid());
-  for (const fs::directory_entry& entry : it) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::directory_entry& entry = *it;
     const std::string name = entry.path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
     // <pid>-<counter>, digits only

@@ -38,7 +38,7 @@ std::string problem(size_t n, const Point& point, const Live& live, const char* 
   }
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   if (extent > 0 && extent < kMinExtent) {
-    return "the " + std::string(noun) + "s span only " + number_for_message(extent) + ", less than " +
+    return "the points span only " + number_for_message(extent) + ", less than " +
            number_for_message(kMinExtent) + ": squared lengths and areas would underflow to zero (scale the data up)";
   }
   return {};
@@ -46,9 +46,9 @@ std::string problem(size_t n, const Point& point, const Live& live, const char* 
 
 }  // namespace
 
-std::string coordinate_range_problem(const std::vector<Vec3>& points) {
+std::string coordinate_range_problem(const std::vector<Vec3>& points, const char* noun) {
   return problem(
-      points.size(), [&](size_t i) -> const Vec3& { return points[i]; }, [](size_t) { return true; }, "point");
+      points.size(), [&](size_t i) -> const Vec3& { return points[i]; }, [](size_t) { return true; }, noun);
 }
 
 std::string coordinate_range_problem(const Mesh& mesh) {

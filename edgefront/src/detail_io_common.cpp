@@ -56,13 +56,6 @@ std::string non_regular_kind(mode_t mode) {
 
 }  // namespace
 
-void refuse_non_regular_file(const fs::path& file) {
-  struct stat st {};
-  if (::stat(file.c_str(), &st) != 0) return;
-  const std::string kind = non_regular_kind(st.st_mode);
-  if (!kind.empty()) throw_not_regular(file, kind);
-}
-
 FileContent::FileContent(const fs::path& file) {
   // stat before open: opening a FIFO for reading blocks until a writer comes.
   struct stat st {};

@@ -421,18 +421,25 @@ RawMesh parse_ply_body(std::string_view data, const PlyHeader& header, const fs:
   return raw;
 }
 
-/// Called when the body of a PLY file could not be read: when the file reads correctly, to its
-/// last byte, with a vertex count one lower or one higher than the header's, the header's count
-/// is what is wrong (a face record read as a vertex gives "face 0 has 0 vertices" and the like),
+/// Called when the body of a PLY file could not be read: when other elements follow the vertices
+/// and the file reads correctly, to its last byte, with a vertex count one lower or one higher
+/// than the header's, the header's count is what is wrong (a face record read as a vertex gives "face 0 has 0 vertices" and the like),
 /// and that is thrown. Returns otherwise.
 void diagnose_vertex_count(std::string_view data, const PlyHeader& header, const fs::path& file, bool normals) {
   const int vi = header.find("vertex");
   if (vi < 0) return;
+  // Only a count followed by other data can be diagnosed: a last element that comes up short is a
+  // truncated file, as the reader says.
+  bool data_follows = false;
+  for (size_t e = static_cast<size_t>(vi) + 1; e < header.elements.size(); ++e) {
+    data_follows = data_follows || header.elements[e].count > 0;
+  }
+  if (!data_follows) return;
   const uint64_t declared = header.elements[vi].count;
   for (const int delta : {-1, 1}) {
     if (delta < 0 && declared == 0) continue;
     PlyHeader corrected = header;
-    corrected.elements[vi].count = declared + delta;
+    corrected.elements[vi].count = delta < 0 ? declared - 1 : declared + 1;
     bool trailing = true;
     try {
       parse_ply_body(data, corrected, file, normals, trailing);
@@ -697,7 +704,7 @@ RawMesh parse_mesh_file(std::string_view data, const fs::path& file, const std::
   } else {
     EF_CHECK(false, "parse_mesh_file: unknown extension " + ext);
   }
-  if (std::string why = coordinate_range_problem(raw.points); !why.empty()) throw_io(file, why);
+  if (std::string why = coordinate_range_problem(raw.points, "vertex"); !why.empty()) throw_io(file, why);
   return raw;
 }
 

@@ -32,7 +32,8 @@ inline constexpr double kMinExtent = 1e-75;
 /// not, e.g. "point 3 has the coordinate 1e308, beyond +-1e75: squared lengths and areas would
 /// overflow (scale the data down)" or "the points span only 1e-310, less than 1e-75: squared
 /// lengths and areas would underflow to zero (scale the data up)".
-std::string coordinate_range_problem(const std::vector<Vec3>& points);
+/// `noun` names the points in the message ("point 3", "vertex 3").
+std::string coordinate_range_problem(const std::vector<Vec3>& points, const char* noun = "point");
 /// The same for the live (not deleted) vertices of `mesh`; points are named "vertex N".
 std::string coordinate_range_problem(const Mesh& mesh);
 

@@ -49,10 +49,6 @@ class FileContent {
   std::string_view view_;
 };
 
-/// Throws IoError when `file` exists and is not a regular file (a directory, FIFO, device or
-/// socket), naming what it is. Nothing is opened. A missing file passes.
-void refuse_non_regular_file(const std::filesystem::path& file);
-
 /// True when the first bytes of `data` contain a NUL byte (a binary file given to a text reader).
 bool looks_binary(std::string_view data);
 
