@@ -420,7 +420,8 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
   expect_error(torus + " --point 0:0.5,0.6,0.5", "sum");
   expect_error(torus + " --point 0:-0.5,1,0.5", "non-negative");
-  expect_error(torus + " --source 0 -o " + quoted(path("no-such-dir/d.txt").string()), "no-such-dir");
+  // A missing output directory: a usage error at parse time, before any work (issue 29).
+  expect_usage_error(torus + " --source 0 -o " + quoted(path("no-such-dir/d.txt").string()), "no-such-dir");
 
   expect_usage_error(torus);
   expect_usage_error(torus + " --source 0 --loop 0,1,2");
@@ -573,9 +574,9 @@ TEST_F(AppsFrontTest, EfDistanceRefusesBadValuesAndMeshes) {
   const std::string torus = quoted(data_file("torus.off"));
   // CLI11 reads an empty number as 0; ef-distance refuses it, and NaN, and what overflows a double.
   expect_usage_error(torus + " --source 0 --max-distance ''", "--max-distance");
-  expect_usage_error(torus + " --source 0 --max-distance 1e400", "not a non-negative number");
-  expect_usage_error(torus + " --source 0 --max-distance=-inf", "not a non-negative number");
-  expect_usage_error(torus + " --source 0 --max-distance 1x", "not a non-negative number");
+  expect_usage_error(torus + " --source 0 --max-distance 1e400", "'1e400' is out of the range of a double");
+  expect_usage_error(torus + " --source 0 --max-distance=-inf", "-inf is out of range (>= 0)");
+  expect_usage_error(torus + " --source 0 --max-distance 1x", "'1x' is not a number");
   expect_usage_error(torus + " --point 0:1,0,0 --method dijkstra", "windows or fast");
   expect_usage_error(torus + " --source -1", "not a vertex index");
   expect_error(torus + " --source 99999999999999999999999", "out of range");
