@@ -147,12 +147,15 @@ int main(int argc, char** argv) {
   std::string method = "mdf";
   std::string output;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)")
+                                ->check(edgefront::apps::index_list());
   CLI::Option* loop_opt =
-      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges")
+          ->check(edgefront::apps::index_list());
   CLI::Option* point_opt = app.add_option(
       "--point", point_texts, "source point F:b0,b1,b2 (face index, barycentric coordinates in the face's vertex "
-                              "order); may be repeated (not with --method dijkstra)");
+                              "order); may be repeated (not with --method dijkstra)")
+                              ->check(edgefront::apps::surface_point());
   source_opt->excludes(loop_opt)->excludes(point_opt);
   loop_opt->excludes(source_opt)->excludes(point_opt);
   point_opt->excludes(source_opt)->excludes(loop_opt);

@@ -88,9 +88,11 @@ int main(int argc, char** argv) {
   std::string method = "mef";
   std::string output;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)")
+                                ->check(edgefront::apps::index_list());
   CLI::Option* loop_opt =
-      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges")
+          ->check(edgefront::apps::index_list());
   source_opt->excludes(loop_opt);
   loop_opt->excludes(source_opt);
   app.add_option("--side", side, "side of the loop the front expands to: left (default) or right")

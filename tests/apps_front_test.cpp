@@ -414,10 +414,11 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_usage_error(torus + " --source zero", "not a vertex index");
   expect_error(torus + " --loop 0,1,100", "edge");
   expect_error(torus + " --point 384:1,0,0", "out of range");
-  expect_error(torus + " --point 0:0.5,0.5", "3 barycentric");
-  expect_error(torus + " --point 0:0.5,x,0.5", "not a number");
+  // The syntax of --point is checked at parse time (usage errors), its values with the mesh.
+  expect_usage_error(torus + " --point 0:0.5,0.5", "3 barycentric");
+  expect_usage_error(torus + " --point 0:0.5,x,0.5", "not a number");
   expect_usage_error(torus + " --point 3,4:1,0,0", "not a face index");
-  expect_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
+  expect_usage_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
   expect_error(torus + " --point 0:0.5,0.6,0.5", "sum");
   expect_error(torus + " --point 0:-0.5,1,0.5", "non-negative");
   // A missing output directory: a usage error at parse time, before any work (issue 29).
@@ -583,7 +584,7 @@ TEST_F(AppsFrontTest, EfDistanceRefusesBadValuesAndMeshes) {
   expect_error(torus + " --source 0,191,0", "twice");
   expect_error(torus + " --loop 0,1,0", "at least 3 vertices, got 2");
   expect_error(torus + " --point 0:0.3,0.3,0.3", "sum");
-  expect_error(torus + " --point 0:nan,0.5,0.5", "finite");
+  expect_usage_error(torus + " --point 0:nan,0.5,0.5", "nan is not a number");
 
   // A vertex where two fans meet (two triangles sharing only vertex 0): the fronts refuse it with
   // a clear error; Dijkstra, which needs no front, runs.

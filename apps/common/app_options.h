@@ -27,6 +27,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "app_parse.h"
 #include "edgefront/error.h"
 
 namespace edgefront::apps {
@@ -102,6 +103,47 @@ inline CLI::Validator integer_range(long long lo, unsigned long long hi) {
         return {};
       },
       bounds);
+}
+
+/// A comma-separated list of vertex indices ("0,5,12"), each a non-negative decimal integer.
+/// Whether an index exists in the mesh is checked once the mesh is read ("out of range").
+inline CLI::Validator index_list() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        for (const std::string& token : split_list(text, ',')) {
+          if (token.empty() || token.find_first_not_of("0123456789") != std::string::npos) {
+            return detail::quoted(text) + ": " + detail::quoted(token) + " is not a vertex index (a non-negative integer)";
+          }
+        }
+        return {};
+      },
+      "V[,V...]");
+}
+
+/// A point on a face, "F:b0,b1,b2": a face index and three numbers (their validity as barycentric
+/// coordinates, and the face's existence, are checked with the mesh).
+inline CLI::Validator surface_point() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const size_t colon = text.find(':');
+        if (colon == std::string::npos) return detail::quoted(text) + " is not F:b0,b1,b2";
+        const std::string face = split_list(text.substr(0, colon), ':').front();
+        if (face.empty() || face.find_first_not_of("0123456789") != std::string::npos) {
+          return detail::quoted(text) + ": " + detail::quoted(face) + " is not a face index";
+        }
+        const std::vector<std::string> coordinates = split_list(text.substr(colon + 1), ',');
+        if (coordinates.size() != 3) {
+          return detail::quoted(text) + ": expected 3 barycentric coordinates, got " +
+                 std::to_string(coordinates.size());
+        }
+        const CLI::Validator number =
+            real_range(-std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+        for (std::string token : coordinates) {
+          if (std::string problem = number(token); !problem.empty()) return detail::quoted(text) + ": " + problem;
+        }
+        return {};
+      },
+      "F:b0,b1,b2");
 }
 
 /// `--seed`-like option: an integer 0 ... 2^64 - 1 into `seed`.
