@@ -16,8 +16,8 @@
 /// --method windows is the MDF with per-edge windows (DistanceMethod::Windows): near-exact
 /// distances from vertices and points at about 3-4x the time of the default. --method fast is
 /// the MDF's fast mode (DistanceMethod::Fast): about 2x the time of --method dijkstra, errors a
-/// few times those of the default (vertices and points only). --point takes every method but
-/// dijkstra; --loop only mdf and dijkstra.
+/// few times those of the default (vertices and points only). --point takes every method;
+/// --loop only mdf and dijkstra.
 /// --max-distance takes a non-negative number or "inf" (the default).
 /// --png renders the field (colormap, isolines at a nice step, grey where not reached) with the
 /// sources (points or the loop) into a picture (apps/common/app_render.h).
@@ -41,6 +41,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "app_parse.h"
 #include "app_render.h"
@@ -121,18 +122,6 @@ void append_number(std::string& text, double x) {
   text.append(buf, ptr);
 }
 
-/// CLI11 validator of --max-distance: a non-negative number or inf; NaN and numbers beyond the
-/// double range are refused (an empty value is refused for every option by run_app).
-std::string check_max_distance(std::string& text) {
-  double value = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || !(value >= 0)) {
-    return "'" + text + "' is not a non-negative number (or inf)";  // CLI11 prefixes the option
-  }
-  return {};
-}
-
 std::string stop_name(edgefront::DistanceStop stop) {
   switch (stop) {
     case edgefront::DistanceStop::NotStarted: return "not started";
@@ -158,25 +147,29 @@ int main(int argc, char** argv) {
   std::string method = "mdf";
   std::string output;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)")
+                                ->check(edgefront::apps::index_list());
   CLI::Option* loop_opt =
-      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges")
+          ->check(edgefront::apps::index_list());
   CLI::Option* point_opt = app.add_option(
       "--point", point_texts, "source point F:b0,b1,b2 (face index, barycentric coordinates in the face's vertex "
-                              "order); may be repeated");
+                              "order); may be repeated")
+                              ->check(edgefront::apps::surface_point());
   source_opt->excludes(loop_opt)->excludes(point_opt);
   loop_opt->excludes(source_opt)->excludes(point_opt);
   point_opt->excludes(source_opt)->excludes(loop_opt);
   CLI::Option* side_opt = app.add_option("--side", side, "side of the loop to measure on: left (default) or right")
                               ->check(CLI::IsMember({"left", "right"}));
   app.add_option("--max-distance", max_distance, "stop beyond this distance, >= 0 (default: inf, no limit)")
-      ->check(CLI::Validator(check_max_distance, ""));
+      ->check(edgefront::apps::real_range(0.0, std::numeric_limits<double>::infinity()));
   app.add_option("--method", method,
                  "mdf (Minimal Distance Front, default), windows (MDF with per-edge windows: near-exact, "
                  "3-4x slower; vertices and points only), fast (one update per neighbour: about 2x a Dijkstra, "
                  "less accurate than mdf; vertices and points only) or dijkstra (over edges)")
       ->check(CLI::IsMember({"mdf", "windows", "fast", "dijkstra"}));
-  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply");
+  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply")
+      ->check(edgefront::apps::output_file({".txt", ".ply"}));
   edgefront::apps::PngOutput png(app);
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -190,9 +183,6 @@ int main(int argc, char** argv) {
       throw edgefront::apps::AppUsageError("--side applies only to --loop");
     }
     const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
-    if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {
-      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + out_ext + "' (use .txt or .ply)");
-    }
 
     const edgefront::MeshReadResult read = edgefront::read_mesh(input);
     for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
@@ -283,5 +273,5 @@ int main(int argc, char** argv) {
       << "\n";
     std::cerr << s.str();
     return 0;
-  });
+  }, {"MESH"});
 }

@@ -32,6 +32,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "app_render.h"
 #include "app_util.h"
@@ -87,30 +88,28 @@ int main(int argc, char** argv) {
   std::string method = "mef";
   std::string output;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)");
+  CLI::Option* source_opt = app.add_option("--source", source_text, "source vertices: V[,V...] (0-based indices)")
+                                ->check(edgefront::apps::index_list());
   CLI::Option* loop_opt =
-      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
+      app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges")
+          ->check(edgefront::apps::index_list());
   source_opt->excludes(loop_opt);
   loop_opt->excludes(source_opt);
   app.add_option("--side", side, "side of the loop the front expands to: left (default) or right")
       ->check(CLI::IsMember({"left", "right"}));
-  CLI::Option* levels_opt = app.add_option("--levels", levels, "number of levels to run, >= 0 (default: to exhaustion)");
+  app.add_option("--levels", levels, "number of levels to run, >= 0 (default: to exhaustion)")
+      ->check(edgefront::apps::integer_range(0, std::numeric_limits<int>::max()));
   app.add_option("--method", method, "vf (Vertex Front) or mef (Minimal Edge Front, default)")
       ->check(CLI::IsMember({"vf", "mef"}));
-  app.add_option("-o,--output", output, "write the levels to FILE.txt, or a PLY with level and colors to FILE.ply");
+  app.add_option("-o,--output", output, "write the levels to FILE.txt, or a PLY with level and colors to FILE.ply")
+      ->check(edgefront::apps::output_file({".txt", ".ply"}));
   edgefront::apps::PngOutput png(app);
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     if (source_text.empty() && loop_text.empty()) {
       throw edgefront::apps::AppUsageError("one of --source or --loop is required");
     }
-    if (levels_opt->count() > 0 && levels < 0) {
-      throw edgefront::apps::AppUsageError("--levels must be a non-negative integer");
-    }
     const std::string out_ext = output.empty() ? std::string() : lower_extension(output);
-    if (!output.empty() && out_ext != ".txt" && out_ext != ".ply") {
-      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + out_ext + "' (use .txt or .ply)");
-    }
     if (loop_opt->count() == 0 && app.get_option("--side")->count() > 0) {
       throw edgefront::apps::AppUsageError("--side applies only to --loop");
     }
@@ -242,5 +241,5 @@ int main(int argc, char** argv) {
       << summary.peak_bytes << " bytes, time " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms\n";
     std::cerr << s.str();
     return 0;
-  });
+  }, {"MESH"});
 }

@@ -43,5 +43,5 @@ int main(int argc, char** argv) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");
     return 0;
-  });
+  }, {"MESH"});
 }

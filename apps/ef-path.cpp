@@ -7,15 +7,20 @@
 ///
 /// Prints "edges E", "length L" (the geometric length: the MDF's geodesic estimate, or the
 /// polyline's length with --polyline, or the chain's edge length), "edge-length L" and
-/// "vertices v0 v1 ..." on stdout, or "no path" (exit 0) when the vertices lie in different
+/// "vertices v0 v1 ..." on stdout, or "no path" (exit 3) when the vertices lie in different
 /// components. -o writes the path (the polyline with --polyline, else the vertex chain) as an OBJ
-/// polyline (`v` and `l` records) or a PLY with `vertex` and `edge` elements. A one-line summary
-/// (method, time, processed elements) goes to stderr.
+/// polyline (`v` and `l` records) or a PLY with `vertex` and `edge` elements; when there is no
+/// path, a file left at -o by an earlier run is removed (it would look like this run's answer),
+/// and --png still draws the mesh and the two vertices. A one-line summary (method, time,
+/// processed elements) goes to stderr.
 ///
-/// Exit codes: 0 ok, 1 error (one line "ef-path: error: ..." on stderr), 2 usage error.
+/// Exit codes: 0 a path was found, 1 error (one line "ef-path: error: ..." on stderr), 2 usage
+/// error, 3 no path (the vertices lie in different components).
 
 #include <charconv>
 #include <chrono>
+#include <filesystem>
+#include <limits>
 #include <iomanip>
 #include <iostream>
 #include <string>
@@ -23,6 +28,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "app_parse.h"
 #include "app_render.h"
@@ -35,6 +41,7 @@
 namespace {
 
 constexpr const char* kAppName = "ef-path";
+constexpr int kExitNoPath = 3;
 
 std::string number(double x) {
   char buf[64];
@@ -47,24 +54,27 @@ std::string number(double x) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Connection path between two vertices: edge-wise shortest (vf, mef) or geodesic (mdf), optionally "
-               "as a polyline across faces.",
+               "as a polyline across faces. Exit codes: 0 path found, 1 error, 2 usage error, 3 no path (the "
+               "vertices lie in different components; an old -o FILE is removed).",
                kAppName};
   std::string input, from_text, to_text, method = "mdf", output;
   bool polyline = false, directed = false;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  app.add_option("FROM", from_text, "first vertex (0-based index)")->required();
-  app.add_option("TO", to_text, "second vertex (0-based index)")->required();
+  const unsigned long long max_index = std::numeric_limits<int>::max();
+  app.add_option("FROM", from_text, "first vertex (0-based index)")
+      ->required()
+      ->check(edgefront::apps::integer_range(0, max_index));
+  app.add_option("TO", to_text, "second vertex (0-based index)")
+      ->required()
+      ->check(edgefront::apps::integer_range(0, max_index));
   app.add_option("--method", method, "vf, mef (edge-wise shortest) or mdf (geodesic, default)")
       ->check(CLI::IsMember({"vf", "mef", "mdf"}));
   app.add_flag("--polyline", polyline, "straighten the path into a geodesic polyline across faces");
   app.add_flag("--directed", directed, "directed search (bidirectional A* over the mesh edges)");
-  app.add_option("-o,--output", output, "write the path as FILE.obj (v/l records) or FILE.ply (vertex/edge)");
+  app.add_option("-o,--output", output, "write the path as FILE.obj (v/l records) or FILE.ply (vertex/edge)")
+      ->check(edgefront::apps::output_file({".obj", ".ply"}));
   edgefront::apps::PngOutput png(app);
   return edgefront::apps::run_app(app, argc, argv, [&] {
-    const std::string ext = output.empty() ? std::string() : edgefront::apps::lower_extension(output);
-    if (!output.empty() && ext != ".obj" && ext != ".ply") {
-      throw edgefront::apps::AppUsageError("-o: unsupported extension '" + ext + "' (use .obj or .ply)");
-    }
     const edgefront::MeshReadResult read = edgefront::read_mesh(input);
     for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
     const edgefront::Mesh& mesh = read.mesh;
@@ -90,9 +100,13 @@ int main(int argc, char** argv) {
       png.write(scene);
     };
     if (path.status == edgefront::PathStatus::NoPath) {
-      std::cout << "no path\n";
+      std::cout << "no path\n" << std::flush;
+      std::error_code ec;
+      if (!output.empty() && std::filesystem::remove(output, ec)) {
+        std::cerr << kAppName << ": no path: removed the old " << output << "\n";
+      }
       picture({});
-      return 0;
+      return kExitNoPath;
     }
     std::string text = "edges " + std::to_string(path.edges) + "\nlength " + number(path.length) +
                        "\nedge-length " + number(path.edge_length) + "\nvertices";
@@ -110,5 +124,5 @@ int main(int argc, char** argv) {
     if (!output.empty()) edgefront::write_polyline(points, output);
     picture(points);
     return 0;
-  });
+  }, {"MESH"});
 }

@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_util.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud_io.h"
@@ -24,6 +25,10 @@
 namespace {
 
 namespace sh = edgefront::shapes;
+
+/// Largest --points (SampleOptions' limit): about 50 bytes per point in memory (4 * 10^6 points
+/// peak at 195 MB), so 10^8 need 5 GB, and 12 GB as .xyz text.
+constexpr unsigned long long kMaxPoints = 100000000;
 
 /// Rounds every coordinate to `decimals` decimal places (to keep bundled files small).
 double round_to(double x, int decimals) {
@@ -51,33 +56,41 @@ int main(int argc, char** argv) {
   sh::SampleOptions sample_options;
   sh::ShapeParams& params = sample_options.shape;
 
-  app.add_option("SHAPE", shape, "shape name (see --list)");
+  app.add_option("SHAPE", shape, "shape name (see --list)")->check(CLI::IsMember(sh::shape_names()));
   app.add_flag("--list", list, "list the shapes and exit");
-  CLI::Option* points_opt = app.add_option("--points", points, "number of points to sample (default 10000)")
-                                ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+  CLI::Option* points_opt = app.add_option("--points", points, "number of points to sample, 1 ... 1e8 (default 10000; about 50 bytes each in memory, 120 in a .xyz file)")
+                                ->check(edgefront::apps::integer_range(1, kMaxPoints));
   CLI::Option* mesh_opt = app.add_flag("--mesh", mesh, "write a mesh instead of points");
   points_opt->excludes(mesh_opt);
   mesh_opt->excludes(points_opt);
   CLI::Option* resolution_opt =
-      app.add_option("--resolution", resolution, "mesh resolution: edges around the main circle (default 32)");
+      app.add_option("--resolution", resolution, "mesh resolution: edges around the main circle, 3 ... 4096 (default 32)")
+          ->check(edgefront::apps::integer_range(3, 4096));
   CLI::Option* noise_opt = app.add_option("--noise", sample_options.noise_sigma,
-                                          "standard deviation of Gaussian noise along the normal (absolute)");
+                                          "standard deviation of Gaussian noise along the normal (absolute)")
+                                ->check(edgefront::apps::non_negative());
   CLI::Option* isotropic_opt = app.add_flag("--isotropic", isotropic, "make the noise isotropic instead");
   CLI::Option* outliers_opt =
-      app.add_option("--outliers", sample_options.outlier_fraction, "share of points replaced by outliers, 0..1");
-  CLI::Option* seed_opt = app.add_option("--seed", sample_options.seed, "sampling seed (default 1)");
-  app.add_option("--radius", params.radius, "main radius R (half side of plates and grids; default 1)");
-  app.add_option("--thickness", params.thickness, "wall thickness of vault-shell, thin-plate, hairpin (default 0.1)");
-  app.add_option("--length", params.length, "height or length along the axis (default 2)");
-  app.add_option("--width", params.width, "width of ribbon, mobius, hairpin (default 0.5)");
-  app.add_option("--minor-radius", params.minor_radius, "tube radius of the tori (default 0.35)");
-  app.add_option("--inner-radius", params.inner_radius, "inner sphere radius of nested-spheres (default 0.5)");
-  app.add_option("--gap", params.gap, "gap between the hairpin's arms (default 0.05)");
-  app.add_option("--amplitude", params.amplitude, "bump or relief amplitude (default 0.1)");
-  app.add_option("--frequency", params.frequency, "bump or wave frequency (default 4)");
-  app.add_option("--surface-seed", params.surface_seed, "seed of the landscape relief and the grid jitter");
+      app.add_option("--outliers", sample_options.outlier_fraction, "share of points replaced by outliers, 0..1")
+          ->check(edgefront::apps::real_range(0.0, 1.0));
+  CLI::Option* seed_opt = edgefront::apps::add_seed_option(app, "--seed", sample_options.seed, "sampling seed");
+  using edgefront::apps::positive;
+  app.add_option("--radius", params.radius, "main radius R (half side of plates and grids; default 1)")->check(positive());
+  app.add_option("--thickness", params.thickness, "wall thickness of vault-shell, thin-plate, hairpin (default 0.1)")
+      ->check(positive());
+  app.add_option("--length", params.length, "height or length along the axis (default 2)")->check(positive());
+  app.add_option("--width", params.width, "width of ribbon, mobius, hairpin (default 0.5)")->check(positive());
+  app.add_option("--minor-radius", params.minor_radius, "tube radius of the tori (default 0.35)")->check(positive());
+  app.add_option("--inner-radius", params.inner_radius, "inner sphere radius of nested-spheres (default 0.5)")
+      ->check(positive());
+  app.add_option("--gap", params.gap, "gap between the hairpin's arms (default 0.05)")->check(positive());
+  app.add_option("--amplitude", params.amplitude, "bump or relief amplitude (default 0.1)")
+      ->check(edgefront::apps::non_negative());
+  app.add_option("--frequency", params.frequency, "bump or wave frequency (default 4)")->check(positive());
+  edgefront::apps::add_seed_option(app, "--surface-seed", params.surface_seed,
+                                   "seed of the landscape relief and the grid jitter");
   app.add_option("--decimals", decimals, "round coordinates and normals to this many decimals (0..17)")
-      ->check(CLI::Range(0, 17));
+      ->check(edgefront::apps::integer_range(0, 17));
   app.add_option("-o,--output", output, "output file (.xyz/.ply for points; .off/.obj/.ply/.stl for meshes)");
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -88,6 +101,12 @@ int main(int argc, char** argv) {
     }
     if (shape.empty()) throw edgefront::apps::AppUsageError("SHAPE is required (see --list)");
     if (output.empty()) throw edgefront::apps::AppUsageError("-o FILE is required");
+    // The output's extension and directory, before any work.
+    std::string where = output;
+    const std::string problem = edgefront::apps::output_file(
+        mesh ? std::vector<std::string>{".off", ".obj", ".ply", ".stl"}
+             : std::vector<std::string>{".xyz", ".txt", ".pts", ".ply"})(where);
+    if (!problem.empty()) throw edgefront::apps::AppUsageError("-o: " + problem);
     if (mesh) {
       for (const CLI::Option* o : {noise_opt, isotropic_opt, outliers_opt, seed_opt})
         if (o->count() > 0) throw edgefront::apps::AppUsageError(o->get_name() + " applies to points, not to --mesh");
@@ -114,5 +133,5 @@ int main(int argc, char** argv) {
     edgefront::write_points(cloud, output);
     std::cout << "ef-shapes: wrote " << cloud.size() << " points of " << shape << " to " << output << "\n";
     return 0;
-  });
+  }, {"--points", "--resolution"});
 }

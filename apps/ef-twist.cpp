@@ -11,6 +11,7 @@
 /// report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
 
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_render.h"
 #include "app_util.h"
 #include "edgefront/mesh_io.h"
@@ -32,10 +34,14 @@ int main(int argc, char** argv) {
   double radius = 0;
   size_t max_repairs = 16;
   app.add_option("MESH", input, "mesh file (.off, .obj, .ply, .stl)")->required();
-  app.add_option("-o,--output", output, "repaired mesh (.off, .obj, .ply, .stl), written atomically")->required();
+  app.add_option("-o,--output", output, "repaired mesh (.off, .obj, .ply, .stl), written atomically")
+      ->required()
+      ->check(edgefront::apps::output_file({".off", ".obj", ".ply", ".stl"}));
   app.add_option("--points", points, "oriented point cloud whose normals decide the right side (.xyz, .ply, .off, .obj)");
-  app.add_option("--radius", radius, "layer search radius (0: twice the mean edge length)")->check(CLI::NonNegativeNumber);
-  app.add_option("--max-repairs", max_repairs, "most regions repaired")->check(CLI::PositiveNumber);
+  app.add_option("--radius", radius, "layer search radius (0: twice the mean edge length)")
+      ->check(edgefront::apps::non_negative());
+  app.add_option("--max-repairs", max_repairs, "most regions repaired")
+      ->check(edgefront::apps::integer_range(1, std::numeric_limits<std::size_t>::max()));
   edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -102,5 +108,5 @@ int main(int argc, char** argv) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");
     return 0;
-  });
+  }, {"MESH", "--points"});
 }

@@ -29,6 +29,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_render.h"
 #include "app_util.h"
 #include "edgefront/mesh_io.h"
@@ -48,9 +49,12 @@ int main(int argc, char** argv) {
   bool quiet = false;
   bool no_borders = false;
   app.add_option("POINTS", input, "input point cloud (.xyz, .txt, .pts, .ply, .off, .obj)")->required();
-  app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")->required();
-  app.add_option("--vertices", vertices, "target vertex count (default 5000)")->check(CLI::Range(4, 50000000));
-  app.add_option("--seed", seed, "random seed; the same seed gives the same mesh (default 1)");
+  app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")
+      ->required()
+      ->check(edgefront::apps::output_file({".ply", ".off", ".obj", ".stl"}));
+  app.add_option("--vertices", vertices, "target vertex count (default 5000)")
+      ->check(edgefront::apps::integer_range(4, 50000000));
+  edgefront::apps::add_seed_option(app, "--seed", seed, "random seed; the same seed gives the same mesh");
   app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default; off with --no-borders)");
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
@@ -86,10 +90,10 @@ int main(int argc, char** argv) {
                "do not fit the result to the samples (on by default: each vertex is moved along its normal so "
                "that the samples lie on the mesh's triangles, without turning faces or adding self-intersections)");
   app.add_option("--fit-rounds", options.fit_rounds, "rounds of the surface fit, 1-20 (default 3)")
-      ->check(CLI::Range(1, 20));
+      ->check(edgefront::apps::integer_range(1, 20));
   app.add_option("--fit-smoothness", options.fit_smoothness,
                  "smoothness weight of the surface fit, >= 0 (default 0.1; larger fits less)")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(edgefront::apps::real_range(0.0, 1e9));
   bool no_flips = false;
   app.add_flag("--no-delaunay-flips", no_flips,
                "do not flip edges of the result toward a Delaunay triangulation (on by default: only between nearly "
@@ -104,9 +108,9 @@ int main(int argc, char** argv) {
   std::size_t snapshot_every = 0;
   app.add_option("--snapshots", snapshots, "write a picture of the growing mesh to DIR/gcs-NNNNN.png every "
                                            "--snapshot-every vertices of growth (DIR must exist)")
-      ->type_name("DIR");
+      ->check(edgefront::apps::existing_directory());
   app.add_option("--snapshot-every", snapshot_every, "vertices of growth between snapshots (default: target / 20)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+      ->check(edgefront::apps::integer_range(1, 100000000));
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     edgefront::PointCloud cloud = edgefront::read_points(input);
@@ -186,5 +190,5 @@ int main(int argc, char** argv) {
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");
     return 0;
-  });
+  }, {"--vertices", "POINTS"});
 }

@@ -414,13 +414,15 @@ TEST_F(AppsFrontTest, EfDistanceBadInputExitsOneAndBadUsageTwo) {
   expect_usage_error(torus + " --source zero", "not a vertex index");
   expect_error(torus + " --loop 0,1,100", "edge");
   expect_error(torus + " --point 384:1,0,0", "out of range");
-  expect_error(torus + " --point 0:0.5,0.5", "3 barycentric");
-  expect_error(torus + " --point 0:0.5,x,0.5", "not a number");
+  // The syntax of --point is checked at parse time (usage errors), its values with the mesh.
+  expect_usage_error(torus + " --point 0:0.5,0.5", "3 barycentric");
+  expect_usage_error(torus + " --point 0:0.5,x,0.5", "not a number");
   expect_usage_error(torus + " --point 3,4:1,0,0", "not a face index");
-  expect_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
+  expect_usage_error(torus + " --point 0-0.5,0,0.5", "F:b0,b1,b2");
   expect_error(torus + " --point 0:0.5,0.6,0.5", "sum");
   expect_error(torus + " --point 0:-0.5,1,0.5", "non-negative");
-  expect_error(torus + " --source 0 -o " + quoted(path("no-such-dir/d.txt").string()), "no-such-dir");
+  // A missing output directory: a usage error at parse time, before any work (issue 29).
+  expect_usage_error(torus + " --source 0 -o " + quoted(path("no-such-dir/d.txt").string()), "no-such-dir");
 
   expect_usage_error(torus);
   expect_usage_error(torus + " --source 0 --loop 0,1,2");
@@ -570,15 +572,15 @@ TEST_F(AppsFrontTest, EfDistanceRefusesBadValuesAndMeshes) {
   const std::string torus = quoted(data_file("torus.off"));
   // CLI11 reads an empty number as 0; ef-distance refuses it, and NaN, and what overflows a double.
   expect_usage_error(torus + " --source 0 --max-distance ''", "--max-distance");
-  expect_usage_error(torus + " --source 0 --max-distance 1e400", "not a non-negative number");
-  expect_usage_error(torus + " --source 0 --max-distance=-inf", "not a non-negative number");
-  expect_usage_error(torus + " --source 0 --max-distance 1x", "not a non-negative number");
+  expect_usage_error(torus + " --source 0 --max-distance 1e400", "'1e400' is out of the range of a double");
+  expect_usage_error(torus + " --source 0 --max-distance=-inf", "-inf is out of range (>= 0)");
+  expect_usage_error(torus + " --source 0 --max-distance 1x", "'1x' is not a number");
   expect_usage_error(torus + " --source -1", "not a vertex index");
   expect_error(torus + " --source 99999999999999999999999", "out of range");
   expect_error(torus + " --source 0,191,0", "twice");
   expect_error(torus + " --loop 0,1,0", "at least 3 vertices, got 2");
   expect_error(torus + " --point 0:0.3,0.3,0.3", "sum");
-  expect_error(torus + " --point 0:nan,0.5,0.5", "finite");
+  expect_usage_error(torus + " --point 0:nan,0.5,0.5", "nan is not a number");
 
   // A vertex where two fans meet (two triangles sharing only vertex 0): the fronts refuse it with
   // a clear error; Dijkstra, which needs no front, runs.

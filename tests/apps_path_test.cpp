@@ -93,7 +93,7 @@ TEST_F(AppsPathTest, NoPathEqualEndpointsAndErrors) {
   const Mesh mesh = load_mesh(nested);
   const auto last = std::to_string(mesh.n_vertices() - 1);
   auto r = run(eftest::shell_quoted(nested.string()) + " 0 " + last + " --method mef");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 3) << r.err;  // documented: 3 = no path
   EXPECT_EQ(r.out, "no path\n");
   r = run(eftest::shell_quoted(nested.string()) + " 5 5");
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -109,6 +109,25 @@ TEST_F(AppsPathTest, NoPathEqualEndpointsAndErrors) {
     r = run(eftest::shell_quoted(nested.string()) + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.err;
   }
+}
+
+TEST_F(AppsPathTest, NoPathExitsThreeAndLeavesNoStaleOutput) {
+  // An earlier run's path at -o would look like this run's answer: it is removed.
+  const fs::path nested = dir_ / "nested.off";
+  write_mesh(shapes::nested_spheres(1), nested);
+  const auto last = std::to_string(load_mesh(nested).n_vertices() - 1);
+  const fs::path out = dir_ / "path.obj";
+  auto r = run(eftest::shell_quoted(nested.string()) + " 0 5 -o " + eftest::shell_quoted(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out));
+  r = run(eftest::shell_quoted(nested.string()) + " 0 " + last + " -o " + eftest::shell_quoted(out.string()));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(r.out, "no path\n");
+  EXPECT_FALSE(fs::exists(out)) << "a stale path file was left at -o";
+  EXPECT_NE(r.err.find("no path: removed the old"), std::string::npos) << r.err;
+  r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("3 no path"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -5,7 +5,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "edgefront/atomic_write.h"
@@ -149,4 +153,48 @@ TEST_F(AtomicWriteTest, TargetThatIsADirectoryIsRefused) {
                IoError);
   EXPECT_TRUE(fs::is_directory(dir_ / "sub"));
   EXPECT_EQ(entries(), 1u);
+}
+
+TEST_F(AtomicWriteTest, FifoAndDeviceTargetsAreNotReplaced) {
+  // Renaming over them would turn a FIFO, or /dev/null through a link, into a regular file.
+  ASSERT_EQ(::mkfifo((dir_ / "pipe.txt").c_str(), 0600), 0);
+  fs::create_symlink("/dev/null", dir_ / "null.txt");
+  for (const char* name : {"pipe.txt", "null.txt"}) {
+    try {
+      write_file_atomically(dir_ / name, [](std::ostream& os) { os << "x"; }, false);
+      ADD_FAILURE() << name << " was replaced";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::is_fifo(dir_ / "pipe.txt"));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "null.txt"));
+  EXPECT_EQ(entries(), 2u);
+}
+
+TEST_F(AtomicWriteTest, StaleTemporariesOfDeadProcessesAreRemovedByTheNextWrite) {
+  // A process id that no longer runs: a child that has exited and been reaped.
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_NE(::kill(child, 0), 0);
+  const std::string dead = std::to_string(child);
+  const std::string alive = std::to_string(::getppid());  // the test runner's parent runs
+  const std::vector<std::string> stale = {".out.txt.tmp-" + dead + "-0", ".out.txt.tmp-" + dead + "-17"};
+  const std::vector<std::string> kept = {
+      ".out.txt.tmp-" + alive + "-0",   // a live process may still be writing
+      ".other.txt.tmp-" + dead + "-0",  // another target's
+      ".out.txt.tmp-" + dead + "-x",    // not a name this writer makes
+      "out.txt.tmp-" + dead + "-0",     // not hidden
+  };
+  for (const auto& names : {stale, kept}) {
+    for (const std::string& name : names) std::ofstream(dir_ / name) << "partial";
+  }
+  write_file_atomically(dir_ / "out.txt", [](std::ostream& os) { os << "new"; }, false);
+  EXPECT_EQ(slurp(dir_ / "out.txt"), "new");
+  for (const std::string& name : stale) EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+  for (const std::string& name : kept) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
 }

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
 
@@ -27,4 +30,22 @@ TEST(Mesh, LiveHandles) {
   EXPECT_FALSE(edgefront::is_live(m, edgefront::VertexHandle()));
   m.delete_face(f, true);
   EXPECT_FALSE(edgefront::is_live(m, a));
+}
+
+TEST(Error, NumbersForMessagesAreShortAndReadable) {
+  using edgefront::number_for_message;
+  EXPECT_EQ(number_for_message(std::numeric_limits<double>::max()), "1.8e308");
+  EXPECT_EQ(number_for_message(-std::numeric_limits<double>::max()), "-1.8e308");
+  EXPECT_EQ(number_for_message(std::numeric_limits<double>::min()), "2.2e-308");
+  EXPECT_EQ(number_for_message(1e75), "1e75");
+  EXPECT_EQ(number_for_message(1e-75), "1e-75");
+  EXPECT_EQ(number_for_message(0.0), "0");
+  EXPECT_EQ(number_for_message(0.5), "0.5");
+  EXPECT_EQ(number_for_message(-3), "-3");
+  EXPECT_EQ(number_for_message(100000000), "1e8");
+  EXPECT_EQ(number_for_message(123456), "123456");
+  EXPECT_EQ(number_for_message(1.5e-5), "1.5e-5");
+  EXPECT_EQ(number_for_message(0.1 + 0.2), "0.3");  // not 0.30000000000000004
+  EXPECT_EQ(number_for_message(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(number_for_message(std::nan("")), "nan");
 }

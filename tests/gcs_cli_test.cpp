@@ -133,10 +133,10 @@ TEST_F(GcsCli, PictureAndSnapshots) {
   }
   EXPECT_GE(n, 3);
   EXPECT_NE(r.out.find(std::to_string(n) + " snapshot(s)"), std::string::npos) << r.out;
-  // A snapshot directory that does not exist: an error naming it.
+  // A snapshot directory that does not exist: a usage error (at parse time) naming it.
   const eftest::CommandResult bad = run(q(vault()) + " -o " + q(dir_ / "w.ply") + " --vertices 100 --snapshots " +
                                         q(dir_ / "absent"));
-  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("absent"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ / "w.ply"));
 }
@@ -162,7 +162,7 @@ TEST_F(GcsCli, ErrorsAndUsage) {
   EXPECT_FALSE(fs::exists(out));
   EXPECT_EQ(run(q(vault()) + " -o " + q(out) + " --vertices 3").exit_code, 2);
   EXPECT_EQ(run(q(vault())).exit_code, 2);                                       // no -o
-  EXPECT_EQ(run(q(vault()) + " -o " + q(dir_ / "x.abc") + " --vertices 50").exit_code, 1);  // bad extension
+  EXPECT_EQ(run(q(vault()) + " -o " + q(dir_ / "x.abc") + " --vertices 50").exit_code, 2);  // bad extension: parse time
   r = run("--help");
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--no-twist"), std::string::npos);

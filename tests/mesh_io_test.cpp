@@ -2,6 +2,7 @@
 
 #include <array>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -9,8 +10,11 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "edgefront/error.h"
@@ -716,4 +720,226 @@ TEST_F(MeshIoTest, DamagedFilesAreReadOrRefusedWithIoErrorOnly) {
     }
   }
   EXPECT_GT(refused, reads / 4);  // most cuts are refused
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hostile input: non-regular files, huge sparse files, byte-order marks, extreme coordinates,
+// numbers beyond double, miscounted PLY vertices.
+
+namespace {
+
+/// Creates a FIFO; a helper thread opens its writing end after `delay` and closes it again, so
+/// that a reader that (wrongly) blocks on the FIFO is released instead of hanging the test.
+class FifoWithLateWriter {
+ public:
+  FifoWithLateWriter(const fs::path& path, std::chrono::milliseconds delay) : path_(path) {
+    EXPECT_EQ(::mkfifo(path.c_str(), 0600), 0);
+    writer_ = std::thread([this, delay] {
+      std::this_thread::sleep_for(delay);
+      const int fd = ::open(path_.c_str(), O_WRONLY | O_NONBLOCK);
+      if (fd >= 0) ::close(fd);
+    });
+  }
+  ~FifoWithLateWriter() { writer_.join(); }
+
+ private:
+  fs::path path_;
+  std::thread writer_;
+};
+
+/// `what()` of the IoError `f` throws, or "" (with a test failure) when it throws nothing or
+/// something else.
+template <class F>
+std::string io_error_of(F&& f) {
+  try {
+    f();
+  } catch (const IoError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not an IoError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "accepted";
+  return "";
+}
+
+}  // namespace
+
+TEST_F(MeshIoTest, FifosDevicesAndDirectoriesAreRefusedBeforeOpening) {
+  for (const char* name : {"pipe.off", "pipe.ply", "pipe.xyz"}) {
+    const fs::path fifo = dir_ / name;
+    FifoWithLateWriter guard(fifo, std::chrono::milliseconds(300));
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string what = fifo.extension() == ".xyz" ? io_error_of([&] { read_points(fifo); })
+                                                        : io_error_of([&] { read_mesh(fifo); });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_NE(what.find("is a FIFO (named pipe), not a regular file"), std::string::npos) << what;
+    EXPECT_LT(seconds, 1.0) << "the reader waited for a writer on " << name;
+  }
+  // A device through a name with a mesh extension: /dev/zero would be read without end.
+  fs::create_symlink("/dev/zero", dir_ / "zero.ply");
+  EXPECT_NE(io_error_of([&] { read_mesh(dir_ / "zero.ply"); }).find("is a character device, not a regular file"),
+            std::string::npos);
+  fs::create_symlink("/dev/urandom", dir_ / "random.xyz");
+  EXPECT_NE(io_error_of([&] { read_points(dir_ / "random.xyz"); }).find("character device"), std::string::npos);
+  fs::create_directories(dir_ / "folder.obj");
+  EXPECT_NE(io_error_of([&] { read_mesh(dir_ / "folder.obj"); }).find("is a directory, not a regular file"),
+            std::string::npos);
+}
+
+TEST_F(MeshIoTest, HugeSparseFilesAreRefusedAfterTheirFirstBytes) {
+  // 2 GiB of zeros that take no disk space: every reader must refuse them at once, without
+  // reading (or allocating) 2 GiB.
+  for (const char* name : {"sparse.off", "sparse.obj", "sparse.ply", "sparse.stl", "sparse.xyz"}) {
+    const fs::path file = dir_ / name;
+    { std::ofstream touch(file); }
+    fs::resize_file(file, uint64_t{2} << 30);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string what = file.extension() == ".xyz" ? io_error_of([&] { read_points(file); })
+                                                        : io_error_of([&] { read_mesh(file); });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_NE(what.find(name), std::string::npos) << what;
+    EXPECT_LT(seconds, 1.0) << name << ": " << what;
+    fs::remove(file);
+  }
+}
+
+TEST_F(MeshIoTest, BinaryStlWithMoreDataThanItsCountIsRefused) {
+  std::string d(80, ' ');
+  put_le<uint32_t>(d, 1);
+  d.append(50, '\0');
+  d.append(50 * 3, '\0');  // three more facets' worth the count does not declare
+  spit(dir_ / "extra.stl", d);
+  const std::string what = io_error_of([&] { read_mesh(dir_ / "extra.stl"); });
+  EXPECT_NE(what.find("declares 1 triangle"), std::string::npos) << what;
+  // A few bytes of padding after the last facet are still only a warning.
+  std::string padded(80, ' ');
+  put_le<uint32_t>(padded, 1);
+  for (const float v : {0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put_le<float>(padded, v);
+  put_le<uint16_t>(padded, 0);
+  padded.append(4, '\0');
+  spit(dir_ / "padded.stl", padded);
+  const MeshReadResult r = read_mesh(dir_ / "padded.stl");
+  EXPECT_EQ(r.mesh.n_faces(), 1u);
+  ASSERT_EQ(r.report.warnings.size(), 1u);
+  EXPECT_NE(r.report.warnings[0].find("4 bytes after the last triangle"), std::string::npos);
+}
+
+TEST_F(MeshIoTest, Utf8ByteOrderMarkIsAcceptedByEveryTextReader) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\n";
+  const std::string off = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 3 1\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+      "3 0 1 2\n3 0 3 1\n";
+  const std::string stl = slurp(kData / "tetra_ascii.stl");
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"a.obj", obj}, {"a.off", off},
+                                   {"a.ply", ply}, {"a.stl", stl}}) {
+    spit(dir_ / name, text);
+    spit(dir_ / ("bom_" + name), bom + text);
+    const MeshReadResult plain = read_mesh(dir_ / name);
+    const MeshReadResult marked = read_mesh(dir_ / ("bom_" + name));
+    EXPECT_EQ(marked.mesh.n_vertices(), plain.mesh.n_vertices()) << name;
+    EXPECT_EQ(face_triples(marked.mesh), face_triples(plain.mesh)) << name;
+    EXPECT_EQ(marked.report.warnings, plain.report.warnings) << name;
+    if (name != "a.stl") {
+      EXPECT_EQ(read_points(dir_ / ("bom_" + name)).points, read_points(dir_ / name).points) << name;
+    }
+  }
+  spit(dir_ / "bom.xyz", bom + "0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_EQ(read_points(dir_ / "bom.xyz").size(), 3u);
+  // UTF-16 is named, not called binary garbage.
+  spit(dir_ / "utf16.obj", std::string("\xFF\xFEv\0 \0" "0\0", 8));
+  EXPECT_NE(io_error_of([&] { read_mesh(dir_ / "utf16.obj"); }).find("UTF-16"), std::string::npos);
+}
+
+TEST_F(MeshIoTest, CoordinatesWhoseSquaresOverflowOrUnderflowAreRefused) {
+  const auto off = [](const std::string& a, const std::string& b) {
+    return "OFF\n3 1 0\n0 0 0\n" + a + " 0 0\n0 " + b + " 0\n3 0 1 2\n";
+  };
+  spit(dir_ / "huge.off", off("1e308", "1"));
+  std::string what = io_error_of([&] { read_mesh(dir_ / "huge.off"); });
+  EXPECT_NE(what.find("vertex 1 has the coordinate 1e308, beyond +-1e75"), std::string::npos) << what;
+  EXPECT_NE(what.find("overflow"), std::string::npos) << what;
+  EXPECT_EQ(io_error_of([&] { read_points(dir_ / "huge.off"); }), what) << "the cloud reader says the same";
+  spit(dir_ / "tiny.off", off("1e-310", "2e-310"));
+  what = io_error_of([&] { read_mesh(dir_ / "tiny.off"); });
+  EXPECT_NE(what.find("span only 2e-310"), std::string::npos) << what;
+  EXPECT_NE(what.find("underflow"), std::string::npos) << what;
+  // Ordinary small and large scales are fine, and so is a single point.
+  spit(dir_ / "fine.off", off("1e60", "1e-60"));
+  EXPECT_NO_THROW(read_mesh(dir_ / "fine.off"));
+  spit(dir_ / "point.xyz", "1e-300 0 0\n");
+  EXPECT_NO_THROW(read_points(dir_ / "point.xyz"));
+  spit(dir_ / "huge.xyz", "0 0 0\n1e200 0 0\n0 1 0\n");
+  EXPECT_NE(io_error_of([&] { read_points(dir_ / "huge.xyz"); }).find("huge.xyz: point 1 has the coordinate 1e200"),
+            std::string::npos);
+}
+
+TEST_F(MeshIoTest, NumbersBeyondDoubleAreOutOfRangeNotMalformed) {
+  spit(dir_ / "big.off", "OFF\n1 0 0\n1e400 0 0\n");
+  const std::string what = io_error_of([&] { read_mesh(dir_ / "big.off"); });
+  EXPECT_NE(what.find("number '1e400' is out of the range of a double (+-1.8e308)"), std::string::npos) << what;
+  spit(dir_ / "big.xyz", "0 0 -1e999\n");
+  EXPECT_NE(io_error_of([&] { read_points(dir_ / "big.xyz"); }).find("'-1e999' is out of the range"),
+            std::string::npos);
+  spit(dir_ / "bad.xyz", "0 0 1e400x\n");
+  EXPECT_NE(io_error_of([&] { read_points(dir_ / "bad.xyz"); }).find("malformed number '1e400x'"),
+            std::string::npos);
+}
+
+TEST_F(MeshIoTest, PlyVertexCountOneOffIsReportedAsSuch) {
+  // The same tetrahedron as binary and ascii PLY, with the vertex count one too high and one too
+  // low: the mesh and the cloud reader both name the count.
+  const Mesh tetra = load_mesh(kData / "tetra.off");
+  MeshWriteOptions ascii;
+  ascii.binary = false;
+  for (const bool binary : {true, false}) {
+    const fs::path good = dir_ / (binary ? "good_bin.ply" : "good_ascii.ply");
+    write_mesh(tetra, good, binary ? MeshWriteOptions{} : ascii);
+    const std::string text = slurp(good);
+    for (const auto& [count, word] : {std::pair{"5", "high"}, std::pair{"3", "low"}}) {
+      std::string bad = text;
+      const size_t at = bad.find("element vertex 4");
+      ASSERT_NE(at, std::string::npos);
+      bad.replace(at, 16, std::string("element vertex ") + count);
+      const fs::path file = dir_ / ("off_by_one_" + std::string(word) + (binary ? "_bin.ply" : "_ascii.ply"));
+      spit(file, bad);
+      const std::string what = io_error_of([&] { read_mesh(file); });
+      EXPECT_NE(what.find(std::string("the header declares ") + count + " vertices but the data holds 4: the "
+                          "vertex count is one too " + word),
+                std::string::npos)
+          << what;
+      EXPECT_EQ(io_error_of([&] { read_points(file); }), what);
+    }
+  }
+}
+
+TEST_F(MeshIoTest, TheCloudReaderRefusesWhatTheMeshReaderRefusesWithTheSameMessage) {
+  size_t compared = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(kData / "bad")) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".off" && ext != ".obj" && ext != ".ply") continue;
+    std::string mesh_error;
+    try {
+      read_mesh(entry.path());
+    } catch (const IoError& e) {
+      mesh_error = e.what();
+    }
+    if (mesh_error.empty()) continue;
+    ++compared;
+    std::string cloud_error;
+    try {
+      read_points(entry.path());
+    } catch (const IoError& e) {
+      cloud_error = e.what();
+    }
+    EXPECT_EQ(cloud_error, mesh_error) << entry.path().filename();
+  }
+  EXPECT_GE(compared, 15u);
+  // An OFF whose face count promises more faces than it has.
+  spit(dir_ / "bogus_faces.off", "OFF\n3 5 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string what = io_error_of([&] { read_points(dir_ / "bogus_faces.off"); });
+  EXPECT_NE(what.find("declares 5 faces but the file ends after 1"), std::string::npos) << what;
 }

@@ -79,15 +79,18 @@ TEST_F(PointCloudIoTest, PlyWithNormalsIgnoresFacesAndOtherProperties) {
   EXPECT_NEAR(c.normals[2][0], 0.6, 1e-7);
 }
 
-TEST_F(PointCloudIoTest, MeshFilesGiveTheirVerticesAndFacesAreNotRead) {
+TEST_F(PointCloudIoTest, MeshFilesGiveTheirVerticesAndTheirFacesAreChecked) {
   const PointCloud off = read_points(kData / "tetra.off");
   EXPECT_EQ(off.size(), 4u);
   EXPECT_FALSE(off.has_normals());
-  // Broken faces do not matter when only vertices are read.
-  spit(dir_ / "broken_faces.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 99\n");
-  EXPECT_EQ(read_points(dir_ / "broken_faces.off").size(), 3u);
-  spit(dir_ / "pts.obj", "v 0 0 0\nv 1 2 3\nf 1 2 7\n");
+  spit(dir_ / "pts.obj", "v 0 0 0\nv 1 2 3\nf 1 2 1\n");
   EXPECT_EQ(read_points(dir_ / "pts.obj").points[1], Vec3(1, 2, 3));
+  // Broken faces make a broken file, for the cloud reader as for the mesh reader (issue 29: the
+  // cloud reader used to skip them, and so took a face record for a point).
+  spit(dir_ / "broken_faces.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 99\n");
+  expect_refused(dir_ / "broken_faces.off", "line 6: face 0: vertex index 99 is out of range (the file has 3 vertices)");
+  spit(dir_ / "broken_faces.obj", "v 0 0 0\nv 1 2 3\nf 1 2 7\n");
+  expect_refused(dir_ / "broken_faces.obj", "line 3: vertex index 7 is out of range");
 }
 
 TEST_F(PointCloudIoTest, RoundTripsExactlyWithAndWithoutNormals) {

@@ -659,9 +659,9 @@ TEST_F(RenderApps, BadPictureOptionsExitWithOneLine) {
   eftest::CommandResult r = run("ef-front", data("torus.off") + " --source 0 --png " + out("a.jpg"));
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find(".png"), std::string::npos) << r.err;
-  // An unwritable place: an error (1) naming the file, nothing written.
+  // A missing directory: a usage error (2, at parse time, before any work) naming the file.
   r = run("ef-front", data("torus.off") + " --source 0 --png " + out("no-such-dir/a.png"));
-  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("no-such-dir"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }

@@ -1026,9 +1026,9 @@ TEST(ShapesCli, WritesPointsAndMeshesWithDocumentedExitCodes) {
   EXPECT_EQ(text.rfind("ef-shapes: error: ", 0), 0u) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
   EXPECT_FALSE(std::filesystem::exists(dir / "v.xyz"));
+  // Usage errors: exit 2 (an unknown shape is refused at parse time).
   std::tie(code, text) = run(exe + " teapot -o '" + (dir / "x.xyz").string() + "' >/dev/null", err);
-  EXPECT_EQ(code, 1) << text;
-  // Usage errors: exit 2.
+  EXPECT_EQ(code, 2) << text;
   std::tie(code, text) = run(exe + " torus --mesh --points 5 -o '" + (dir / "x.off").string() + "' >/dev/null", err);
   EXPECT_EQ(code, 2) << text;
   std::tie(code, text) = run(exe + " torus >/dev/null", err);

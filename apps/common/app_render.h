@@ -14,8 +14,10 @@
 ///   if (png.requested()) png.write(scene);         // scene: mesh, field, lines, highlights
 /// \endcode
 ///
-/// Bad option values (a size that is not WxH within 1 ... 16384, an elevation outside [-90, 90],
-/// a FILE not ending in .png) are parse errors: exit code 2 with a one-line message.
+/// Bad option values (a size that is not WxH within 1 ... 16384 per side and 33554432 pixels in
+/// all, an azimuth or elevation that is NaN or out of range, a FILE not ending in .png or in a
+/// directory that does not exist) are parse errors: exit code 2 with a one-line message, before
+/// any work or write.
 
 #include <charconv>
 #include <chrono>
@@ -25,6 +27,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app_options.h"
 #include "app_output.h"
 #include "edgefront/error.h"
 #include "render/render.h"
@@ -33,7 +36,7 @@
 namespace edgefront::apps {
 
 /// Parses "WxH" (e.g. "800x600") into `width`, `height`; an empty string when it is valid, else
-/// what is wrong.
+/// what is wrong (without the option's name, which CLI11 puts in front).
 inline std::string parse_image_size(const std::string& text, int& width, int& height) {
   const size_t x = text.find_first_of("xX");
   const auto parse = [](const std::string& s, int& out) {
@@ -41,11 +44,18 @@ inline std::string parse_image_size(const std::string& text, int& width, int& he
     return !s.empty() && ec == std::errc() && ptr == s.data() + s.size();
   };
   if (x == std::string::npos || !parse(text.substr(0, x), width) || !parse(text.substr(x + 1), height)) {
-    return "--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 800x600)";
+    return "'" + text + "' is not WIDTHxHEIGHT (e.g. 800x600)";
   }
   if (width < 1 || height < 1 || width > render::kMaxImageSide || height > render::kMaxImageSide) {
-    return "--size: " + text + " is out of range (each side 1 ... " + std::to_string(render::kMaxImageSide) +
+    return text + " is out of range (each side 1 ... " + std::to_string(render::kMaxImageSide) +
            " pixels)";
+  }
+  // The renderer's sample budget at the default supersampling.
+  const int supersample = render::RenderOptions{}.supersample;
+  const double max_pixels = render::kMaxSamples / (supersample * supersample);
+  if (static_cast<double>(width) * height > max_pixels) {
+    return text + " is too large (at most " + std::to_string(static_cast<long long>(max_pixels)) +
+           " pixels in all, e.g. 8192x4096)";
   }
   return {};
 }
@@ -57,17 +67,13 @@ class PngOutput {
   explicit PngOutput(CLI::App& app) : app_name_(app.get_name()) {
     app.add_option("--png", path_, "also write a rendered picture (offscreen) to FILE.png")
         ->type_name("FILE")
-        ->check(CLI::Validator(
-            [](std::string& p) {
-              return lower_extension(p) == ".png" ? std::string() : "--png: '" + p + "' does not end in .png";
-            },
-            "FILE.png"));
+        ->check(output_file({".png"}));
     app.add_option("--azimuth", options_.azimuth_deg, "picture: camera azimuth in degrees around +y, 0 = from +z")
         ->capture_default_str()
-        ->check(CLI::Range(-3600.0, 3600.0));
+        ->check(real_range(-3600.0, 3600.0));
     app.add_option("--elevation", options_.elevation_deg, "picture: camera elevation in degrees, -90 ... 90")
         ->capture_default_str()
-        ->check(CLI::Range(-90.0, 90.0));
+        ->check(real_range(-90.0, 90.0));
     app.add_option("--size", size_, "picture: size in pixels, WIDTHxHEIGHT")
         ->capture_default_str()
         ->check(CLI::Validator(
@@ -92,7 +98,7 @@ class PngOutput {
   render::RenderOptions options() const {
     render::RenderOptions o = options_;
     const std::string error = parse_image_size(size_, o.width, o.height);
-    if (!error.empty()) throw edgefront::InvalidInput(error);
+    if (!error.empty()) throw edgefront::InvalidInput("--size: " + error);
     o.perspective = !orthographic_;
     return o;
   }

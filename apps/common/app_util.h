@@ -4,7 +4,8 @@
 /// exceptions into one line on stderr and an exit code.
 ///
 /// Exit codes: 0 success (also for --help), 1 error (an exception from the body), 2 usage error
-/// (CLI11 parse failure or an AppUsageError thrown by the body).
+/// (CLI11 parse failure or an AppUsageError thrown by the body). Running out of memory is an
+/// error naming the request ("--points 100000000: not enough memory ...").
 ///
 /// \code
 ///   int main(int argc, char** argv) {
@@ -19,7 +20,10 @@
 /// \endcode
 
 #include <exception>
+#include <filesystem>
+#include <initializer_list>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -51,6 +55,14 @@ inline void print_error(const std::string& app_name, const std::string& message)
   std::cerr << app_name << ": error: " << line << std::endl;
 }
 
+/// Prints "<app>: error: <request>: not enough memory ..." and returns 1.
+inline int print_out_of_memory(const std::string& app_name, const std::string& request) {
+  print_error(app_name, (request.empty() ? std::string() : request + ": ") +
+                            "not enough memory for this request (the machine could not give what it needs: ask for "
+                            "less)");
+  return 1;
+}
+
 /// An empty argument ('' or --name=) is a usage error in every tool: CLI11 would give a numeric
 /// option the value 0 for it (e.g. `--levels ''` ran 0 levels). Throws CLI::ValidationError.
 inline void refuse_empty_arguments(int argc, char** argv) {
@@ -63,12 +75,32 @@ inline void refuse_empty_arguments(int argc, char** argv) {
   }
 }
 
+/// The request as given, for the message when memory runs out: each option of `sized` the
+/// command line gave ("--points 100000000"), a file also with its size ("MESH big.ply (2.1 GB)").
+inline std::string describe_request(const CLI::App& app, std::initializer_list<const char*> sized) {
+  std::string out;
+  for (const char* name : sized) {
+    const CLI::Option* option = app.get_option_no_throw(name);
+    if (option == nullptr || option->count() == 0) continue;
+    for (const std::string& value : option->results()) {
+      std::string item = option->get_name() + " " + value;
+      std::error_code ec;
+      const auto bytes = std::filesystem::is_regular_file(value, ec) ? std::filesystem::file_size(value, ec) : 0;
+      if (!ec && bytes > 0) item += " (" + std::to_string((bytes + 500000) / 1000000) + " MB)";
+      out += (out.empty() ? "" : ", ") + item;
+    }
+  }
+  return out;
+}
+
 /// Parses `argv` with `app`, then runs `body` (a callable returning the exit code, usually 0).
 /// --help prints the help on stdout and returns 0; a parse error (an empty argument included)
 /// prints one line and a hint on stderr and returns 2; an exception from `body` prints one line
-/// and returns 1 (2 for AppUsageError).
+/// and returns 1 (2 for AppUsageError). `sized` names the options (and positional files) whose
+/// values decide how much memory the work takes: when it runs out (std::bad_alloc, or a size
+/// beyond what a container can hold) the message names them as given.
 template <class Body>
-int run_app(CLI::App& app, int argc, char** argv, Body&& body) {
+int run_app(CLI::App& app, int argc, char** argv, Body&& body, std::initializer_list<const char*> sized = {}) {
   const std::string name = app.get_name().empty() ? std::string("app") : app.get_name();
   try {
     refuse_empty_arguments(argc, argv);
@@ -88,6 +120,10 @@ int run_app(CLI::App& app, int argc, char** argv, Body&& body) {
   } catch (const edgefront::Error& e) {
     print_error(name, e.what());
     return 1;
+  } catch (const std::bad_alloc&) {
+    return print_out_of_memory(name, describe_request(app, sized));
+  } catch (const std::length_error&) {
+    return print_out_of_memory(name, describe_request(app, sized));
   } catch (const std::exception& e) {
     print_error(name, e.what());
     return 1;

@@ -5,8 +5,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <limits>
 #include <system_error>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "detail/io_common.h"
 #include "edgefront/error.h"
@@ -28,35 +33,93 @@ void throw_io_line(const fs::path& file, size_t line, const std::string& what) {
   throw IoError(file.string() + ": line " + std::to_string(line) + ": " + what);
 }
 
-std::string read_whole_file(const fs::path& file) {
-  std::error_code ec;
-  const fs::file_status st = fs::status(file, ec);
-  if (!fs::exists(st)) throw_io(file, "file does not exist");
-  if (fs::is_directory(st)) throw_io(file, "is a directory, not a file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in.is_open()) {
+namespace {
+
+/// What a file of mode `mode` is, for a message ("a FIFO (named pipe)"), or empty for a regular file.
+std::string non_regular_kind(mode_t mode) {
+  if (S_ISREG(mode)) return {};
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+[[noreturn]] void throw_not_regular(const fs::path& file, const std::string& kind) {
+  throw_io(file, "is " + kind + ", not a regular file (give the path of a mesh or point file)");
+}
+
+[[noreturn]] void throw_errno(const fs::path& file, const char* what, int err) {
+  throw_io(file, std::string(what) + (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
+}
+
+}  // namespace
+
+FileContent::FileContent(const fs::path& file) {
+  // stat before open: opening a FIFO for reading blocks until a writer comes.
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) {
     const int err = errno;
-    throw_io(file, std::string("cannot open the file for reading") +
-                       (err != 0 ? std::string(": ") + std::strerror(err) : std::string()));
+    if (err == ENOENT) throw_io(file, "file does not exist");
+    throw_errno(file, "cannot open the file for reading", err);
   }
-  std::string data;
-  if (fs::is_regular_file(st)) {
-    const uintmax_t size = fs::file_size(file, ec);
-    if (!ec) data.reserve(static_cast<size_t>(size));
+  if (const std::string kind = non_regular_kind(st.st_mode); !kind.empty()) throw_not_regular(file, kind);
+  const int fd = ::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) throw_errno(file, "cannot open the file for reading", errno);
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  if (::fstat(fd, &st) != 0) throw_errno(file, "cannot read the file", errno);
+  if (const std::string kind = non_regular_kind(st.st_mode); !kind.empty()) throw_not_regular(file, kind);
+  const uint64_t size = static_cast<uint64_t>(st.st_size);
+  if (size > std::numeric_limits<size_t>::max() / 2) throw_io(file, "file is too large to read");
+  if (size > 0) {
+    void* map = ::mmap(nullptr, static_cast<size_t>(size), PROT_READ, MAP_PRIVATE, fd, 0);
+    if (map != MAP_FAILED) {
+      map_ = map;
+      map_size_ = static_cast<size_t>(size);
+      ::madvise(map_, map_size_, MADV_SEQUENTIAL);
+      view_ = std::string_view(static_cast<const char*>(map_), map_size_);
+      return;
+    }
   }
+  // Not mappable, or a size of 0 that may still have content (/proc files): read to the end.
+  copy_.reserve(static_cast<size_t>(size));
   char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof(buffer));
-    data.append(buffer, static_cast<size_t>(in.gcount()));
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw_errno(file, "read error", errno);
+    if (n == 0) break;
+    copy_.append(buffer, static_cast<size_t>(n));
   }
-  if (in.bad()) throw_io(file, "read error");
-  if (data.empty()) throw_io(file, "file is empty");
-  return data;
+  if (copy_.empty()) throw_io(file, "file is empty");
+  view_ = copy_;
+}
+
+FileContent::~FileContent() {
+  if (map_ != nullptr) ::munmap(map_, map_size_);
 }
 
 bool looks_binary(std::string_view data) {
   const std::string_view head = data.substr(0, 4096);
   return head.find('\0') != std::string_view::npos;
+}
+
+std::string_view skip_utf8_bom(std::string_view data) {
+  if (data.substr(0, 3) == "\xEF\xBB\xBF") data.remove_prefix(3);
+  return data;
+}
+
+std::string_view text_content(std::string_view data, const fs::path& file, const char* format) {
+  const std::string_view head = data.substr(0, 2);
+  if (head == "\xFF\xFE" || head == "\xFE\xFF") {
+    throw_io(file, std::string("not ") + format + " file: it is UTF-16 text (save it as ASCII or UTF-8)");
+  }
+  if (looks_binary(data)) throw_io(file, std::string("not ") + format + " file: it contains binary data");
+  return skip_utf8_bom(data);
 }
 
 std::string quote(std::string_view token) {
@@ -136,6 +199,20 @@ bool parse_double(std::string_view token, double& value) {
     return true;
   }
   return ec == std::errc() && ptr == last;
+}
+
+std::string bad_number(std::string_view token) {
+  // parse_double refuses a number beyond the range of double (it accepts underflow).
+  std::string_view digits = token;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0;
+  const char* end = digits.data() + digits.size();
+  const std::from_chars_result r = std::from_chars(digits.data(), end, value, std::chars_format::general);
+  if (!token.empty() && r.ec == std::errc::result_out_of_range && r.ptr == end) {
+    return "number " + quote(token) + " is out of the range of a double (+-" +
+           number_for_message(std::numeric_limits<double>::max()) + ")";
+  }
+  return "malformed number " + quote(token);
 }
 
 bool parse_int64(std::string_view token, int64_t& value) {

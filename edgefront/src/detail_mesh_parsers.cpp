@@ -9,6 +9,7 @@
 #include "detail/io_common.h"
 #include "detail/mesh_parsers.h"
 #include "detail/ply.h"
+#include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
 
 namespace edgefront::detail {
@@ -59,7 +60,7 @@ Vec3 parse_point(const std::vector<std::string_view>& tokens, size_t first, cons
   Vec3 p;
   for (int k = 0; k < 3; ++k) {
     if (!parse_double(tokens[first + k], p[k])) {
-      throw_io_line(file, line, what() + ": malformed number " + quote(tokens[first + k]));
+      throw_io_line(file, line, what() + ": " + bad_number(tokens[first + k]));
     }
   }
   if (!finite(p)) throw_io_line(file, line, what() + ": " + describe_non_finite(p));
@@ -71,8 +72,8 @@ Vec3 parse_point(const std::vector<std::string_view>& tokens, size_t first, cons
 // ---------------------------------------------------------------------------------------------
 // OFF
 
-RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOptions& options) {
-  if (looks_binary(data)) throw_io(file, "not an OFF file: it contains binary data");
+RawMesh parse_off(std::string_view data, const fs::path& file) {
+  data = text_content(data, file, "an OFF");
   RawMesh raw;
   LineReader lines(data);
   std::string_view line;
@@ -151,7 +152,6 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
     split_tokens(line, tokens);
     raw.points.push_back(parse_point(tokens, 0, file, lines.line_number(), i));
   }
-  if (!options.faces) return raw;
   raw.faces.reserve(std::min<uint64_t>(nf, lines.remaining() / 8 + 1));
   for (uint64_t j = 0; j < nf; ++j) {
     if (!next_content(lines, line)) {
@@ -201,8 +201,8 @@ RawMesh parse_off(std::string_view data, const fs::path& file, const ParseOption
 // ---------------------------------------------------------------------------------------------
 // OBJ
 
-RawMesh parse_obj(std::string_view data, const fs::path& file, const ParseOptions& options) {
-  if (looks_binary(data)) throw_io(file, "not an OBJ file: it contains binary data");
+RawMesh parse_obj(std::string_view data, const fs::path& file) {
+  data = text_content(data, file, "an OBJ");
   RawMesh raw;
   LineReader lines(data);
   std::string_view line;
@@ -217,7 +217,6 @@ RawMesh parse_obj(std::string_view data, const fs::path& file, const ParseOption
       if (raw.points.size() >= kMaxVertices) throw_io_line(file, ln, "too many vertices");
       raw.points.push_back(parse_point(tokens, 1, file, ln, raw.points.size()));
     } else if (kw == "f") {
-      if (!options.faces) continue;
       const size_t face_index = raw.faces.size();
       const auto what = [face_index] { return "face " + std::to_string(face_index); };
       if (tokens.size() < 4) {
@@ -304,8 +303,12 @@ RawMesh parse_obj(std::string_view data, const fs::path& file, const ParseOption
 // ---------------------------------------------------------------------------------------------
 // PLY
 
-RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOptions& options) {
-  const PlyHeader header = parse_ply_header(data, file);
+namespace {
+
+/// The body of a PLY file whose header is `header`; `trailing` tells whether data follows the
+/// last element.
+RawMesh parse_ply_body(std::string_view data, const PlyHeader& header, const fs::path& file, bool normals,
+                       bool& trailing) {
   RawMesh raw;
   raw.where_is_line = header.format == PlyFormat::kAscii;
   const int vi = header.find("vertex");
@@ -322,7 +325,7 @@ RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOption
     }
   }
   int normal[3] = {-1, -1, -1};
-  if (options.normals) {
+  if (normals) {
     const char* nnames[3] = {"nx", "ny", "nz"};
     int found = 0;
     for (int k = 0; k < 3; ++k) {
@@ -342,23 +345,20 @@ RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOption
   if (vertex.count > kMaxVertices) throw_io(file, "too many vertices (" + std::to_string(vertex.count) + ")");
   const uint64_t nv = vertex.count;
 
-  int fi = -1, face_prop = -1;
-  if (options.faces) {
-    fi = header.find("face");
-    if (fi >= 0) {
-      const PlyElement& face = header.elements[fi];
-      face_prop = face.find("vertex_indices");
-      if (face_prop < 0) face_prop = face.find("vertex_index");
-      if (face_prop < 0 || !face.properties[face_prop].is_list) {
-        throw_io_line(file, face.header_line,
-                      "bad PLY header: the 'face' element has no list property 'vertex_indices'");
-      }
+  int face_prop = -1;
+  const int fi = header.find("face");
+  if (fi >= 0) {
+    const PlyElement& face = header.elements[fi];
+    face_prop = face.find("vertex_indices");
+    if (face_prop < 0) face_prop = face.find("vertex_index");
+    if (face_prop < 0 || !face.properties[face_prop].is_list) {
+      throw_io_line(file, face.header_line,
+                    "bad PLY header: the 'face' element has no list property 'vertex_indices'");
     }
   }
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
     if (static_cast<int>(e) == vi || static_cast<int>(e) == fi || element.count == 0) continue;
-    if (!options.faces && element.name == "face") continue;
     raw.warnings.push_back("element " + quote(element.name) + " (" + std::to_string(element.count) +
                            " instances) ignored");
   }
@@ -416,8 +416,57 @@ RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOption
       reader.skip_element();
     }
   }
-  if (reader.has_trailing_data()) raw.warnings.push_back("data after the last element was ignored");
+  trailing = reader.has_trailing_data();
+  if (trailing) raw.warnings.push_back("data after the last element was ignored");
   return raw;
+}
+
+/// Called when the body of a PLY file could not be read: when other elements follow the vertices
+/// and the file reads correctly, to its last byte, with a vertex count one lower or one higher
+/// than the header's, the header's count is what is wrong (a face record read as a vertex gives "face 0 has 0 vertices" and the like),
+/// and that is thrown. Returns otherwise.
+void diagnose_vertex_count(std::string_view data, const PlyHeader& header, const fs::path& file, bool normals) {
+  const int vi = header.find("vertex");
+  if (vi < 0) return;
+  // Only a count followed by other data can be diagnosed: a last element that comes up short is a
+  // truncated file, as the reader says.
+  bool data_follows = false;
+  for (size_t e = static_cast<size_t>(vi) + 1; e < header.elements.size(); ++e) {
+    data_follows = data_follows || header.elements[e].count > 0;
+  }
+  if (!data_follows) return;
+  const uint64_t declared = header.elements[vi].count;
+  for (const int delta : {-1, 1}) {
+    if (delta < 0 && declared == 0) continue;
+    PlyHeader corrected = header;
+    corrected.elements[vi].count = delta < 0 ? declared - 1 : declared + 1;
+    bool trailing = true;
+    try {
+      parse_ply_body(data, corrected, file, normals, trailing);
+    } catch (const IoError&) {
+      continue;
+    }
+    if (trailing) continue;
+    throw_io_line(file, header.elements[vi].header_line,
+                  "the header declares " + count_noun(declared, "vertex", "vertices") + " but the data holds " +
+                      std::to_string(corrected.elements[vi].count) + ": the vertex count is one too " +
+                      (delta < 0 ? "high" : "low") + " (with " + std::to_string(corrected.elements[vi].count) +
+                      " the rest of the file reads correctly)");
+  }
+}
+
+}  // namespace
+
+RawMesh parse_ply(std::string_view data, const fs::path& file, const ParseOptions& options) {
+  data = skip_utf8_bom(data);
+  const PlyHeader header = parse_ply_header(data, file);
+  bool trailing = false;
+  try {
+    return parse_ply_body(data, header, file, options.normals, trailing);
+  } catch (const IoError&) {
+    diagnose_vertex_count(data, header, file, options.normals);
+    throw;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -523,7 +572,7 @@ RawMesh parse_stl_ascii(std::string_view data, const fs::path& file) {
     if (!in.next(token)) throw_io_line(file, in.line(), std::string("truncated file: expected ") + what);
     double v = 0;
     if (!parse_double(token, v))
-      throw_io_line(file, in.line(), std::string("malformed number ") + quote(token) + " in " + what);
+      throw_io_line(file, in.line(), bad_number(token) + " in " + what);
     return v;
   };
   expect("solid");
@@ -596,6 +645,13 @@ RawMesh parse_stl_binary(std::string_view data, const fs::path& file) {
                        std::to_string(expected) + " bytes) but the file has " + std::to_string(data.size()) +
                        " bytes");
   }
+  if (data.size() - expected >= kFacet) {
+    // Room for more triangles than declared: a wrong count (or not an STL file at all, such as a
+    // sparse file of zeros), not padding.
+    throw_io(file, "the header declares " + count_noun(n, "triangle", "triangles") + " (" +
+                       std::to_string(expected) + " bytes) but the file has " + std::to_string(data.size()) +
+                       " bytes: a wrong triangle count, or not an STL file");
+  }
   if (data.size() > expected) {
     raw.warnings.push_back(std::to_string(data.size() - expected) +
                            " bytes after the last triangle were ignored");
@@ -628,8 +684,28 @@ RawMesh parse_stl(std::string_view data, const fs::path& file) {
     const uint64_t n = load_bytes<uint32_t>(data.data() + 80, true);
     if (84 + 50 * n == data.size()) return parse_stl_binary(data, file);
   }
-  if (starts_with_solid(data) && !looks_binary(data)) return parse_stl_ascii(data, file);
+  const std::string_view text = skip_utf8_bom(data);
+  if (starts_with_solid(text) && !looks_binary(text)) return parse_stl_ascii(text, file);
   return parse_stl_binary(data, file);
+}
+
+RawMesh parse_mesh_file(std::string_view data, const fs::path& file, const std::string& ext,
+                        const ParseOptions& options) {
+  if (data.empty()) throw_io(file, "file is empty");
+  RawMesh raw;
+  if (ext == ".off") {
+    raw = parse_off(data, file);
+  } else if (ext == ".obj") {
+    raw = parse_obj(data, file);
+  } else if (ext == ".ply") {
+    raw = parse_ply(data, file, options);
+  } else if (ext == ".stl") {
+    raw = parse_stl(data, file);
+  } else {
+    EF_CHECK(false, "parse_mesh_file: unknown extension " + ext);
+  }
+  if (std::string why = coordinate_range_problem(raw.points, "vertex"); !why.empty()) throw_io(file, why);
+  return raw;
 }
 
 }  // namespace edgefront::detail

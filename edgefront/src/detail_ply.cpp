@@ -290,7 +290,7 @@ void PlyBodyReader::read_ascii(PlyInstance& out, const std::vector<bool>& want_l
     }
     if (!p.is_list) {
       if (!parse_double(tokens_[t], out.values[i])) {
-        fail("malformed number " + quote(tokens_[t]) + " for property " + quote(p.name));
+        fail(bad_number(tokens_[t]) + " for property " + quote(p.name));
       }
       ++t;
       continue;
@@ -311,7 +311,7 @@ void PlyBodyReader::read_ascii(PlyInstance& out, const std::vector<bool>& want_l
     for (uint64_t k = 0; k < count; ++k, ++t) {
       double v = 0;
       if (!parse_double(tokens_[t], v)) {
-        fail("malformed number " + quote(tokens_[t]) + " in list " + quote(p.name));
+        fail(bad_number(tokens_[t]) + " in list " + quote(p.name));
       }
       if (keep) out.lists[i][k] = v;
     }

@@ -87,7 +87,8 @@ struct DijkstraRun {
         out.stop = DistanceStop::TargetReached;
         break;
       }
-      edges(x, [&](int y, int vy, double len) { offer(y, vy, x, d + len); });
+      // d by an init-capture: clang 14 (the fuzz build) cannot capture a structured binding.
+      edges(x, [&, dist = d](int y, int vy, double len) { offer(y, vy, x, dist + len); });
       peak = std::max(peak, heap.size());
       if (!heap.empty()) look_ahead(index_of(heap.top().second), 1);
     }

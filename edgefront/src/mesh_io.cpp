@@ -435,18 +435,7 @@ void check_mesh_extension(const fs::path& path, const std::string& ext) {
 
 MeshReadResult parse_and_build(std::string_view data, const fs::path& path, const std::string& ext,
                                const MeshReadOptions& options) {
-  if (data.empty()) detail::throw_io(path, "file is empty");
-  detail::RawMesh raw;
-  const detail::ParseOptions parse_options;
-  if (ext == ".off") {
-    raw = detail::parse_off(data, path, parse_options);
-  } else if (ext == ".obj") {
-    raw = detail::parse_obj(data, path, parse_options);
-  } else if (ext == ".ply") {
-    raw = detail::parse_ply(data, path, parse_options);
-  } else {
-    raw = detail::parse_stl(data, path);
-  }
+  detail::RawMesh raw = detail::parse_mesh_file(data, path, ext, detail::ParseOptions{});
   return build_mesh(raw, options, path);
 }
 
@@ -455,8 +444,8 @@ MeshReadResult parse_and_build(std::string_view data, const fs::path& path, cons
 MeshReadResult read_mesh(const fs::path& path, const MeshReadOptions& options) {
   const std::string ext = detail::lower_extension(path);
   check_mesh_extension(path, ext);
-  const std::string data = detail::read_whole_file(path);
-  return parse_and_build(data, path, ext, options);
+  const detail::FileContent content(path);
+  return parse_and_build(content.view(), path, ext, options);
 }
 
 MeshReadResult read_mesh_from_buffer(std::string_view data, const fs::path& name,

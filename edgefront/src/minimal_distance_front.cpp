@@ -10,6 +10,8 @@
 #include "detail/distance_common.h"
 #include "detail/edge_front_core.h"
 #include "detail/min_heap.h"
+#include "edgefront/coordinate_range.h"
+#include "edgefront/error.h"
 
 namespace edgefront {
 
@@ -182,6 +184,10 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& o) {
 void check_finite_vertex(const Vec3& position, int v) {
   if (!std::isfinite(position[0]) || !std::isfinite(position[1]) || !std::isfinite(position[2]))
     throw InvalidInput("distance: vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+  if (std::max({std::abs(position[0]), std::abs(position[1]), std::abs(position[2])}) > kMaxCoordinate) {
+    throw InvalidInput("distance: vertex " + std::to_string(v) + " has a coordinate beyond +-" +
+                       number_for_message(kMaxCoordinate) + " (coordinate_range.h): squared lengths would overflow");
+  }
 }
 
 // Checks source points; returns the vertices of their faces (each once).

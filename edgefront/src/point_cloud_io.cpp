@@ -5,6 +5,7 @@
 #include "detail/io_common.h"
 #include "detail/mesh_parsers.h"
 #include "edgefront/atomic_write.h"
+#include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
 
 namespace edgefront {
@@ -19,13 +20,14 @@ bool finite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) &
 std::string normalize_normal(Vec3& n) {
   if (!finite(n)) return "non-finite normal";
   const double length = n.norm();
-  if (!(length > 0) || !std::isfinite(length)) return "zero-length normal";
+  if (std::isinf(length)) return "normal too long (its length overflows)";
+  if (!(length > 0)) return n == Vec3(0, 0, 0) ? "zero-length normal" : "normal too short (its squared length underflows)";
   n /= length;
   return {};
 }
 
 PointCloud read_xyz(std::string_view data, const fs::path& file) {
-  if (detail::looks_binary(data)) detail::throw_io(file, "not a text point file: it contains binary data");
+  data = detail::text_content(data, file, "a text point");
   PointCloud cloud;
   detail::LineReader lines(data);
   std::string_view line;
@@ -64,7 +66,7 @@ PointCloud read_xyz(std::string_view data, const fs::path& file) {
     double v[6];
     for (size_t k = 0; k < per_line; ++k) {
       if (!detail::parse_double(tokens[k], v[k]))
-        detail::throw_io_line(file, ln, "malformed number " + detail::quote(tokens[k]));
+        detail::throw_io_line(file, ln, detail::bad_number(tokens[k]));
     }
     const Vec3 p(v[0], v[1], v[2]);
     if (!finite(p)) detail::throw_io_line(file, ln, "non-finite coordinate");
@@ -81,6 +83,7 @@ PointCloud read_xyz(std::string_view data, const fs::path& file) {
         file, count_line,
         "the file declares " + std::to_string(declared) + " points but has " + std::to_string(cloud.size()));
   }
+  if (std::string why = coordinate_range_problem(cloud.points); !why.empty()) detail::throw_io(file, why);
   return cloud;
 }
 
@@ -99,22 +102,13 @@ void check_points_extension(const fs::path& path, const std::string& ext) {
 
 PointCloud parse_points(std::string_view data, const fs::path& path, const std::string& ext) {
   if (data.empty()) detail::throw_io(path, "file is empty");
-  const bool text = is_text_points(ext);
   PointCloud cloud;
-  if (text) {
+  if (is_text_points(ext)) {
     cloud = read_xyz(data, path);
   } else {
     detail::ParseOptions options;
-    options.faces = false;
     options.normals = ext == ".ply";
-    detail::RawMesh raw;
-    if (ext == ".ply") {
-      raw = detail::parse_ply(data, path, options);
-    } else if (ext == ".off") {
-      raw = detail::parse_off(data, path, options);
-    } else {
-      raw = detail::parse_obj(data, path, options);
-    }
+    detail::RawMesh raw = detail::parse_mesh_file(data, path, ext, options);
     for (size_t i = 0; i < raw.normals.size(); ++i) {
       const std::string problem = normalize_normal(raw.normals[i]);
       if (!problem.empty()) detail::throw_io(path, "vertex " + std::to_string(i) + ": " + problem);
@@ -131,8 +125,8 @@ PointCloud parse_points(std::string_view data, const fs::path& path, const std::
 PointCloud read_points(const fs::path& path) {
   const std::string ext = detail::lower_extension(path);
   check_points_extension(path, ext);
-  const std::string data = detail::read_whole_file(path);
-  return parse_points(data, path, ext);
+  const detail::FileContent content(path);
+  return parse_points(content.view(), path, ext);
 }
 
 PointCloud read_points_from_buffer(std::string_view data, const fs::path& name) {

@@ -16,6 +16,7 @@
 
 #include "detail/self_intersection.h"
 #include "detail/triangle_closest.h"
+#include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
@@ -58,6 +59,7 @@ void check_mesh_coordinates(const Mesh& mesh, const char* what) {
                          std::to_string(v.idx()));
     }
   }
+  edgefront::check_coordinate_range(mesh, std::string("evaluation: ") + what);
 }
 
 void check_cloud(const PointCloud& cloud) {
@@ -72,6 +74,7 @@ void check_cloud(const PointCloud& cloud) {
                          std::to_string(i));
     }
   }
+  edgefront::check_coordinate_range(cloud.points, "evaluation: the ground truth");
   for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
     if (!finite(cloud.normals[i]) || !(cloud.normals[i].sqrnorm() > 0.0)) {
       throw InvalidInput("evaluation: the ground truth has a non-finite or zero normal at point " +

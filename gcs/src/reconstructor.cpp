@@ -28,6 +28,7 @@
 #include "detail/surface_fit.h"
 #include "detail/untangle.h"
 #include "detail/vertex_grid.h"
+#include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
@@ -272,6 +273,7 @@ struct Reconstructor::Impl {
       if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         throw InvalidInput("gcs: point " + std::to_string(i) + " has a NaN or infinite coordinate");
     }
+    edgefront::check_coordinate_range(points.points, "gcs");
     if (!points.normals.empty() && points.normals.size() != points.points.size())
       throw InvalidInput("gcs: the cloud has " + std::to_string(points.normals.size()) + " normals for " +
                          std::to_string(points.points.size()) + " points");

@@ -19,7 +19,15 @@ namespace edgefront {
 ///
 /// `binary` opens the stream in binary mode (no effect on POSIX; matters on Windows).
 ///
-/// \throw IoError naming `target` when the directory does not exist or is not writable, when `body`
+/// Interrupted writes leave no temporary behind where that can be helped: on SIGINT, SIGTERM or
+/// SIGHUP the live temporaries are removed and the process then ends by the signal as it would
+/// have (the handlers are installed on the first write, only for signals still at their default
+/// action: an application's own handler is left alone). A temporary of a process that no longer
+/// runs (SIGKILL, a crash) is removed by the next write to the same target: its name holds the
+/// writer's process id.
+///
+/// \throw IoError naming `target` when the directory does not exist or is not writable, when
+///        `target` exists and is a directory, a FIFO, a device or a socket, when `body`
 ///        throws (the original exception is attached with `std::throw_with_nested`), when the
 ///        stream reports an error (disk full, ...), or when the rename fails. In every failure case
 ///        the temporary file is removed and an existing `target` is left untouched.

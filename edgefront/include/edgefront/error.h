@@ -43,6 +43,11 @@ class InternalError : public Error {
   using Error::Error;
 };
 
+/// `value` as error messages print numbers: the shortest text that reads back exactly when it is
+/// short ("0.5", "-3", "100000", "inf"), else two significant digits with a plain exponent
+/// ("1.8e308" for DBL_MAX, "2.2e-308", "1.3e154"), never a 309-digit or a "0.000000".
+std::string number_for_message(double value);
+
 namespace detail {
 [[noreturn]] void throw_check_failure(const char* expr, const char* file, int line, const std::string& msg);
 }  // namespace detail

@@ -65,14 +65,22 @@ struct MeshReadResult {
 /// - `.stl`: ASCII and binary; exactly coincident corners are merged into shared vertices (in
 ///   order of first appearance).
 ///
+/// Text formats (OFF, OBJ, ASCII PLY headers, ASCII STL) may start with a UTF-8 byte-order mark.
+/// Only regular files are read: a directory, a FIFO or a device (/dev/zero) is refused before it
+/// is opened. The file is mapped, not copied: a file refused after its first bytes costs no
+/// more than those.
+///
 /// Vertex i of the file is `VertexHandle(i)` of the mesh (STL: i-th distinct corner), isolated
 /// vertices included; a file with vertices and no faces is a valid mesh without faces. Polygons
 /// are fan-triangulated from their first vertex (exact for convex polygons). Face normals of
 /// the result are up to date.
 ///
 /// \throw IoError naming the file, the line (text formats) or element index, and the problem,
-///        for: a missing or unreadable file, an unknown extension, an empty file, a truncated
-///        file, malformed numbers, NaN or infinite coordinates, face indices out of range or
+///        for: a missing or unreadable file, anything but a regular file, an unknown extension,
+///        an empty file, UTF-16 text, a truncated file, malformed numbers or numbers beyond the
+///        range of double, NaN or infinite coordinates, coordinates outside the range EdgeFront
+///        computes with (coordinate_range.h: 1e308, 1e-310), a PLY vertex count one off (named
+///        as such), face indices out of range or
 ///        negative, faces with fewer than 3 indices, bad PLY headers, element counts that cannot
 ///        fit in the file, content that is not a mesh in the expected format, and (with
 ///        `drop_nonmanifold_faces == false`) faces OpenMesh refuses.

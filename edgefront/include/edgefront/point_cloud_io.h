@@ -21,12 +21,17 @@ namespace edgefront {
 ///   files have) and checked;
 /// - `.ply`: the `vertex` element's `x y z` and, when all three are present, `nx ny nz`; faces
 ///   and other elements are ignored;
-/// - `.off`, `.obj`: the vertices; faces are ignored (not even validated).
-/// Normals are normalized to unit length.
-/// \throw IoError naming the file and the line (or vertex) for: a missing or empty file, an
-///        unknown extension, malformed numbers, a line with another number count, NaN or infinite
-///        coordinates or normals, zero-length normals, a file without points, and the format
-///        errors read_mesh reports for PLY/OFF/OBJ headers and vertices.
+/// - `.off`, `.obj`: the vertices.
+/// PLY, OFF and OBJ files go through the mesh reader's parser and checks: their faces are read
+/// and validated, then dropped, so that a file read_mesh refuses is refused here too, with the
+/// same message. Text files may start with a UTF-8 byte-order mark; only regular files are read
+/// (as read_mesh). Normals are normalized to unit length.
+/// \throw IoError naming the file and the line (or vertex) for: a missing or empty file, anything
+///        but a regular file, an unknown extension, malformed numbers or numbers beyond the range
+///        of double, a line with another number count, NaN or infinite coordinates or normals,
+///        coordinates outside the range EdgeFront computes with (coordinate_range.h), zero-length
+///        normals and normals whose length overflows ("too long"), a file without points, and
+///        every error read_mesh reports for PLY/OFF/OBJ files.
 PointCloud read_points(const std::filesystem::path& path);
 
 /// Like read_points, for file content already in memory; `name` only picks the format by its

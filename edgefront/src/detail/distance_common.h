@@ -16,8 +16,9 @@ inline constexpr double kFlatDefect = 1e-10;
 
 // \throws InvalidInput for a NaN or negative max_distance or a target that is not a live vertex.
 void check_distance_options(const Mesh& mesh, const DistanceOptions& o);
-// \throws InvalidInput when the position of vertex v has a NaN or infinite coordinate. Each mode
-// checks a vertex when it first reaches it (O(front), not O(mesh)).
+// \throws InvalidInput when the position of vertex v has a NaN or infinite coordinate, or one
+// beyond kMaxCoordinate (coordinate_range.h). Each mode checks a vertex when it first reaches it
+// (O(front), not O(mesh)).
 void check_finite_vertex(const Vec3& position, int v);
 // Checks source points; returns the vertices of their faces (each once).
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points);

@@ -23,12 +23,42 @@ std::string lower_extension(const std::filesystem::path& path);
 /// Throws IoError "<file>: line <line>: <what>".
 [[noreturn]] void throw_io_line(const std::filesystem::path& file, size_t line, const std::string& what);
 
-/// The whole content of `file`. Throws IoError when the file is missing, a directory, unreadable,
-/// or empty ("file is empty").
-std::string read_whole_file(const std::filesystem::path& file);
+/// The content of a regular file, mapped read-only into memory (or read, where the file system
+/// cannot map it). Mapping costs nothing up front: a parser that refuses a file after its first
+/// bytes (a 2 GB sparse file, binary garbage given to a text reader) touches only those pages.
+///
+/// Anything but a regular file (a directory, a FIFO, /dev/zero or another device, a socket) is
+/// refused before it is opened, so that nothing blocks or reads without end. The file is opened
+/// non-blocking and checked again after opening (it may have been replaced in between).
+/// \throw IoError when the file is missing, not a regular file, unreadable, or empty ("file is
+///        empty").
+/// \note A file truncated by another process while it is mapped raises SIGBUS on access, as with
+///       every mapped reader.
+class FileContent {
+ public:
+  explicit FileContent(const std::filesystem::path& file);
+  ~FileContent();
+  FileContent(const FileContent&) = delete;
+  FileContent& operator=(const FileContent&) = delete;
+  std::string_view view() const { return view_; }
+
+ private:
+  void* map_ = nullptr;
+  size_t map_size_ = 0;
+  std::string copy_;  ///< the content when it could not be mapped
+  std::string_view view_;
+};
 
 /// True when the first bytes of `data` contain a NUL byte (a binary file given to a text reader).
 bool looks_binary(std::string_view data);
+
+/// `data` without a leading UTF-8 byte-order mark (EF BB BF), which some editors write at the
+/// start of text files.
+std::string_view skip_utf8_bom(std::string_view data);
+
+/// The start of a text reader: `data` without a UTF-8 byte-order mark. Throws IoError "not a
+/// <format> file: ..." when `data` is UTF-16 text (its byte-order mark) or contains binary data.
+std::string_view text_content(std::string_view data, const std::filesystem::path& file, const char* format);
 
 /// `token` quoted for an error message, shortened and with unprintable bytes escaped.
 std::string quote(std::string_view token);
@@ -61,8 +91,12 @@ std::string_view strip_comment(std::string_view line);
 void split_tokens(std::string_view line, std::vector<std::string_view>& tokens);
 
 /// Strict parse of a whole token as a decimal floating-point number ("1", "-2.5e3", "+4", "nan",
-/// "inf"). False when the token is not a number or is out of the range of double.
+/// "inf"). False when the token is not a number or is out of the range of double (a number
+/// too small for a double reads as 0 or a denormal).
 bool parse_double(std::string_view token, double& value);
+/// What is wrong with a token parse_double refused, for a message: "malformed number 'x1'" or
+/// "number '1e400' is out of the range of a double (+-1.8e308)".
+std::string bad_number(std::string_view token);
 /// Strict parse of a whole token as a decimal integer (optional sign).
 bool parse_int64(std::string_view token, int64_t& value);
 /// Strict parse of a whole token as a non-negative decimal integer.

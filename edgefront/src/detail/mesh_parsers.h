@@ -31,17 +31,23 @@ struct RawMesh {
   std::vector<std::string> warnings;  ///< format-level remarks (ignored elements, trailing data, ...)
 };
 
-/// What to read. Point-cloud readers ask for vertices only: faces are then skipped without
-/// being validated.
+/// What to read besides vertices and faces.
 struct ParseOptions {
-  bool faces = true;
   bool normals = false;  ///< PLY: read nx ny nz when present
 };
 
-RawMesh parse_off(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
-RawMesh parse_obj(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
+RawMesh parse_off(std::string_view data, const std::filesystem::path& file);
+RawMesh parse_obj(std::string_view data, const std::filesystem::path& file);
 RawMesh parse_ply(std::string_view data, const std::filesystem::path& file, const ParseOptions& options);
 /// ASCII or binary STL; coincident corners are merged (bitwise-equal coordinates, -0 == 0).
 RawMesh parse_stl(std::string_view data, const std::filesystem::path& file);
+
+/// The one entry of the mesh reader and the point-cloud reader for mesh files: the parser for
+/// `ext` (".off", ".obj", ".ply", ".stl"; lower case), faces always read and validated (a point
+/// cloud reader drops them afterwards), then the checks every reader shares: an empty file, the
+/// coordinate range (coordinate_range.h). So both readers refuse the same files with the same
+/// messages. \throw IoError naming `file`.
+RawMesh parse_mesh_file(std::string_view data, const std::filesystem::path& file, const std::string& ext,
+                        const ParseOptions& options);
 
 }  // namespace edgefront::detail

@@ -319,7 +319,8 @@ struct ReconstructResult {
 class Reconstructor {
  public:
   /// Checks the input and builds the start mesh.
-  /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates, points
+  /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates,
+  ///        coordinates outside edgefront/coordinate_range.h's range, points
   ///        that all coincide or are collinear (no surface to reconstruct), and options out of
   ///        their documented ranges (target below 4 or above the number of distinct points, ...).
   explicit Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options = {});
