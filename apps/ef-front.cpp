@@ -57,7 +57,7 @@ constexpr const char* kAppName = "ef-front";
 
 /// Counts of the Minimal Edge Front's events.
 struct EventCounts {
-  size_t collisions = 0, splits = 0, merges = 0, annihilations = 0, border_reached = 0;
+  size_t collisions = 0, splits = 0, merges = 0, annihilations = 0, border_reached = 0, pinches = 0;
 };
 
 /// What a front run left behind, for the summary.
@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
           case Kind::Merge: ++events.merges; break;
           case Kind::Annihilation: ++events.annihilations; break;
           case Kind::BorderReached: ++events.border_reached; break;
+          case Kind::Pinch: ++events.pinches; break;
         }
       });
       front.reset(source);
@@ -236,7 +237,9 @@ int main(int argc, char** argv) {
       const EventCounts& e = *summary.events;
       s << kAppName << ": events: " << plural(e.collisions, "collision") << ", " << plural(e.splits, "split") << ", "
         << plural(e.merges, "merge") << ", " << plural(e.annihilations, "annihilation") << ", " << e.border_reached
-        << " border reached\n";
+        << " border reached";
+      if (e.pinches > 0) s << ", " << e.pinches << (e.pinches == 1 ? " pinch" : " pinches");
+      s << "\n";
     }
     s << kAppName << ": peak front " << summary.peak_front << " " << summary.front_unit << ", peak working memory "
       << summary.peak_bytes << " bytes, time " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms\n";

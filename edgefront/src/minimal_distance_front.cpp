@@ -10,6 +10,7 @@
 #include "detail/distance_common.h"
 #include "detail/edge_front_core.h"
 #include "detail/min_heap.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -34,8 +35,10 @@ struct Candidate {
   Vec3 source{0, 0, 0};
   double offset = 0;
   int face = -1;
+  bool twin = false;  // from a twin that settled (a pinched vertex): the vertex is a pseudo source
   Vec3 origin{0, 0, 0};
 };
+
 
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
@@ -46,6 +49,7 @@ struct DRec {
   bool settled = false;
   bool seed = false;     // a source vertex, or a vertex of a source point's face
   bool unexpanded = false;  // window mode: settled before it joined the front (see step)
+  bool twin = false;     // the distance came from a twin: a pseudo source (see Candidate::twin)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -261,6 +265,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   size_t n_merged = 0;  // windows merged into a waiting one (statistics)
   size_t n_windows = 0;  // windows propagated (statistics)
 
+  // Twins (pinched vertices, edgefront/vertex_twins.h; the core's `twins`): the direction of the
+  // twin a vertex took its distance from, until it settles; the vertices with twins that joined
+  // the edge front.
+  detail::FlatMap<Vec3> twin_dir;
+  detail::FlatMap<uint8_t> twins_joined;
+
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
   // vertex, unit direction and length, the face after it (-1 in a border gap) and that face's
   // corner angle at the vertex. Rebuilt for every settled vertex; reused storage.
@@ -279,7 +289,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
 
-  void on_join(int, VRec& rec) override { rec.level = 0; }
+  void on_join(int v, VRec& rec) override {
+    rec.level = 0;
+    if (twins.any() && twins.next(v) != v) twins_joined.insert(static_cast<uint32_t>(v), 1);  // see settle_twins
+  }
   int event_level() const override { return 0; }
 
   void check_options(const DistanceOptions& o) const {
@@ -310,14 +323,19 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     lit_edges.clear();
     n_merged = 0;
     n_windows = 0;
+    twin_dir.clear();
+    twins_joined.clear();
   }
 
+  // Neighbours and twins (see settle_twins) not settled yet.
   int count_unsettled(int v) const {
     int n = 0;
-    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
-      const DRec* r = dt.find(static_cast<uint32_t>(y.idx()));
+    auto count = [&](int y) {
+      const DRec* r = dt.find(static_cast<uint32_t>(y));
       n += !(r && r->settled);
-    }
+    };
+    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) count(y.idx());
+    twins.for_each_twin(v, count);
     return n;
   }
 
@@ -354,7 +372,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       return;
     }
     if (!same_source && std::isfinite(r.d) && r.face >= 0) {
-      r.alt = Candidate{r.d, r.source, r.offset, r.face, r.origin};
+      r.alt = Candidate{r.d, r.source, r.offset, r.face, false, r.origin};
     } else if (r.alt.d < kInf && same_virtual_source(r.alt.source, r.alt.offset, k.source, k.offset, k.d)) {
       r.alt.d = kInf;  // the new best is the old second source
     }
@@ -367,6 +385,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     r.offset = k.offset;
     r.face = k.face;
     r.origin = k.origin;
+    r.twin = k.twin;
     heap.push(k.d, v);
     peak_heap = std::max(peak_heap, heap.size());
   }
@@ -1322,10 +1341,44 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     offer(c, best, foot, 0.0, hxc.is_valid() ? mesh.face_handle(hxc).idx() : -1);
   }
 
-  void settle_neighbours(int x) {
+  // The twins of the settled vertex x (a pinched vertex: one point of the surface) take its
+  // distance and its direction `dir` (also when one came as near from its own side: one value per
+  // point), each a pseudo source for its own fan (no line continues through a point: the MDF's and
+  // the windows' own rule at a vertex the front cannot pass; the default mode keeps the twin's
+  // own way as its second source), and with the front tracked each joins it as a seed unless it
+  // is on the front or has been (twins_joined): its fan is then processed from there. A settled
+  // vertex's record stays while a twin is not settled (they count as neighbours), so a twin is
+  // never reached again. Returns the number of twins not settled yet.
+  [[gnu::noinline]] int settle_twins(int x, double d, const Vec3& dir) {
+    int open = 0;
+    const bool track = opts.track_front || windowed;
+    twins.for_each_twin(x, [&](int t) {
+      DRec* rt = dt.find(static_cast<uint32_t>(t));
+      if (rt && rt->settled) {
+        if (--rt->unsettled <= 0) drop(t);
+        return;
+      }
+      ++open;
+      const bool joined = twins_joined.contains(static_cast<uint32_t>(t));
+      if (rt) --rt->unsettled;  // (a loop source's count; rewritten when t settles otherwise)
+      Candidate k;
+      k.d = d;
+      k.source = k.origin = mesh.point(VertexHandle(t));
+      k.offset = d;
+      k.twin = true;
+      DRec& r = record(t);  // (no settled twin lies nearer: it would have settled first)
+      if (!windowed && std::isfinite(r.d) && r.face >= 0) r.alt = Candidate{r.d, r.source, r.offset, r.face, false, r.origin};
+      take(t, r, k);
+      *twin_dir.insert(static_cast<uint32_t>(t), dir).first = dir;
+      if (track && !joined && !vt.contains(static_cast<uint32_t>(t))) seed_twin(t, true);
+    });
+    return open;
+  }
+
+  void settle_neighbours(int x, const Vec3& dir) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
     build_ring(x);
-    int open = 0;  // neighbours not settled yet
+    int open = 0;  // neighbours (and twins) not settled yet
     auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
       open += !(rc && rc->settled);
@@ -1372,8 +1425,13 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         visit(r.v, HalfedgeHandle(r.he));
       }
     }
-    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
-    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d, rx.d == 0 ? nullptr : &rx);
+    if (twins.any()) open += settle_twins(x, rx.d, dir);
+    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far
+    // edges (a twin's pseudo source all around: its distance came through a point).
+    if (windowed) {
+      const bool point = rx.d == 0 || rx.twin;
+      if (point || bends_geodesics()) emit_vertex_windows(x, rx.d, point ? nullptr : &rx);
+    }
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) drop(x);
@@ -1416,11 +1474,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (!track) check_joining(v);
       // The ring walk first: its cache misses overlap the caller's callback.
       start_ring(v);
-      const Vec3 dir = direction_of(v, *r);
+      const Vec3 dir = r->twin ? twin_direction(v) : direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
       const bool expanded = track && expand_vertex(v);
       if (windowed && !expanded && !r->seed) r->unexpanded = true;
-      settle_neighbours(v);
+      settle_neighbours(v, dir);
       if (windowed) expand_late_neighbours();
       note_memory();
       if (opts.target && opts.target->idx() == v) {
@@ -1433,16 +1491,27 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return false;
   }
 
+  // A vertex that took its distance from a twin points where the twin pointed (one point).
+  Vec3 twin_direction(int v) {
+    const Vec3* d = twin_dir.find(static_cast<uint32_t>(v));
+    const Vec3 dir = d ? *d : Vec3(0, 0, 0);
+    twin_dir.erase(static_cast<uint32_t>(v));
+    return dir;
+  }
+
   Vec3 direction_of(int v, const DRec& r) const {
     Vec3 dir = r.source - mesh.point(VertexHandle(v));
     const double l = dir.norm();
     return l > 1e-300 && r.d > 0 ? dir / l : Vec3(0, 0, 0);
   }
 
-  size_t total_bytes() const {
-    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
-           gone.memory_bytes() + lit_edges.memory_bytes() + peak_horizon * sizeof(Entry);
+  // Everything but the edge front's own containers (memory_bytes()).
+  size_t distance_bytes() const {
+    return dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) + gone.memory_bytes() +
+           lit_edges.memory_bytes() + peak_horizon * sizeof(Entry) + twin_dir.memory_bytes() +
+           twins_joined.memory_bytes();
   }
+  size_t total_bytes() const { return memory_bytes() + distance_bytes(); }
 };
 
 MinimalDistanceFront::MinimalDistanceFront(const Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
@@ -1476,9 +1545,7 @@ size_t MinimalDistanceFront::front_size() const { return impl_->live_nodes; }
 size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes; }
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
-  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
-         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes() +
-         impl_->peak_horizon * sizeof(Impl::Entry);
+  return impl_->peak_bytes + impl_->distance_bytes();
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 

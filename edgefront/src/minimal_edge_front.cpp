@@ -23,7 +23,8 @@ struct MinimalEdgeFront::Impl : EdgeFrontCore {
   int completed = 0;
   bool level_open = false;
 
-  Impl(const Mesh& m, MinimalEdgeFrontOptions o) : EdgeFrontCore(m, o) {}
+  // A pinched vertex's twins join with it, at the same level (see the header).
+  Impl(const Mesh& m, MinimalEdgeFrontOptions o) : EdgeFrontCore(m, o) { join_twins_on_attach = true; }
 
   int building() const { return completed + 1; }
   void on_join(int v, VRec& rec) override {
