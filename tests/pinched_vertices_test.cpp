@@ -67,11 +67,14 @@ VertexHandle vertex_at(const Mesh& mesh, const Vec3& p) {
   }
   return best;
 }
-// The torus vertices next to the centre: on the upper side at u = 0, and its mirror image.
-VertexHandle near_centre(bool upper) {
-  const double a = 2 * M_PI / kAround;  // the tube angle of the row next to the centre
-  return vertex_at(body().mesh, Vec3(1 - std::cos(a), 0, upper ? std::sin(a) : -std::sin(a)));
+// The torus vertex at angle 2πi/kAround around z on row j of the tube (0: the outer equator; the
+// rows j and -j are mirror images).
+VertexHandle torus_vertex(int i, int j) {
+  const double u = 2 * M_PI * i / kAround, v = 2 * M_PI * j / kAround;
+  return vertex_at(body().mesh, Vec3((1 + std::cos(v)) * std::cos(u), (1 + std::cos(v)) * std::sin(u), std::sin(v)));
 }
+// The torus vertices next to the centre: on the upper side at u = 0, and its mirror image.
+VertexHandle near_centre(bool upper) { return torus_vertex(0, upper ? kAround / 2 - 1 : kAround / 2 + 1); }
 
 // Hop distance with steps between twins counting 0 (0-1 breadth-first search); -1 unreached.
 // With a loop: the loop's vertices (and their twins) at 0, the first step from a loop vertex only
@@ -211,13 +214,13 @@ DistanceField field(const Mesh& mesh, const Mode& mode, const Source& source, Di
   return geodesic_distance(mesh, source, o);  // (no table variant for points)
 }
 
-// Every group of twins has one distance (and one direction), and the settle order is
-// non-decreasing and lists each reached vertex once.
+// Every group of twins has one distance (and one direction, to round-off), and the settle order
+// is non-decreasing and lists each reached vertex once.
 void expect_one_point_per_group(const Mesh& mesh, const DistanceField& f, const std::string& what) {
   for (const auto& g : body().pinches) {
     EXPECT_EQ(f.distance[g[0].idx()], f.distance[g[1].idx()]) << what << " twins " << g[0].idx();
     if (!f.direction.empty()) {
-      EXPECT_EQ(f.direction[g[0].idx()], f.direction[g[1].idx()]) << what << " twins " << g[0].idx();
+      EXPECT_LT((f.direction[g[0].idx()] - f.direction[g[1].idx()]).norm(), 1e-12) << what << " twins " << g[0].idx();
     }
   }
   std::vector<int> seen(mesh.n_vertices(), 0);
@@ -287,8 +290,7 @@ TEST(PinchedDistances, ThroughThePinchInsideTheBody) {
       ASSERT_TRUE(std::isfinite(d)) << mode.name;
       worst = std::max(worst, std::abs(d - m) / std::max(d, 1e-300));
     }
-    // Exact for Dijkstra; the approximations settle mirror images in index order, not together.
-    EXPECT_LT(worst, mode.method == DistanceMethod::Dijkstra ? 1e-12 : 2e-2) << mode.name;
+    EXPECT_LT(worst, 1e-12) << mode.name;
   }
 }
 
@@ -308,10 +310,7 @@ TEST(PinchedDistances, PointLoopBoundedAndTargetQueries) {
   // The torus's outer equator as a loop: it passes both cone pinches, whose copies (the apexes)
   // lie on it too: each cone's lateral vertices are at their slant distance, on both sides.
   std::vector<VertexHandle> equator;
-  for (int i = 0; i < kAround; ++i) {
-    const double a = 2 * M_PI * i / kAround;
-    equator.push_back(vertex_at(mesh, Vec3(2 * std::cos(a), 2 * std::sin(a), 0)));
-  }
+  for (int i = 0; i < kAround; ++i) equator.push_back(torus_vertex(i, 0));
   for (const Mode& mode : modes()) {
     SCOPED_TRACE(mode.name);
     const std::vector<SurfacePoint> points{p};
@@ -408,10 +407,14 @@ TEST(PinchedLevels, MefAndVfLevelsAreHopDistancesWithTwinsOnePoint) {
   std::vector<FrontSource> sources = {FrontSource::vertex(cone_side(0, cone_rings(), 0)),
                                       FrontSource::vertex(near_centre(true)), FrontSource::vertex(centre_down()),
                                       FrontSource::from_vertices({cone_side(1, 1, 0), VertexHandle(7)})};
-  std::vector<VertexHandle> ring;
+  std::vector<VertexHandle> ring, equator;
   for (int m = 0; m < kAround; ++m) ring.push_back(cone_side(0, 1, m));
-  sources.push_back(loop_from_vertices(mesh, ring, LoopSide::Left));
-  sources.push_back(loop_from_vertices(mesh, ring, LoopSide::Right));
+  for (int i = 0; i < kAround; ++i) equator.push_back(torus_vertex(i, 0));
+  for (LoopSide side : {LoopSide::Left, LoopSide::Right}) sources.push_back(loop_from_vertices(mesh, ring, side));
+  const size_t first_equator = sources.size();  // the equator loops come last
+  for (LoopSide side : {LoopSide::Left, LoopSide::Right}) {
+    sources.push_back(loop_from_vertices(mesh, equator, side));  // through two pinches
+  }
   for (size_t i = 0; i < sources.size(); ++i) {
     const FrontSource& src = sources[i];
     const std::vector<int> mef = edge_front_levels(mesh, src), vf = vertex_front_levels(mesh, src);
@@ -420,14 +423,15 @@ TEST(PinchedLevels, MefAndVfLevelsAreHopDistancesWithTwinsOnePoint) {
     for (const auto& g : body().pinches) EXPECT_EQ(mef[g[0].idx()], mef[g[1].idx()]) << "source " << i;
 
     // Stepwise: valid after every expansion and at every level boundary (with the checks that
-    // need the enclosed set), each vertex enclosed once, whatever order a level is taken in.
+    // need the enclosed set), each vertex enclosed once (a loop's vertex twice where the front
+    // comes back to it from behind: the equator's, through the centre), whatever order a level is
+    // taken in.
     for (uint64_t seed : {0u, 5u}) {
       MinimalEdgeFront front(mesh, {.track_loops = true, .debug_tracking = true, .order_seed = seed});
       std::vector<int> enclosed(mesh.n_vertices(), 0), level(mesh.n_vertices(), -1);
       size_t pinch_events = 0;
       front.set_enclosed_callback([&](VertexHandle v, int l) {
-        ++enclosed[v.idx()];
-        level[v.idx()] = l;
+        if (enclosed[v.idx()]++ == 0) level[v.idx()] = l;
       });
       front.set_event_callback([&](const FrontEvent& e) {
         if (e.kind != FrontEvent::Kind::Pinch) return;
@@ -441,16 +445,19 @@ TEST(PinchedLevels, MefAndVfLevelsAreHopDistancesWithTwinsOnePoint) {
       EXPECT_EQ(level, mef) << "source " << i << " seed " << seed;
       const bool whole = std::count(mef.begin(), mef.end(), -1) == 0;
       for (VertexHandle v : mesh.vertices()) {
+        const bool on_loop = std::any_of(src.loop.begin(), src.loop.end(),
+                                         [&](HalfedgeHandle h) { return mesh.to_vertex_handle(h) == v; });
         if (mef[v.idx()] >= 0) {
-          EXPECT_EQ(enclosed[v.idx()], 1) << v.idx();
+          EXPECT_EQ(enclosed[v.idx()], on_loop && i >= first_equator ? 2 : 1) << v.idx() << " source " << i;
         }
       }
-      // Each pinch the front passes is reported once (at a source the twins are sources).
+      // A pinch the front passes is reported where a twin joins only through it: the cones'
+      // (the centre's twins are reached from both sides at once, by the symmetry).
       if (i == 0) {
-        EXPECT_EQ(pinch_events, 3u);
+        EXPECT_EQ(pinch_events, 2u);
       }
       if (whole && !src.is_loop()) {
-        EXPECT_GE(pinch_events, 2u);
+        EXPECT_GE(pinch_events, 1u);
       }
       EXPECT_EQ(front.loop_count(), front.loops().size());
     }
@@ -472,7 +479,7 @@ TEST(PinchedLevels, APinchStartsALoopOfItsOwn) {
     front.validate();
     loops.push_back(front.loop_count());
   }
-  ASSERT_EQ(pinches.size(), 3u);
+  ASSERT_EQ(pinches.size(), 2u);  // the cones' apexes (the centre is reached from both sides at once)
   EXPECT_EQ(pinches[0].vertex, body().pinches[0][0]);  // the apex is next to the source: level 1
   EXPECT_EQ(pinches[0].level, 1);
   ASSERT_GE(loops.size(), 3u);

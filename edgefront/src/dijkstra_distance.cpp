@@ -142,20 +142,21 @@ double edge_length(const Mesh& mesh, int x, int y) {
   return len;
 }
 
+// A mesh without twins: no twin links (the run is compiled without them).
+constexpr auto no_twins = [](int, auto&&) {};
+
 // Dijkstra's run over the mesh's own edges, from the seeds in `dij`. A vertex with a NaN or
 // infinite coordinate is refused when an edge reaches it.
 DistanceField run_over_mesh(const Mesh& mesh, DijkstraRun& dij, const DistanceOptions& options) {
   const auto point = [&](int v) -> const Vec3& { return mesh.point(VertexHandle(v)); };
+  const auto edges = [&](int v, auto&& f) {
+    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), edge_length(mesh, v, y.idx()));
+  };
   const TwinRing twins(mesh);
+  if (!twins.any()) return dij.run(options, edges, no_twins, point, [](int v) { return v; }, [](int, int) {});
   return dij.run(
-      options,
-      [&](int v, auto&& f) {
-        for (VertexHandle y : mesh.vv_range(VertexHandle(v))) f(y.idx(), y.idx(), edge_length(mesh, v, y.idx()));
-      },
-      [&](int v, auto&& g) {
-        if (twins.any()) [[unlikely]] twins.for_each_twin(v, [&](int t) { g(t, t); });
-      },
-      point, [](int v) { return v; }, [](int, int) {});
+      options, edges, [&](int v, auto&& g) { twins.for_each_twin(v, [&](int t) { g(t, t); }); }, point,
+      [](int v) { return v; }, [](int, int) {});
 }
 
 }  // namespace
@@ -216,25 +217,24 @@ DistanceField dijkstra_distance(const Mesh& mesh, const GeodesicRingTable& table
   table.check(mesh);
   DijkstraRun dij(table.n_vertices());
   for (VertexHandle v : source.vertices) dij.seed(table.index(v), v.idx());
+  const auto edges = [&](int x, auto&& f) {
+    for (const GeodesicRingTable::Edge& e : table.edges(x)) f(e.v, e.vertex, e.len);
+  };
+  const auto point = [&](int x) -> const Vec3& { return table.ring(x).point; };
+  const auto vertex = [&](int x) { return table.vertex(x).idx(); };
+  const auto look_ahead = [&](int v, int stage) {  // the same look-ahead as the fast mode's on a table
+    if (stage == 0) {
+      detail::prefetch(&table.ring(v));
+    } else if (table.ring(v).size > 0) {
+      detail::prefetch(table.edges(v).data());
+    }
+  };
   const TwinRing twins(mesh);
-  return dij.run(
-      options,
-      [&](int x, auto&& f) {
-        for (const GeodesicRingTable::Edge& e : table.edges(x)) f(e.v, e.vertex, e.len);
-      },
-      [&](int x, auto&& g) {
-        if (twins.any()) [[unlikely]] {
-          twins.for_each_twin(table.vertex(x).idx(), [&](int t) { g(table.index(VertexHandle(t)), t); });
-        }
-      },
-      [&](int x) -> const Vec3& { return table.ring(x).point; }, [&](int x) { return table.vertex(x).idx(); },
-      [&](int v, int stage) {  // the same look-ahead as the fast mode's on a table
-        if (stage == 0) {
-          detail::prefetch(&table.ring(v));
-        } else if (table.ring(v).size > 0) {
-          detail::prefetch(table.edges(v).data());
-        }
-      });
+  if (!twins.any()) return dij.run(options, edges, no_twins, point, vertex, look_ahead);
+  const auto twin_links = [&](int x, auto&& g) {
+    twins.for_each_twin(table.vertex(x).idx(), [&](int t) { g(table.index(VertexHandle(t)), t); });
+  };
+  return dij.run(options, edges, twin_links, point, vertex, look_ahead);
 }
 
 }  // namespace edgefront

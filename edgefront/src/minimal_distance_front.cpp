@@ -35,7 +35,6 @@ struct Candidate {
   Vec3 source{0, 0, 0};
   double offset = 0;
   int face = -1;
-  bool twin = false;  // from a twin that settled (a pinched vertex): the vertex is a pseudo source
   Vec3 origin{0, 0, 0};
 };
 
@@ -49,7 +48,8 @@ struct DRec {
   bool settled = false;
   bool seed = false;     // a source vertex, or a vertex of a source point's face
   bool unexpanded = false;  // window mode: settled before it joined the front (see step)
-  bool twin = false;     // the distance came from a twin: a pseudo source (see Candidate::twin)
+  bool twin = false;     // the distance came from a twin: a pseudo source at the vertex itself (see
+                         // settle_twins; `source` then marks only the twin's direction)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -265,10 +265,8 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   size_t n_merged = 0;  // windows merged into a waiting one (statistics)
   size_t n_windows = 0;  // windows propagated (statistics)
 
-  // Twins (pinched vertices, edgefront/vertex_twins.h; the core's `twins`): the direction of the
-  // twin a vertex took its distance from, until it settles; the vertices with twins that joined
-  // the edge front.
-  detail::FlatMap<Vec3> twin_dir;
+  // Twins (pinched vertices, edgefront/vertex_twins.h; the core's `twins`): the vertices with twins
+  // that joined the edge front.
   detail::FlatMap<uint8_t> twins_joined;
 
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
@@ -323,19 +321,21 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     lit_edges.clear();
     n_merged = 0;
     n_windows = 0;
-    twin_dir.clear();
     twins_joined.clear();
   }
 
   // Neighbours and twins (see settle_twins) not settled yet.
-  int count_unsettled(int v) const {
+  // (Loop sources only: kept out of record's way.)
+  [[gnu::noinline]] int count_unsettled(int v) const {
     int n = 0;
-    auto count = [&](int y) {
-      const DRec* r = dt.find(static_cast<uint32_t>(y));
+    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
+      const DRec* r = dt.find(static_cast<uint32_t>(y.idx()));
       n += !(r && r->settled);
-    };
-    for (VertexHandle y : mesh.vv_range(VertexHandle(v))) count(y.idx());
-    twins.for_each_twin(v, count);
+    }
+    twins.for_each_twin(v, [&](int t) {
+      const DRec* r = dt.find(static_cast<uint32_t>(t));
+      n += !(r && r->settled);
+    });
     return n;
   }
 
@@ -372,7 +372,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       return;
     }
     if (!same_source && std::isfinite(r.d) && r.face >= 0) {
-      r.alt = Candidate{r.d, r.source, r.offset, r.face, false, r.origin};
+      r.alt = Candidate{r.d, r.source, r.offset, r.face, r.origin};
     } else if (r.alt.d < kInf && same_virtual_source(r.alt.source, r.alt.offset, k.source, k.offset, k.d)) {
       r.alt.d = kInf;  // the new best is the old second source
     }
@@ -385,7 +385,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     r.offset = k.offset;
     r.face = k.face;
     r.origin = k.origin;
-    r.twin = k.twin;
     heap.push(k.d, v);
     peak_heap = std::max(peak_heap, heap.size());
   }
@@ -1349,7 +1348,9 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // is on the front or has been (twins_joined): its fan is then processed from there. A settled
   // vertex's record stays while a twin is not settled (they count as neighbours), so a twin is
   // never reached again. Returns the number of twins not settled yet.
-  [[gnu::noinline]] int settle_twins(int x, double d, const Vec3& dir) {
+  [[gnu::noinline]] int settle_twins(int x, const DRec& rx) {
+    const double d = rx.d;
+    const Vec3 dir = direction_of(x, rx);
     int open = 0;
     const bool track = opts.track_front || windowed;
     twins.for_each_twin(x, [&](int t) {
@@ -1360,22 +1361,30 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       }
       ++open;
       const bool joined = twins_joined.contains(static_cast<uint32_t>(t));
-      if (rt) --rt->unsettled;  // (a loop source's count; rewritten when t settles otherwise)
+      if (rt) {
+        --rt->unsettled;  // (a loop source's count; rewritten when t settles otherwise)
+        // Taken whatever t's own value (no settled twin lies nearer: it would have settled
+        // first); the default mode keeps t's own way as its second source.
+        if (!windowed && std::isfinite(rt->d) && rt->face >= 0) {
+          rt->alt = Candidate{rt->d, rt->source, rt->offset, rt->face, rt->origin};
+        }
+        rt->d = kInf;
+      }
+      // The pseudo source sits at the pinch (origin, offset d, no face); `source` only marks the
+      // direction (direction_of), as it is not unfolded.
       Candidate k;
       k.d = d;
-      k.source = k.origin = mesh.point(VertexHandle(t));
+      k.origin = mesh.point(VertexHandle(t));
+      k.source = k.origin + dir;
       k.offset = d;
-      k.twin = true;
-      DRec& r = record(t);  // (no settled twin lies nearer: it would have settled first)
-      if (!windowed && std::isfinite(r.d) && r.face >= 0) r.alt = Candidate{r.d, r.source, r.offset, r.face, false, r.origin};
-      take(t, r, k);
-      *twin_dir.insert(static_cast<uint32_t>(t), dir).first = dir;
+      offer(t, k);
+      dt.find(static_cast<uint32_t>(t))->twin = true;  // (kept if a tie replaces it: windows all around)
       if (track && !joined && !vt.contains(static_cast<uint32_t>(t))) seed_twin(t, true);
     });
     return open;
   }
 
-  void settle_neighbours(int x, const Vec3& dir) {
+  void settle_neighbours(int x) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
     build_ring(x);
     int open = 0;  // neighbours (and twins) not settled yet
@@ -1425,12 +1434,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         visit(r.v, HalfedgeHandle(r.he));
       }
     }
-    if (twins.any()) open += settle_twins(x, rx.d, dir);
+    if (twins.any()) [[unlikely]] open += settle_twins(x, rx);
     // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far
     // edges (a twin's pseudo source all around: its distance came through a point).
-    if (windowed) {
-      const bool point = rx.d == 0 || rx.twin;
-      if (point || bends_geodesics()) emit_vertex_windows(x, rx.d, point ? nullptr : &rx);
+    if (windowed && (rx.d == 0 || rx.twin || bends_geodesics())) {
+      emit_vertex_windows(x, rx.d, rx.d == 0 || rx.twin ? nullptr : &rx);
     }
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
@@ -1474,11 +1482,11 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
       if (!track) check_joining(v);
       // The ring walk first: its cache misses overlap the caller's callback.
       start_ring(v);
-      const Vec3 dir = r->twin ? twin_direction(v) : direction_of(v, *r);
+      const Vec3 dir = direction_of(v, *r);
       if (on_settled) on_settled(VertexHandle(v), d, dir);
       const bool expanded = track && expand_vertex(v);
       if (windowed && !expanded && !r->seed) r->unexpanded = true;
-      settle_neighbours(v, dir);
+      settle_neighbours(v);
       if (windowed) expand_late_neighbours();
       note_memory();
       if (opts.target && opts.target->idx() == v) {
@@ -1491,13 +1499,6 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return false;
   }
 
-  // A vertex that took its distance from a twin points where the twin pointed (one point).
-  Vec3 twin_direction(int v) {
-    const Vec3* d = twin_dir.find(static_cast<uint32_t>(v));
-    const Vec3 dir = d ? *d : Vec3(0, 0, 0);
-    twin_dir.erase(static_cast<uint32_t>(v));
-    return dir;
-  }
 
   Vec3 direction_of(int v, const DRec& r) const {
     Vec3 dir = r.source - mesh.point(VertexHandle(v));
@@ -1508,8 +1509,7 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   // Everything but the edge front's own containers (memory_bytes()).
   size_t distance_bytes() const {
     return dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) + gone.memory_bytes() +
-           lit_edges.memory_bytes() + peak_horizon * sizeof(Entry) + twin_dir.memory_bytes() +
-           twins_joined.memory_bytes();
+           lit_edges.memory_bytes() + peak_horizon * sizeof(Entry) + twins_joined.memory_bytes();
   }
   size_t total_bytes() const { return memory_bytes() + distance_bytes(); }
 };

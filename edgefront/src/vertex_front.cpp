@@ -31,13 +31,14 @@ struct VertexFront::Impl {
   bool loop_source = false;
   std::vector<HalfedgeHandle> loop;  // loop source: ahead wedges for the first level
   std::function<void(VertexHandle, int)> on_enclosed;
-  // A pinched vertex's twins (one point of the surface) join with it, at the same level.
+  // A pinched vertex's twins (one point of the surface) join with it, at the same level (when the
+  // level closes).
   TwinRing twins;
 
   explicit Impl(const Mesh& m) : mesh(m), twins(m) {}
 
   // Adds the twins of vertex `v` that the front does not know yet with `state` to `list`.
-  void add_twins(uint32_t v, uint8_t s, std::vector<uint32_t>& list) {
+  [[gnu::noinline]] void add_twins(uint32_t v, uint8_t s, std::vector<uint32_t>& list) {
     twins.for_each_twin(static_cast<int>(v), [&](int t) {
       if (this->state.insert(static_cast<uint32_t>(t), s).second) list.push_back(static_cast<uint32_t>(t));
     });
@@ -79,9 +80,7 @@ struct VertexFront::Impl {
 
   void visit_neighbour(VertexHandle y) {
     auto [st, inserted] = state.insert(static_cast<uint32_t>(y.idx()), kNew);
-    if (!inserted) return;
-    new_list.push_back(static_cast<uint32_t>(y.idx()));
-    if (twins.any()) add_twins(static_cast<uint32_t>(y.idx()), kNew, new_list);
+    if (inserted) new_list.push_back(static_cast<uint32_t>(y.idx()));
   }
 
   // Look-ahead for the level being processed: the vertex record of the vertex 8 places ahead, its
@@ -100,8 +99,7 @@ struct VertexFront::Impl {
 
   void process(uint32_t x) {
     const VertexHandle vx(static_cast<int>(x));
-    const uint8_t* st = loop_source && completed == 0 ? state.find(x) : nullptr;
-    if (st && *st == kBarrier) {
+    if (loop_source && completed == 0 && *state.find(x) == kBarrier) {
       // First level from a line: only the fan ahead of the loop at this vertex.
       const size_t n = loop.size();
       for (size_t i = 0; i < n; ++i) {
@@ -140,6 +138,11 @@ struct VertexFront::Impl {
   }
 
   void close_level() {
+    // The twins of the vertices that joined in this level join with them (one look per level).
+    if (twins.any()) [[unlikely]] {
+      const size_t joined = new_list.size();
+      for (size_t i = 0; i < joined; ++i) add_twins(new_list[i], kNew, new_list);
+    }
     // Swap containers: old <- front, front <- new. Entries of the old level are forgotten: on a
     // manifold the neighbours of the new front lie in old, front or new (paper, algorithm 1).
     for (uint32_t v : old_list) {

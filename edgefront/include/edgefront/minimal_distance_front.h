@@ -35,7 +35,7 @@
 ///
 /// Pinched vertices (several fans at one point, split into twins: edgefront/vertex_twins.h) are
 /// one point of the surface, in every method: when a twin settles, the others settle at the same
-/// distance with the same direction (twins' values are equal), each a pseudo source for its own
+/// distance (equal values) with the same direction (to round-off), each a pseudo source for its own
 /// fan at that distance (no straight line or window passes through a point), so distances across
 /// a pinch are the sum of the parts. The edge front (`track_front`) continues from each twin as
 /// from a source vertex (minimal_edge_front.h). The twins of source vertices are sources; those

@@ -18,12 +18,13 @@
 /// breadth-first hop distance from the source set.
 ///
 /// Pinched vertices (several fans at one point, split into twins: edgefront/vertex_twins.h) are
-/// one point of the surface, the paper's collision in reverse: when a vertex joins the front, its
-/// twins join at the same level (a `Pinch` event each) as seeds, and at the next level each seed
-/// expands its whole fan into a loop of its own, like a source vertex, unless the front has reached
-/// it from its own side by then (it is then an ordinary front vertex). So the loop count grows by
-/// one per twin at a pinch; where the parts beyond it are joined elsewhere too, those loops meet the
-/// others there in ordinary collisions (merges). The twins of source vertices are sources (level 0);
+/// one point of the surface, the paper's collision in reverse: the twins of a vertex that joined
+/// the front join at the same level as seeds (when the level completes; a `Pinch` event each),
+/// unless the front has reached them itself, and at the next level each seed expands its whole fan
+/// into a loop of its own, like a source vertex (unless the front has reached it from its own side
+/// by then: it is then an ordinary front vertex). So the loop count grows by one per twin at a
+/// pinch; where the parts beyond it are joined elsewhere too, those loops meet the others there in
+/// ordinary collisions (merges). The twins of source vertices are sources (level 0);
 /// the twins of a loop source's vertices start at level 0 with their whole fans (the loop does not
 /// divide them). Hop distances count a step between twins as 0.
 ///

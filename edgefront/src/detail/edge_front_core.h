@@ -84,11 +84,9 @@ class EdgeFrontCore {
 
   // Pinched vertices split into twins (edgefront/vertex_twins.h): one point of the surface. A twin
   // that joins the front as a seed (seed_twin) expands its whole fan into a loop of its own, like a
-  // source vertex. When they join is the scheduler's: with `join_twins_on_attach` (the MEF: the
-  // same level) when a group member joins, else when the scheduler calls seed_twin (the MDF: when a
-  // member settles).
+  // source vertex. When they join is the scheduler's (the MEF: at the end of the level a group
+  // member joined in; the MDF: when a member settles).
   TwinRing twins;
-  bool join_twins_on_attach = false;
 
   EdgeFrontCore(const Mesh& m, MinimalEdgeFrontOptions o) : mesh(m), options(o), twins(m) {}
   virtual ~EdgeFrontCore() = default;
@@ -176,15 +174,12 @@ class EdgeFrontCore {
     nodes[id].vnext = rec->head;
     rec->head = id;
     nodes[id].flags |= kNodeAttached;
-    if (inserted && join_twins_on_attach && twins.any()) {
-      twins.for_each_twin(v, [this](int t) { seed_twin(t, true); });  // (rec is not used after this)
-    }
     return had_nodes;
   }
 
   // Twin `t` of a vertex that joined (or settled) joins the front as a seed, unless it is on the
   // front already. Returns whether it joined. `event`: report a Pinch event.
-  bool seed_twin(int t, bool event) {
+  [[gnu::noinline]] bool seed_twin(int t, bool event) {
     auto [rec, inserted] = vt.insert(static_cast<uint32_t>(t), VRec{});
     if (!inserted) return false;
     check_joining(t);
