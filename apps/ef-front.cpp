@@ -4,7 +4,8 @@
 ///   ef-front MESH (--source V[,V...] | --loop V,V,V...) [--side left|right] [--levels K]
 ///            [--method vf|mef] [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
-/// Output: one line per vertex in input order with the level at which it joined the front (-1
+/// Output: one line per vertex in input order (then the copies of pinched vertices the reader
+/// appended) with the level at which it joined the front (-1
 /// when not reached), on stdout or into FILE.txt; FILE.ply gets the mesh with a per-vertex scalar
 /// "level" and colors (a colormap over the levels, alternate levels slightly darker, grey for
 /// unreached vertices). --png renders the levels as colors (isolines at a nice level step, grey
