@@ -6,7 +6,8 @@
 ///               [--side left|right] [--max-distance D] [--method mdf|windows|fast|dijkstra]
 ///               [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
-/// Output: one distance per line in input vertex order ("inf" where not reached: another
+/// Output: one distance per line in input vertex order, then the copies of pinched vertices the
+/// reader appended (each with its original's distance) ("inf" where not reached: another
 /// component, behind a loop, beyond --max-distance), written with the fewest digits that read
 /// back to the same double, on stdout or into FILE.txt. FILE.ply gets the mesh with a per-vertex
 /// scalar "distance", the same as "quality" (what MeshLab reads as per-vertex quality; -1 where not

@@ -4,7 +4,8 @@
 ///   ef-front MESH (--source V[,V...] | --loop V,V,V...) [--side left|right] [--levels K]
 ///            [--method vf|mef] [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///
-/// Output: one line per vertex in input order with the level at which it joined the front (-1
+/// Output: one line per vertex in input order (then the copies of pinched vertices the reader
+/// appended) with the level at which it joined the front (-1
 /// when not reached), on stdout or into FILE.txt; FILE.ply gets the mesh with a per-vertex scalar
 /// "level" and colors (a colormap over the levels, alternate levels slightly darker, grey for
 /// unreached vertices). --png renders the levels as colors (isolines at a nice level step, grey
@@ -58,7 +59,7 @@ constexpr const char* kAppName = "ef-front";
 
 /// Counts of the Minimal Edge Front's events.
 struct EventCounts {
-  size_t collisions = 0, splits = 0, merges = 0, annihilations = 0, border_reached = 0;
+  size_t collisions = 0, splits = 0, merges = 0, annihilations = 0, border_reached = 0, pinches = 0;
 };
 
 /// What a front run left behind, for the summary.
@@ -165,6 +166,7 @@ int main(int argc, char** argv) {
           case Kind::Merge: ++events.merges; break;
           case Kind::Annihilation: ++events.annihilations; break;
           case Kind::BorderReached: ++events.border_reached; break;
+          case Kind::Pinch: ++events.pinches; break;
         }
       });
       front.reset(source);
@@ -235,7 +237,9 @@ int main(int argc, char** argv) {
       const EventCounts& e = *summary.events;
       s << kAppName << ": events: " << plural(e.collisions, "collision") << ", " << plural(e.splits, "split") << ", "
         << plural(e.merges, "merge") << ", " << plural(e.annihilations, "annihilation") << ", " << e.border_reached
-        << " border reached\n";
+        << " border reached";
+      if (e.pinches > 0) s << ", " << e.pinches << (e.pinches == 1 ? " pinch" : " pinches");
+      s << "\n";
     }
     s << kAppName << ": peak front " << summary.peak_front << " " << summary.front_unit << ", peak working memory "
       << summary.peak_bytes << " bytes, time " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms\n";

@@ -7,7 +7,8 @@
 ///
 /// Prints "edges E", "length L" (the geometric length: the MDF's geodesic estimate, or the
 /// polyline's length with --polyline, or the chain's edge length), "edge-length L" and
-/// "vertices v0 v1 ..." on stdout, or "no path" (exit 3) when the vertices lie in different
+/// "vertices v0 v1 ..." (a path through a pinched vertex lists it and its copy one after the
+/// other: not an edge) on stdout, or "no path" (exit 3) when the vertices lie in different
 /// components. -o writes the path (the polyline with --polyline, else the vertex chain) as an OBJ
 /// polyline (`v` and `l` records) or a PLY with `vertex` and `edge` elements; when there is no
 /// path, a file left at -o by an earlier run is removed (it would look like this run's answer),

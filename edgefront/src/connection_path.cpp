@@ -16,6 +16,7 @@
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
 #include "edgefront/vertex_front.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -104,16 +105,28 @@ struct Meeting {
 };
 
 // Keeps the best meeting vertex: smallest sum, then the most even split, then the lowest index.
+bool is_twin(const TwinRing& twins, VertexHandle a, VertexHandle b) {
+  bool found = false;
+  twins.for_each_twin(a.idx(), [&](int t) { found = found || t == b.idx(); });
+  return found;
+}
+// The same vertex or twins: one point of the surface.
+bool same_point(const TwinRing& twins, VertexHandle a, VertexHandle b) { return a == b || is_twin(twins, a, b); }
+
 struct MeetingPicker {
-  MeetingPicker(VertexHandle from, VertexHandle to) : s(from), t(to) {}
+  MeetingPicker(VertexHandle from, VertexHandle to, const TwinRing& ring) : s(from), t(to), twins(ring) {}
   VertexHandle s, t;
+  const TwinRing& twins;
   Meeting best;
   // The ends of the enclosing searches: they are on the path already (MDF distances are not a
   // metric; without this a half could choose its parent's other end and recurse forever).
   const std::vector<VertexHandle>* banned = nullptr;
   void consider(VertexHandle v, double a, double b) {
-    if (v == s || v == t) return;
-    if (banned && std::find(banned->begin(), banned->end(), v) != banned->end()) return;
+    // Not an end, nor its twin (the same point: no progress).
+    if (same_point(twins, v, s) || same_point(twins, v, t)) return;
+    if (banned && std::any_of(banned->begin(), banned->end(), [&](VertexHandle e) { return same_point(twins, v, e); })) {
+      return;
+    }
     if (!best.found) {
       best = Meeting{true, v, a, b};
       return;
@@ -138,10 +151,55 @@ bool adjacent(const Mesh& mesh, VertexHandle a, VertexHandle b) {
   return false;
 }
 
+// When a and b (a != b) are one edge apart with twins counting as one point (the same point, or
+// an edge between their groups), appends the vertices after a up to b (a twin of a, the edge's
+// far end, b: each step an edge or twins; the fewest) and returns true.
+bool one_step(const Mesh& mesh, const TwinRing& twins, VertexHandle a, VertexHandle b, std::vector<VertexHandle>& out) {
+  if (adjacent(mesh, a, b) || is_twin(twins, a, b)) {
+    out.push_back(b);
+    return true;
+  }
+  if (!twins.any()) return false;
+  std::vector<VertexHandle> ga{a}, gb{b};
+  twins.for_each_twin(a.idx(), [&](int x) { ga.emplace_back(x); });
+  twins.for_each_twin(b.idx(), [&](int x) { gb.emplace_back(x); });
+  for (VertexHandle x : ga) {
+    for (VertexHandle y : gb) {
+      if (!adjacent(mesh, x, y)) continue;
+      if (x != a) out.push_back(x);
+      out.push_back(y);
+      if (y != b) out.push_back(b);
+      return true;
+    }
+  }
+  return false;
+}
+
+// Drops the detours of a chain through a group of twins (a, b, c of one group: a, c; a, b, a: a).
+void compact_twin_runs(const TwinRing& twins, std::vector<VertexHandle>& chain) {
+  if (!twins.any()) return;
+  std::vector<VertexHandle> out;
+  for (size_t i = 0; i < chain.size();) {
+    size_t j = i;
+    while (j + 1 < chain.size() && is_twin(twins, chain[j], chain[j + 1])) ++j;
+    out.push_back(chain[i]);
+    if (j > i && chain[j] != chain[i]) out.push_back(chain[j]);
+    i = j + 1;
+  }
+  chain.swap(out);
+}
+
 double edge_length_of(const Mesh& mesh, const std::vector<VertexHandle>& chain) {
   double sum = 0.0;
   for (size_t i = 1; i < chain.size(); ++i) sum += (mesh.point(chain[i]) - mesh.point(chain[i - 1])).norm();
   return sum;
+}
+
+// The mesh edges of a chain (steps between twins are none).
+size_t edge_count(const TwinRing& twins, const std::vector<VertexHandle>& chain) {
+  size_t n = 0;
+  for (size_t i = 1; i < chain.size(); ++i) n += !is_twin(twins, chain[i - 1], chain[i]);
+  return n;
 }
 
 }  // namespace
@@ -155,11 +213,12 @@ struct ConnectionPathFinder::Impl {
   // MDF searches: the settled distances of both sides.
   detail::FlatMap<double> settled[2];
 
+  TwinRing twins;                   // pinched vertices (made per query: the mesh may change between)
   ConnectionPath* stats = nullptr;  // the result whose counters a search adds to
   bool recording = false;           // level searches record what they process (confine)
   std::vector<VertexHandle> banned; // ends of the enclosing searches (see MeetingPicker)
 
-  explicit Impl(const Mesh& m) : mesh(m), directed(m) {}
+  explicit Impl(const Mesh& m) : mesh(m), directed(m), twins(m) {}
 
   Side& side(PathMethod m, int which) {
     const int i = static_cast<int>(m);
@@ -222,7 +281,7 @@ struct ConnectionPathFinder::Impl {
     const size_t pa = a.processed, pb = b.processed;
     a.reset(s);
     b.reset(t);
-    MeetingPicker pick(s, t);
+    MeetingPicker pick(s, t, twins);
     pick.banned = &banned;
     Meeting result;
     if (recording) {
@@ -261,8 +320,10 @@ struct ConnectionPathFinder::Impl {
   // Confinement: the half of the path from the meeting vertex `m` (value `vm` on `side`) back to
   // that side's end `e`, traced inside the region the side's front processed (recorded in
   // `settled[side]`): each step goes to a neighbour one level lower (levels) or to the neighbour
-  // with the smallest distance plus edge length among those with a smaller distance (MDF).
-  // Appends m .. e; false when the region has no way down (the caller then searches).
+  // with the smallest distance plus edge length among those with a smaller distance (MDF). The
+  // neighbours of a vertex's twins count as its own (a twin has the same value): a step through
+  // one puts the twin into the chain first. Appends m .. e; false when the region has no way down
+  // (the caller then searches).
   bool trace(int side, bool levels, VertexHandle m, double vm, VertexHandle e, std::vector<VertexHandle>& out) const {
     return trace_in(settled[side], levels, m, vm, e, out);
   }
@@ -274,29 +335,43 @@ struct ConnectionPathFinder::Impl {
     const size_t limit = values.size() + 2;
     while (v != e) {
       if (out.size() > limit) return false;
-      VertexHandle next;
+      VertexHandle next, via;
       double best = std::numeric_limits<double>::infinity(), dnext = 0;
-      for (VertexHandle u : mesh.vv_range(v)) {
-        const double* du = values.find(static_cast<uint32_t>(u.idx()));
-        if (!du) continue;
-        if (levels) {
-          if (*du != dv - 1) continue;
-          if (!next.is_valid() || u.idx() < next.idx()) {
-            next = u;
-            dnext = *du;
-          }
-        } else {
-          if (!(*du < dv)) continue;
-          const double key = *du + (mesh.point(u) - mesh.point(v)).norm();
-          if (key < best) {
-            best = key;
-            next = u;
-            dnext = *du;
+      auto look = [&](VertexHandle w) {  // the neighbours of v or of its twin w
+        for (VertexHandle u : mesh.vv_range(w)) {
+          const double* du = values.find(static_cast<uint32_t>(u.idx()));
+          if (!du) continue;
+          if (levels) {
+            if (*du != dv - 1) continue;
+            if (!next.is_valid() || u.idx() < next.idx()) {
+              next = u;
+              via = w;
+              dnext = *du;
+            }
+          } else {
+            if (!(*du < dv)) continue;
+            const double key = *du + (mesh.point(u) - mesh.point(w)).norm();
+            if (key < best) {
+              best = key;
+              next = u;
+              via = w;
+              dnext = *du;
+            }
           }
         }
-      }
+      };
+      look(v);
+      twins.for_each_twin(v.idx(), [&](int t) {
+        if (VertexHandle(t) == e) {  // the end is this point
+          next = via = e;
+          dnext = dv;
+        } else if (next != e) {
+          look(VertexHandle(t));
+        }
+      });
       if (!next.is_valid()) return false;
-      out.push_back(next);
+      if (via != v) out.push_back(via);
+      if (next != via) out.push_back(next);
       v = next;
       dv = dnext;
     }
@@ -311,7 +386,7 @@ struct ConnectionPathFinder::Impl {
     const size_t pa = a.processed, pb = b.processed;
     a.reset(s);
     b.reset(t);
-    MeetingPicker pick(s, t);
+    MeetingPicker pick(s, t, twins);
     pick.banned = &banned;
     // The fronts forget settled vertices once their neighbours are settled; the meeting test
     // remembers the settled distances of both sides so that a vertex met late still pairs two
@@ -352,11 +427,7 @@ struct ConnectionPathFinder::Impl {
 
   // Appends the path s..t without s (s and t connected), recursing on both halves.
   void build(PathMethod m, VertexHandle s, VertexHandle t, int depth, std::vector<VertexHandle>& out) {
-    if (s == t) return;
-    if (adjacent(mesh, s, t)) {
-      out.push_back(t);
-      return;
-    }
+    if (s == t || one_step(mesh, twins, s, t, out)) return;
     Meeting mid;
     if (depth < kMaxDepth) mid = meet(m, s, t);
     if (!mid.found) {
@@ -379,7 +450,8 @@ struct ConnectionPathFinder::Impl {
 
   void finish(const Mesh& msh, ConnectionPath& r, const ConnectionPathOptions& o, bool length_is_estimate) {
     r.status = PathStatus::Found;
-    r.edges = r.vertices.size() - 1;
+    compact_twin_runs(twins, r.vertices);
+    r.edges = edge_count(twins, r.vertices);
     r.edge_length = edge_length_of(msh, r.vertices);
     if (!length_is_estimate) r.length = r.edge_length;
     if (o.polyline) {
@@ -421,13 +493,15 @@ struct ConnectionPathFinder::Impl {
     check_vertex(from, "from");
     check_vertex(to, "to");
     check_options(o);
+    twins = TwinRing(mesh);
     ConnectionPath r;
     stats = &r;
-    if (from == to || adjacent(mesh, from, to)) {
-      r.vertices = from == to ? std::vector<VertexHandle>{from} : std::vector<VertexHandle>{from, to};
+    r.vertices = {from};
+    if (from == to || one_step(mesh, twins, from, to, r.vertices)) {
       finish(mesh, r, o, false);
       return r;
     }
+    r.vertices.clear();
     if (o.directed) {
       const bool hops = o.method != PathMethod::MinimalDistance;
       const auto d = directed.find(from, to, hops);
@@ -474,6 +548,7 @@ struct ConnectionPathFinder::Impl {
     check_vertex(from, "from");
     for (VertexHandle t : targets) check_vertex(t, "target");
     check_options(o);
+    twins = TwinRing(mesh);
     banned.clear();
     std::vector<ConnectionPath> out(targets.size());
     if (targets.empty()) return out;
@@ -500,11 +575,12 @@ struct ConnectionPathFinder::Impl {
       r.peak_front_size = src.peak_front();
       r.peak_front_memory_bytes = src.peak_memory();
       note_memory(src.peak_memory(), values_bytes(source_values));
-      if (t == from || adjacent(mesh, from, t)) {
-        r.vertices = t == from ? std::vector<VertexHandle>{from} : std::vector<VertexHandle>{from, t};
+      r.vertices = {from};
+      if (t == from || one_step(mesh, twins, from, t, r.vertices)) {
         finish(mesh, r, o, false);
         continue;
       }
+      r.vertices.clear();
       const double* dt = source_values.find(key);
       if (!dt) continue;  // the source's component is exhausted without it: no path
       const double length = *dt;

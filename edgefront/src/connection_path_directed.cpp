@@ -9,6 +9,7 @@
 
 #include "detail/directed_path.h"
 #include "edgefront/error.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront::detail {
 
@@ -36,6 +37,7 @@ DirectedPathResult DirectedPathSearch::find(VertexHandle s, VertexHandle t, bool
   double best = std::numeric_limits<double>::infinity();
   int meet = -1;
   size_t peak_q = 0;
+  const TwinRing twins(mesh_);  // a step between twins (one point: a pinched vertex) costs nothing
   auto top_key = [&](int side) {
     // Drops stale entries; +inf when empty.
     while (!q[side].empty()) {
@@ -57,12 +59,11 @@ DirectedPathResult DirectedPathSearch::find(VertexHandle s, VertexHandle t, bool
     const double gx = lx->g;
     ++out.processed;
     const VertexHandle vx(x);
-    for (VertexHandle y : mesh_.vv_range(vx)) {
-      const double w = hops ? 1.0 : (mesh_.point(y) - mesh_.point(vx)).norm();
+    auto relax = [&](VertexHandle y, double w) {
       const double g = gx + w;
       auto [ly, inserted] = labels_[side].insert(static_cast<uint32_t>(y.idx()), Label{g, x, false});
       if (!inserted) {
-        if (ly->closed || !(g < ly->g)) continue;
+        if (ly->closed || !(g < ly->g)) return;
         ly->g = g;
         ly->pred = x;
       }
@@ -73,7 +74,9 @@ DirectedPathResult DirectedPathSearch::find(VertexHandle s, VertexHandle t, bool
           meet = y.idx();
         }
       }
-    }
+    };
+    for (VertexHandle y : mesh_.vv_range(vx)) relax(y, hops ? 1.0 : (mesh_.point(y) - mesh_.point(vx)).norm());
+    if (twins.any()) twins.for_each_twin(x, [&](int twin) { relax(VertexHandle(twin), 0.0); });
     peak_q = std::max(peak_q, q[0].size() + q[1].size());
   }
   out.memory_bytes = labels_[0].memory_bytes() + labels_[1].memory_bytes() + peak_q * sizeof(Entry);

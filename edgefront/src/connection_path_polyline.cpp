@@ -14,6 +14,7 @@
 
 #include "edgefront/connection_path.h"
 #include "edgefront/error.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -646,6 +647,31 @@ class BandSearch {
   std::vector<double> dist_;
 };
 
+// The pieces of a path between the twin steps (consecutive vertices that are twins: the path
+// passes a pinched vertex, where no straight line continues): calls piece(first, last) for each
+// maximal range of `n` items without such a step, in order; `twins_at(i)` says whether items i and
+// i + 1 are twins. Returns false (no call) when the path has no twin step.
+template <class TwinsAt, class Piece>
+bool for_each_piece(size_t n, TwinsAt&& twins_at, Piece&& piece) {
+  bool split = false;
+  for (size_t i = 0; i + 1 < n && !split; ++i) split = twins_at(i);
+  if (!split) return false;
+  size_t first = 0;
+  for (size_t i = 0; i + 1 < n; ++i) {
+    if (!twins_at(i)) continue;
+    piece(first, i);
+    first = i + 1;
+  }
+  piece(first, n - 1);
+  return true;
+}
+
+bool twins_of_each_other(const TwinRing& twins, VertexHandle a, VertexHandle b) {
+  bool found = false;
+  if (a.is_valid() && b.is_valid()) twins.for_each_twin(a.idx(), [&](int t) { found = found || t == b.idx(); });
+  return found;
+}
+
 }  // namespace
 
 std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoint>& polyline, double band_radius,
@@ -666,6 +692,23 @@ std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoi
   }
   if (band_vertices) *band_vertices = 0;
   if (converged) *converged = true;
+  // Through a pinched vertex: each piece between twin steps on its own.
+  const TwinRing twins(mesh);
+  std::vector<PathPoint> joined;
+  const bool split = for_each_piece(
+      polyline.size(), [&](size_t i) { return twins_of_each_other(twins, polyline[i].vertex, polyline[i + 1].vertex); },
+      [&](size_t first, size_t last) {
+        const std::vector<PathPoint> piece(polyline.begin() + static_cast<long>(first),
+                                           polyline.begin() + static_cast<long>(last) + 1);
+        bool done = true;
+        size_t band = 0;
+        const std::vector<PathPoint> out =
+            band_polyline(mesh, piece, band_radius, steiner_points, max_flips, &done, &band);
+        joined.insert(joined.end(), out.begin(), out.end());
+        if (converged) *converged = *converged && done;
+        if (band_vertices) *band_vertices += band;
+      });
+  if (split) return joined;
   const VertexHandle s = polyline.front().vertex, t = polyline.back().vertex;
   if (s == t || polyline.size() < 3) return polyline;
   BandSearch band(mesh);
@@ -690,6 +733,21 @@ std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<Ver
   }
   if (max_flips < 0) throw InvalidInput("geodesic polyline: max_flips must not be negative");
   Straightener st(mesh);
+  // Through a pinched vertex: each piece between twin steps on its own (the point is on the path).
+  const TwinRing twins(mesh);
+  std::vector<PathPoint> joined;
+  if (converged) *converged = true;
+  const bool split = for_each_piece(
+      chain.size(), [&](size_t i) { return twins_of_each_other(twins, chain[i], chain[i + 1]); },
+      [&](size_t first, size_t last) {
+        const std::vector<VertexHandle> piece(chain.begin() + static_cast<long>(first),
+                                              chain.begin() + static_cast<long>(last) + 1);
+        bool done = true;
+        const std::vector<PathPoint> out = st.run(piece, max_flips, &done);
+        joined.insert(joined.end(), out.begin(), out.end());
+        if (converged) *converged = *converged && done;
+      });
+  if (split) return joined;
   return st.run(chain, max_flips, converged);
 }
 

@@ -12,6 +12,7 @@
 #include "detail/prefetch.h"
 #include "edgefront/error.h"
 #include "edgefront/geodesic_ring_table.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -49,6 +50,7 @@ struct FastRec {
   int origin = -1;     // the real source the value comes from (index into the origins)
   uint8_t settled = 0;
   uint8_t by_face = 0;  // the value comes from a face with two settled corners (it overrides the others)
+  uint8_t twin = 0;     // the value comes from the twin `parent` (a pinched vertex): a pseudo source
 };
 
 struct FastSeed {
@@ -123,6 +125,7 @@ struct TableRings {
   const GeodesicRingTable& table;
   size_t n_vertices() const { return table.n_vertices(); }
   int index(int v) const { return table.index(VertexHandle(v)); }  // of mesh vertex v
+  int vertex(int x) const { return table.vertex(x).idx(); }        // mesh index at rings index x
   RingView operator()(int x) const { return {table.ring(x), table.edges(x), table.corners(x)}; }
   // Look-ahead: the next vertex's ring header, then (once that is in the cache) its edges and corners.
   void prefetch_header(int x) const { detail::prefetch(&table.ring(x)); }
@@ -143,6 +146,7 @@ struct MeshRings {
   std::vector<GeodesicRingTable::Corner> corners;
   size_t n_vertices() const { return mesh.n_vertices(); }
   int index(int v) const { return v; }
+  int vertex(int x) const { return x; }
   RingView operator()(int x) {
     edges.clear();
     corners.clear();
@@ -161,8 +165,8 @@ struct MeshRings {
 };
 
 template <class Rings>
-DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, const std::vector<Vec3>& origins,
-                         const DistanceOptions& o) {
+DistanceField fast_field(Rings&& rings, const TwinRing& twins, const std::vector<FastSeed>& seeds,
+                         const std::vector<Vec3>& origins, const DistanceOptions& o) {
   const size_t n = rings.n_vertices();
   std::vector<FastRec> rec(n);  // by rings index, as every index below but the output's
   Heap heap;
@@ -207,7 +211,25 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
     const GeodesicRingTable::Ring& info = view.info;
     if (info.non_manifold) {
       throw TopologyError("distance: vertex " + std::to_string(node.v) +
-                          " is non-manifold (several fans meet there); split it before computing distances");
+                          " is non-manifold (several fans meet there): split it with edgefront::split_pinched_vertices "
+                          "(edgefront/vertex_twins.h) before computing distances");
+    }
+    // A pinched vertex's twins (one point of the surface) take its distance and its direction (also
+    // when one came as near from its own side: one value per point), each a pseudo source for its
+    // own fan (no straight line continues through a point).
+    if (twins.any()) [[unlikely]] {
+      twins.for_each_twin(node.v, [&](int t) {
+        const int tx = rings.index(t);
+        FastRec& rt = rec[tx];
+        if (rt.settled) return;
+        rt = FastRec{};
+        rt.d = d;
+        rt.bound = d;
+        rt.parent = x;
+        rt.origin = rx.origin;
+        rt.twin = 1;
+        heap.push(d, Node{tx, t});
+      });
     }
     const Vec3& px = info.point;
     const size_t m = info.size;
@@ -249,6 +271,7 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
       sin_phi = std::sin(phi);
     }
     if (o.directions && aimed) out.direction[node.v] = fast_direction(ring, first, phi, cos_phi, sin_phi);
+    if (o.directions && rx.twin) out.direction[node.v] = out.direction[static_cast<size_t>(rings.vertex(rx.parent))];
     if (o.target && o.target->idx() == node.v) {
       out.stop = DistanceStop::TargetReached;
       break;
@@ -417,9 +440,10 @@ DistanceField fast_field(Rings&& rings, const std::vector<FastSeed>& seeds, cons
 // null: the per-call mode).
 DistanceField run(const Mesh& mesh, const GeodesicRingTable* table, const std::vector<FastSeed>& seeds,
                   const std::vector<Vec3>& origins, const DistanceOptions& options) {
-  if (!table) return fast_field(MeshRings{mesh, {}, {}, {}}, seeds, origins, options);
+  const TwinRing twins(mesh);
+  if (!table) return fast_field(MeshRings{mesh, {}, {}, {}}, twins, seeds, origins, options);
   table->check(mesh);
-  return fast_field(TableRings{*table}, seeds, origins, options);
+  return fast_field(TableRings{*table}, twins, seeds, origins, options);
 }
 
 // The field from vertices (not a loop), after the checks.

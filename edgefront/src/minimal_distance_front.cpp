@@ -12,6 +12,7 @@
 #include "detail/min_heap.h"
 #include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -39,6 +40,7 @@ struct Candidate {
   Vec3 origin{0, 0, 0};
 };
 
+
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
 // The fields every lookup reads (d, settled, unsettled) come first, in the record's first cache line.
@@ -48,6 +50,8 @@ struct DRec {
   bool settled = false;
   bool seed = false;     // a source vertex, or a vertex of a source point's face
   bool unexpanded = false;  // window mode: settled before it joined the front (see step)
+  bool twin = false;     // the distance came from a twin: a pseudo source at the vertex itself (see
+                         // settle_twins; `source` then marks only the twin's direction)
   int face = -1;         // the plane of `source`; -1 when `source` needs no unfolding (a source point)
   int loop_in = -1;      // loop sources: the loop halfedge into this vertex (its ahead wedge)
   double offset = 0;     // distance already travelled at `source` (a pseudo source: a vertex the
@@ -267,6 +271,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
   size_t n_merged = 0;  // windows merged into a waiting one (statistics)
   size_t n_windows = 0;  // windows propagated (statistics)
 
+  // Twins (pinched vertices, edgefront/vertex_twins.h; the core's `twins`): the vertices with twins
+  // that joined the edge front.
+  detail::FlatMap<uint8_t> twins_joined;
+
   // The neighbourhood of the vertex being settled, counter-clockwise: per outgoing edge its end
   // vertex, unit direction and length, the face after it (-1 in a border gap) and that face's
   // corner angle at the vertex. Rebuilt for every settled vertex; reused storage.
@@ -285,7 +293,10 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
 
   explicit Impl(const Mesh& m) : EdgeFrontCore(m, MinimalEdgeFrontOptions{}) {}
 
-  void on_join(int, VRec& rec) override { rec.level = 0; }
+  void on_join(int v, VRec& rec) override {
+    rec.level = 0;
+    if (twins.any() && twins.next(v) != v) twins_joined.insert(static_cast<uint32_t>(v), 1);  // see settle_twins
+  }
   int event_level() const override { return 0; }
 
   void check_options(const DistanceOptions& o) const {
@@ -316,14 +327,21 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     lit_edges.clear();
     n_merged = 0;
     n_windows = 0;
+    twins_joined.clear();
   }
 
-  int count_unsettled(int v) const {
+  // Neighbours and twins (see settle_twins) not settled yet.
+  // (Loop sources only: kept out of record's way.)
+  [[gnu::noinline]] int count_unsettled(int v) const {
     int n = 0;
     for (VertexHandle y : mesh.vv_range(VertexHandle(v))) {
       const DRec* r = dt.find(static_cast<uint32_t>(y.idx()));
       n += !(r && r->settled);
     }
+    twins.for_each_twin(v, [&](int t) {
+      const DRec* r = dt.find(static_cast<uint32_t>(t));
+      n += !(r && r->settled);
+    });
     return n;
   }
 
@@ -1328,10 +1346,54 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     offer(c, best, foot, 0.0, hxc.is_valid() ? mesh.face_handle(hxc).idx() : -1);
   }
 
+  // The twins of the settled vertex x (a pinched vertex: one point of the surface) take its
+  // distance and its direction `dir` (also when one came as near from its own side: one value per
+  // point), each a pseudo source for its own fan (no line continues through a point: the MDF's and
+  // the windows' own rule at a vertex the front cannot pass; the default mode keeps the twin's
+  // own way as its second source), and with the front tracked each joins it as a seed unless it
+  // is on the front or has been (twins_joined): its fan is then processed from there. A settled
+  // vertex's record stays while a twin is not settled (they count as neighbours), so a twin is
+  // never reached again. Returns the number of twins not settled yet.
+  [[gnu::noinline]] int settle_twins(int x, const DRec& rx) {
+    const double d = rx.d;
+    const Vec3 dir = direction_of(x, rx);
+    int open = 0;
+    const bool track = opts.track_front || windowed;
+    twins.for_each_twin(x, [&](int t) {
+      DRec* rt = dt.find(static_cast<uint32_t>(t));
+      if (rt && rt->settled) {
+        if (--rt->unsettled <= 0) drop(t);
+        return;
+      }
+      ++open;
+      const bool joined = twins_joined.contains(static_cast<uint32_t>(t));
+      if (rt) {
+        --rt->unsettled;  // (a loop source's count; rewritten when t settles otherwise)
+        // Taken whatever t's own value (no settled twin lies nearer: it would have settled
+        // first); the default mode keeps t's own way as its second source.
+        if (!windowed && std::isfinite(rt->d) && rt->face >= 0) {
+          rt->alt = Candidate{rt->d, rt->source, rt->offset, rt->face, rt->origin};
+        }
+        rt->d = kInf;
+      }
+      // The pseudo source sits at the pinch (origin, offset d, no face); `source` only marks the
+      // direction (direction_of), as it is not unfolded.
+      Candidate k;
+      k.d = d;
+      k.origin = mesh.point(VertexHandle(t));
+      k.source = k.origin + dir;
+      k.offset = d;
+      offer(t, k);
+      dt.find(static_cast<uint32_t>(t))->twin = true;  // (kept if a tie replaces it: windows all around)
+      if (track && !joined && !vt.contains(static_cast<uint32_t>(t))) seed_twin(t, true);
+    });
+    return open;
+  }
+
   void settle_neighbours(int x) {
     DRec rx = *dt.find(static_cast<uint32_t>(x));  // copy: offers may rehash the table
     build_ring(x);
-    int open = 0;  // neighbours not settled yet
+    int open = 0;  // neighbours (and twins) not settled yet
     auto visit = [&](int c, HalfedgeHandle hxc) {
       DRec* rc = dt.find(static_cast<uint32_t>(c));
       open += !(rc && rc->settled);
@@ -1378,8 +1440,12 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
         visit(r.v, HalfedgeHandle(r.he));
       }
     }
-    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far edges.
-    if (windowed && (rx.d == 0 || bends_geodesics())) emit_vertex_windows(x, rx.d, rx.d == 0 ? nullptr : &rx);
+    if (twins.any()) [[unlikely]] open += settle_twins(x, rx);
+    // Window mode: the sources, and the vertices a geodesic can bend at, light their faces' far
+    // edges (a twin's pseudo source all around: its distance came through a point).
+    if (windowed && (rx.d == 0 || rx.twin || bends_geodesics())) {
+      emit_vertex_windows(x, rx.d, rx.d == 0 || rx.twin ? nullptr : &rx);
+    }
     DRec* r = dt.find(static_cast<uint32_t>(x));
     if (r && !line_source) r->unsettled = open;
     if (r && r->unsettled <= 0) drop(x);
@@ -1439,16 +1505,19 @@ struct MinimalDistanceFront::Impl : EdgeFrontCore {
     return false;
   }
 
+
   Vec3 direction_of(int v, const DRec& r) const {
     Vec3 dir = r.source - mesh.point(VertexHandle(v));
     const double l = dir.norm();
     return l > 1e-300 && r.d > 0 ? dir / l : Vec3(0, 0, 0);
   }
 
-  size_t total_bytes() const {
-    return memory_bytes() + dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) +
-           gone.memory_bytes() + lit_edges.memory_bytes() + peak_horizon * sizeof(Entry);
+  // Everything but the edge front's own containers (memory_bytes()).
+  size_t distance_bytes() const {
+    return dt.memory_bytes() + peak_heap * sizeof(Entry) + win.capacity() * sizeof(Window) + gone.memory_bytes() +
+           lit_edges.memory_bytes() + peak_horizon * sizeof(Entry) + twins_joined.memory_bytes();
   }
+  size_t total_bytes() const { return memory_bytes() + distance_bytes(); }
 };
 
 MinimalDistanceFront::MinimalDistanceFront(const Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
@@ -1482,9 +1551,7 @@ size_t MinimalDistanceFront::front_size() const { return impl_->live_nodes; }
 size_t MinimalDistanceFront::peak_front_size() const { return impl_->peak_nodes; }
 size_t MinimalDistanceFront::working_memory_bytes() const { return impl_->total_bytes(); }
 size_t MinimalDistanceFront::peak_working_memory_bytes() const {
-  return impl_->peak_bytes + impl_->dt.memory_bytes() + impl_->peak_heap * sizeof(Impl::Entry) +
-         impl_->win.capacity() * sizeof(Window) + impl_->gone.memory_bytes() + impl_->lit_edges.memory_bytes() +
-         impl_->peak_horizon * sizeof(Impl::Entry);
+  return impl_->peak_bytes + impl_->distance_bytes();
 }
 size_t MinimalDistanceFront::settled_count() const { return impl_->n_settled; }
 

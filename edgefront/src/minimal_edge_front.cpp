@@ -90,6 +90,7 @@ struct MinimalEdgeFront::Impl : EdgeFrontCore {
   }
 
   void close_level() {
+    if (twins.any()) [[unlikely]] join_twins_of_level();
     if (unit_expansions > 0) ++completed;
     level_open = false;
     due.swap(next_due);
@@ -119,7 +120,34 @@ struct MinimalEdgeFront::Impl : EdgeFrontCore {
     return any;
   }
 
-  size_t scheduler_bytes() const { return (due.capacity() + next_due.capacity()) * sizeof(uint32_t); }
+  // A pinched vertex's twins join with it, at the same level (see the header), as seeds: when the
+  // level completes (one look per level, not per joining vertex), those that did not join in it
+  // themselves (a vertex joins once: one that joined and was enclosed again is not on the front).
+  // A loop source's vertex joins again when the front reaches it from behind: its twins started
+  // with it (reset_structure).
+  std::vector<uint32_t> joined_pinched;  // scratch
+  [[gnu::noinline]] void join_twins_of_level() {
+    joined_pinched.clear();
+    for (uint32_t v : next_due) {
+      if (twins.next(static_cast<int>(v)) == static_cast<int>(v)) continue;
+      if (std::find(sources.begin(), sources.end(), v) != sources.end()) continue;
+      joined_pinched.push_back(v);
+    }
+    std::sort(joined_pinched.begin(), joined_pinched.end());
+    const size_t n = joined_pinched.size();
+    for (size_t i = 0; i < n; ++i) {
+      twins.for_each_twin(static_cast<int>(joined_pinched[i]), [&](int t) {
+        if (!std::binary_search(joined_pinched.begin(), joined_pinched.begin() + static_cast<long>(n),
+                                static_cast<uint32_t>(t))) {
+          seed_twin(t, true);
+        }
+      });
+    }
+  }
+
+  size_t scheduler_bytes() const {
+    return (due.capacity() + next_due.capacity() + joined_pinched.capacity()) * sizeof(uint32_t);
+  }
 };
 
 // ---------------------------------------------------------------------------------------------

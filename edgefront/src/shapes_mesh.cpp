@@ -20,6 +20,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/shapes.h"
+#include "edgefront/vertex_twins.h"
 #include "shapes_detail.h"
 
 namespace edgefront::shapes {
@@ -839,6 +840,145 @@ std::vector<VertexHandle> add_island(Mesh& mesh, const Vec3& corner, double spac
     mesh.add_face(bottom[i], top[i + 1], top[i]);
   }
   return vs;
+}
+
+PinchedBody pinched_body(int around) {
+  const std::string shape = "pinched-body";
+  detail::require_count(shape, "around", around, 6, 1024);
+  if (around % 2 != 0) detail::fail(shape, "around must be even, got " + std::to_string(around));
+  const int n = around, rings = std::max(2, around / 4);
+  // cos and sin of 2πk/m with sin(-a) exactly -sin(a): the body is mirror-symmetric in z.
+  const auto circle = [](int k, int m) {
+    k = ((k % m) + m) % m;
+    if (2 * k <= m) return unit_circle(k, m);
+    const auto c = unit_circle(m - k, m);
+    return std::array<double, 2>{c[0], -c[1]};
+  };
+  std::vector<Vec3> points;
+  using Tri = std::array<int, 3>;
+  // Adds a closed part's triangles, flipped if needed so that its volume is positive (outward).
+  std::vector<Tri> tris;
+  const auto add_part = [&](std::vector<Tri> part) {
+    double volume = 0;
+    for (const Tri& t : part) {
+      volume += OpenMesh::dot(points[static_cast<size_t>(t[0])],
+                              OpenMesh::cross(points[static_cast<size_t>(t[1])], points[static_cast<size_t>(t[2])]));
+    }
+    for (Tri& t : part) {
+      if (volume < 0) std::swap(t[1], t[2]);
+      tris.push_back(t);
+    }
+  };
+
+  // The horn torus: rows j of the tube angle v = 2πj/n (row n/2 is the origin, one vertex), n
+  // vertices around z per row. The lower side's faces at the origin go to its copy (set below).
+  std::vector<int> row(static_cast<size_t>(n), -1);
+  for (int j = 0; j < n; ++j) {
+    row[static_cast<size_t>(j)] = static_cast<int>(points.size());
+    if (2 * j == n) {
+      points.emplace_back(0, 0, 0);
+      continue;
+    }
+    const auto v = circle(j, n);
+    for (int i = 0; i < n; ++i) {
+      const auto u = circle(i, n);
+      points.emplace_back((1 + v[0]) * u[0], (1 + v[0]) * u[1], v[1]);
+    }
+  }
+  const int centre = row[static_cast<size_t>(n / 2)];
+  const auto torus_vertex = [&](int i, int j) {
+    j = ((j % n) + n) % n;
+    return 2 * j == n ? centre : row[static_cast<size_t>(j)] + ((i % n) + n) % n;
+  };
+  int centre_copy = -1;  // set once the input's vertices are all placed
+  std::vector<Tri> torus;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int a = torus_vertex(i, j), b = torus_vertex(i + 1, j), c = torus_vertex(i + 1, j + 1), d = torus_vertex(i, j + 1);
+      if (2 * (j + 1) == n) {
+        torus.push_back({a, b, centre});  // the upper side's fan at the origin
+      } else if (2 * j == n) {
+        torus.push_back({-1, c, d});  // the lower side's fan: the copy
+      } else if (2 * j < n) {  // upper half: one diagonal; the lower half mirrors it
+        torus.push_back({a, b, c});
+        torus.push_back({a, c, d});
+      } else {
+        torus.push_back({a, b, d});
+        torus.push_back({b, c, d});
+      }
+    }
+  }
+
+  // The cones: apex at the torus's outer equator, axis along ±x, lateral rings t = 1..rings on
+  // the generators m (straight lines from the apex), a flat base with a centre vertex.
+  constexpr double kHeight = 1.0, kBase = 0.4;
+  std::array<std::vector<Tri>, 2> cones;
+  std::array<int, 2> apex{torus_vertex(0, 0), torus_vertex(n / 2, 0)};
+  PinchedBody body;
+  for (int k = 0; k < 2; ++k) {
+    const double ex = k == 0 ? 1.0 : -1.0;
+    const Vec3 a = points[static_cast<size_t>(apex[static_cast<size_t>(k)])];
+    const int first = static_cast<int>(points.size());
+    const auto side = [&](int t, int m) { return first + (t - 1) * n + ((m % n) + n) % n; };
+    for (int t = 1; t <= rings; ++t) {
+      const double s = static_cast<double>(t) / rings;
+      for (int m = 0; m < n; ++m) {
+        const auto f = circle(m, n);
+        points.push_back(a + Vec3(ex * kHeight * s, kBase * s * f[0], kBase * s * f[1]));
+      }
+    }
+    const int base = static_cast<int>(points.size());
+    points.push_back(a + Vec3(ex * kHeight, 0, 0));
+    std::vector<Tri>& cone = cones[static_cast<size_t>(k)];
+    for (int m = 0; m < n; ++m) {
+      cone.push_back({-1, side(1, m), side(1, m + 1)});  // the apex: the copy (set below)
+      for (int t = 1; t < rings; ++t) {
+        const int p = side(t, m), q = side(t, m + 1), r = side(t + 1, m + 1), s = side(t + 1, m);
+        if (2 * m < n) {  // z > 0: one diagonal; z < 0 mirrors it
+          cone.push_back({q, p, r});
+          cone.push_back({p, s, r});
+        } else {
+          cone.push_back({q, p, s});
+          cone.push_back({q, s, r});
+        }
+      }
+      cone.push_back({base, side(rings, m + 1), side(rings, m)});
+    }
+    for (int v = first; v < base; ++v) body.cone_sides[static_cast<size_t>(k)].emplace_back(v);
+  }
+
+  // The copies, appended after the input's vertices (as the mesh loader splits a pinched vertex).
+  body.input_vertices = points.size();
+  centre_copy = static_cast<int>(points.size());
+  points.emplace_back(0, 0, 0);
+  std::array<int, 2> apex_copy{};
+  for (int k = 0; k < 2; ++k) {
+    apex_copy[static_cast<size_t>(k)] = static_cast<int>(points.size());
+    points.push_back(points[static_cast<size_t>(apex[static_cast<size_t>(k)])]);
+  }
+  for (Tri& t : torus) {
+    if (t[0] < 0) t[0] = centre_copy;
+  }
+  add_part(std::move(torus));
+  for (int k = 0; k < 2; ++k) {
+    for (Tri& t : cones[static_cast<size_t>(k)]) {
+      if (t[0] < 0) t[0] = apex_copy[static_cast<size_t>(k)];
+    }
+    add_part(std::move(cones[static_cast<size_t>(k)]));
+  }
+
+  Mesh& mesh = body.mesh;
+  for (const Vec3& p : points) mesh.add_vertex(p);
+  for (const Tri& t : tris) {
+    EF_CHECK(mesh.add_face(VertexHandle(t[0]), VertexHandle(t[1]), VertexHandle(t[2])).is_valid(),
+             "pinched body: a face was refused");
+  }
+  mesh.update_face_normals();
+  body.pinches = {{{VertexHandle(apex[0]), VertexHandle(apex_copy[0])},
+                   {VertexHandle(apex[1]), VertexHandle(apex_copy[1])},
+                   {VertexHandle(centre), VertexHandle(centre_copy)}}};
+  for (const auto& group : body.pinches) link_twins(mesh, {group[0], group[1]});
+  return body;
 }
 
 }  // namespace edgefront::shapes

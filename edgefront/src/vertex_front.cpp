@@ -7,6 +7,7 @@
 #include "detail/flat_map.h"
 #include "detail/prefetch.h"
 #include "edgefront/error.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront {
 
@@ -30,8 +31,18 @@ struct VertexFront::Impl {
   bool loop_source = false;
   std::vector<HalfedgeHandle> loop;  // loop source: ahead wedges for the first level
   std::function<void(VertexHandle, int)> on_enclosed;
+  // A pinched vertex's twins (one point of the surface) join with it, at the same level (when the
+  // level closes).
+  TwinRing twins;
 
-  explicit Impl(const Mesh& m) : mesh(m) {}
+  explicit Impl(const Mesh& m) : mesh(m), twins(m) {}
+
+  // Adds the twins of vertex `v` that the front does not know yet with `state` to `list`.
+  [[gnu::noinline]] void add_twins(uint32_t v, uint8_t s, std::vector<uint32_t>& list) {
+    twins.for_each_twin(static_cast<int>(v), [&](int t) {
+      if (this->state.insert(static_cast<uint32_t>(t), s).second) list.push_back(static_cast<uint32_t>(t));
+    });
+  }
 
   void reset(const FrontSource& source) {
     validate_source(mesh, source);
@@ -46,6 +57,7 @@ struct VertexFront::Impl {
     peak_bytes = 0;
     loop_source = source.is_loop();
     loop = source.loop;
+    twins = TwinRing(mesh);
     if (loop_source) {
       for (HalfedgeHandle h : loop) {
         const auto v = static_cast<uint32_t>(mesh.to_vertex_handle(h).idx());
@@ -57,6 +69,11 @@ struct VertexFront::Impl {
         state.insert(static_cast<uint32_t>(v.idx()), kFront);
         front_list.push_back(static_cast<uint32_t>(v.idx()));
       }
+    }
+    // Twins of the sources are sources (a loop vertex's twins start with their whole fans).
+    if (twins.any()) {
+      const size_t given = front_list.size();
+      for (size_t i = 0; i < given; ++i) add_twins(front_list[i], kFront, front_list);
     }
     note();
   }
@@ -82,7 +99,7 @@ struct VertexFront::Impl {
 
   void process(uint32_t x) {
     const VertexHandle vx(static_cast<int>(x));
-    if (loop_source && completed == 0) {
+    if (loop_source && completed == 0 && *state.find(x) == kBarrier) {
       // First level from a line: only the fan ahead of the loop at this vertex.
       const size_t n = loop.size();
       for (size_t i = 0; i < n; ++i) {
@@ -121,6 +138,11 @@ struct VertexFront::Impl {
   }
 
   void close_level() {
+    // The twins of the vertices that joined in this level join with them (one look per level).
+    if (twins.any()) [[unlikely]] {
+      const size_t joined = new_list.size();
+      for (size_t i = 0; i < joined; ++i) add_twins(new_list[i], kNew, new_list);
+    }
     // Swap containers: old <- front, front <- new. Entries of the old level are forgotten: on a
     // manifold the neighbours of the new front lie in old, front or new (paper, algorithm 1).
     for (uint32_t v : old_list) {
@@ -227,13 +249,18 @@ void VertexFront::validate() const {
   }
   if (!m.level_open && !m.loop_source && m.completed > 0) {
     // Completed level L: every vertex of the front (hop distance L) has a neighbour processed in
-    // level L-1, and no neighbour that was forgotten as "older" than that could be new.
+    // level L-1 (it or one of its twins, which joined with it), and no neighbour that was
+    // forgotten as "older" than that could be new.
     for (uint32_t v : m.front_list) {
       bool has_old = false;
-      for (VertexHandle y : m.mesh.vv_range(VertexHandle(static_cast<int>(v)))) {
-        const uint8_t* s = m.state.find(static_cast<uint32_t>(y.idx()));
-        has_old = has_old || (s && *s == kOld);
-      }
+      auto look = [&](int u) {
+        for (VertexHandle y : m.mesh.vv_range(VertexHandle(u))) {
+          const uint8_t* s = m.state.find(static_cast<uint32_t>(y.idx()));
+          has_old = has_old || (s && *s == kOld);
+        }
+      };
+      look(static_cast<int>(v));
+      m.twins.for_each_twin(static_cast<int>(v), look);
       if (!has_old) fail("front vertex " + std::to_string(v) + " has no neighbour in the previous level");
     }
   }

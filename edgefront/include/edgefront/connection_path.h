@@ -15,6 +15,11 @@
 /// distances (12 bytes per settled vertex, see `ConnectionPath::region_memory_bytes`). The cost
 /// depends on the path, not on the mesh: when the vertices are not connected, the smaller
 /// component's front dies first and the answer is "no path".
+///
+/// Pinched vertices (split into twins, edgefront/vertex_twins.h) are one point: a path may pass
+/// through one, from a twin to another. Such a step is in the vertex chain (the two twins one
+/// after the other) but is not a mesh edge: it counts 0 in `edges` and `edge_length`, and the
+/// polyline passes the point exactly (the pieces on either side are straightened each on its own).
 
 #include <cstddef>
 #include <memory>
@@ -93,10 +98,10 @@ struct PathPoint {
 /// The answer of a query.
 struct ConnectionPath {
   PathStatus status = PathStatus::NoPath;
-  /// The vertices from `from` to `to`, each joined to the next by a mesh edge (empty without a path;
-  /// one vertex when from == to).
+  /// The vertices from `from` to `to`, each joined to the next by a mesh edge or its twin (a pinched
+  /// vertex, see above) (empty without a path; one vertex when from == to).
   std::vector<VertexHandle> vertices;
-  /// Number of edges of `vertices` (hop count).
+  /// Number of mesh edges of `vertices` (hop count; steps between twins do not count).
   size_t edges = 0;
   /// Sum of the Euclidean lengths of the chain's edges.
   double edge_length = 0.0;
@@ -106,7 +111,8 @@ struct ConnectionPath {
   double length = 0.0;
   /// The geodesic polyline from `from` to `to` when `ConnectionPathOptions::polyline` is set:
   /// first and last points are the end vertices, inner points lie on mesh edges (or at vertices
-  /// where the path wraps around one), consecutive points share a face.
+  /// where the path wraps around one), consecutive points share a face or are twins (the path
+  /// passes a pinched vertex).
   std::vector<PathPoint> polyline;
   double polyline_length = 0.0;
   bool polyline_converged = false;  ///< the straightening ended because nothing shortened any more
@@ -138,7 +144,7 @@ class ConnectionPathFinder {
   ConnectionPathFinder(ConnectionPathFinder&&) noexcept;
   ConnectionPathFinder& operator=(ConnectionPathFinder&&) noexcept;
 
-  /// One path. from == to gives a one-vertex path of length 0; adjacent vertices the edge.
+  /// One path. from == to gives a one-vertex path of length 0; adjacent vertices (or twins) the edge.
   /// \throws InvalidInput for an invalid or deleted vertex or bad options (naming it).
   /// \throws TopologyError when a front meets a non-manifold vertex.
   ConnectionPath find(VertexHandle from, VertexHandle to, const ConnectionPathOptions& options = {});
@@ -164,14 +170,15 @@ class ConnectionPathFinder {
 ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle to,
                                const ConnectionPathOptions& options = {});
 
-/// The geodesic polyline along a vertex chain (each vertex joined to the next by an edge): the
+/// The geodesic polyline along a vertex chain (each vertex joined to the next by an edge, or its
+/// twin: a pinched vertex, where the chain is cut into pieces straightened each on its own): the
 /// faces around the chain form a corridor that is unfolded into the plane and straightened with
 /// the funnel algorithm; wherever the straightened path wraps around a vertex with the corridor on
 /// the wrong side (the other side is shorter), the corridor is moved to that side and the path
 /// straightened again, until no change shortens it or `max_flips` changes were made.
 /// Returns the points (see `ConnectionPath::polyline`); `converged` tells why it stopped.
 /// \throws InvalidInput when the chain is empty, has an invalid vertex or two consecutive
-///         vertices that are not joined by an edge.
+///         vertices that are neither joined by an edge nor twins.
 std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain,
                                          int max_flips = 10000, bool* converged = nullptr);
 
@@ -181,7 +188,9 @@ std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<Ver
 /// edge (A*, straight segments inside faces) picks the way through the band, and the corridor of the
 /// faces it crosses is straightened as in `geodesic_polyline`. Returns that polyline when it is
 /// shorter than `polyline`, otherwise `polyline` itself. Work and memory follow the band, not the
-/// mesh; `band_vertices` (optional) receives the number of vertices of the band.
+/// mesh; `band_vertices` (optional) receives the number of vertices of the band. A polyline through
+/// pinched vertices (consecutive twin points) keeps those points: each piece between them is
+/// treated on its own.
 /// \throws InvalidInput for a negative or non-finite radius, steiner_points outside 0..64, an empty
 ///         polyline or one that does not start and end at mesh vertices.
 std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoint>& polyline, double band_radius,

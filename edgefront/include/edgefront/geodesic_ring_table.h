@@ -123,7 +123,8 @@ class GeodesicRingTable {
 /// `options.method` is taken as `Fast` and `track_front` is ignored; a loop source runs the
 /// default mode (the table is not used). \throws InvalidInput for a bad source or options, or a
 /// table that does not match the mesh (`GeodesicRingTable::check`); TopologyError when a
-/// non-manifold vertex settles.
+/// non-manifold vertex settles (one not split into twins; twins, read from the mesh at each query,
+/// are one point as in every method: see minimal_distance_front.h).
 DistanceField geodesic_distance(const Mesh& mesh, const GeodesicRingTable& table, const FrontSource& source,
                                 const DistanceOptions& options = {});
 /// The same from surface points (see `MinimalDistanceFront::reset` for their checks).

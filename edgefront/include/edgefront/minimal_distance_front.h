@@ -32,6 +32,17 @@
 /// Memory: the loops, the front-vertex table and the priority queue hold O(front) elements; the
 /// result arrays (`DistanceField`) are the only per-mesh allocation, and the stepwise class can be
 /// used without them (callbacks) for semi-local queries inside `max_distance`.
+///
+/// Pinched vertices (several fans at one point, split into twins: edgefront/vertex_twins.h) are
+/// one point of the surface, in every method: when a twin settles, the others settle at the same
+/// distance (equal values) with the same direction (to round-off), each a pseudo source for its own
+/// fan at that distance (no straight line or window passes through a point), so distances across
+/// a pinch are the sum of the parts. The edge front (`track_front`) continues from each twin as
+/// from a source vertex (minimal_edge_front.h). The twins of source vertices are sources; those
+/// of a loop source's vertices are at distance 0, pseudo sources for their whole fans. Dijkstra
+/// takes a step between twins as an edge of length 0. A vertex that is non-manifold as OpenMesh
+/// stores it (several fans, not split) is refused with a `TopologyError` naming
+/// `split_pinched_vertices`.
 
 #include <array>
 #include <cstdint>
@@ -132,7 +143,8 @@ struct DistanceOptions {
   /// front is not expanded: about 10% less time for a full field (bench/results/geodesic-speed.md,
   /// session 8), the same distances, directions, order and stop; `peak_front` is then 0 for vertex
   /// and point sources, and the working memory counts the distance records and the queue.
-  /// Non-manifold vertices are still refused (when they settle instead of when they are reached).
+  /// Non-manifold vertices (not split into twins) are still refused (when they settle instead of
+  /// when they are reached).
   /// `Mdf` only; ignored (kept on) by `Windows`, which expands the front to know where windows start.
   bool track_front = true;
 };

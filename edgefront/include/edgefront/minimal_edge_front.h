@@ -17,6 +17,17 @@
 /// occurrences, whatever order), so the level at which a vertex joins the front is its
 /// breadth-first hop distance from the source set.
 ///
+/// Pinched vertices (several fans at one point, split into twins: edgefront/vertex_twins.h) are
+/// one point of the surface, the paper's collision in reverse: the twins of a vertex that joined
+/// the front join at the same level as seeds (when the level completes; a `Pinch` event each),
+/// unless the front has reached them itself, and at the next level each seed expands its whole fan
+/// into a loop of its own, like a source vertex (unless the front has reached it from its own side
+/// by then: it is then an ordinary front vertex). So the loop count grows by one per twin at a
+/// pinch; where the parts beyond it are joined elsewhere too, those loops meet the others there in
+/// ordinary collisions (merges). The twins of source vertices are sources (level 0);
+/// the twins of a loop source's vertices start at level 0 with their whole fans (the loop does not
+/// divide them). Hop distances count a step between twins as 0.
+///
 /// Memory: the working set (loop nodes, the front-vertex table, the level lists) holds O(front)
 /// elements in open-addressing tables; nothing proportional to the mesh is allocated per query.
 /// A `MinimalEdgeFront` object can be `reset` for many queries and keeps its buffers.
@@ -40,6 +51,8 @@ struct FrontEvent {
     Merge,         ///< a collision merged two loops into one (reported with loop tracking on)
     Annihilation,  ///< a loop enclosed no more surface and vanished; `vertex` was its last vertex
     BorderReached, ///< an expansion at `vertex` reached the mesh border
+    Pinch,         ///< `vertex`, a twin of a vertex that joined the front (a pinched vertex, see
+                   ///< above), joined with it as a seed: it starts a loop of its own around its fan
   };
   Kind kind = Kind::Collision;
   VertexHandle vertex;
@@ -90,7 +103,8 @@ class MinimalEdgeFront {
 
   /// Performs one single edge expansion (the next one of the current level, starting the next
   /// level when one is complete). Returns false when nothing is left to expand.
-  /// \throws TopologyError when the expansion meets a non-manifold vertex.
+  /// \throws TopologyError when the expansion meets a non-manifold vertex (one not split into
+  ///         twins: see `split_pinched_vertices`).
   bool step();
 
   /// Completes the current level (or performs the next one when the last is complete).

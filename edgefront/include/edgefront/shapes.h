@@ -203,6 +203,33 @@ struct NeckMesh {
 /// (around, around/2, ..., 3). \pre around = 3·2^k, k >= 1, around <= 3072. \throws InvalidInput
 NeckMesh neck(int around = 12);
 
+/// A closed body with three pinched vertices, split into twins (edgefront/vertex_twins.h), and
+/// what the tests need to know about it.
+struct PinchedBody {
+  /// The body: a horn torus (major radius = tube radius = 1, around z) whose inner equator has
+  /// closed to one point, the origin, where its upper and lower sides meet (a pinch inside the
+  /// body), and two closed cones (lateral surface and flat base; slant 1.077, base radius 0.4,
+  /// axes along +x and -x) whose apexes touch the torus's outer equator at (2, 0, 0) and
+  /// (-2, 0, 0) (two parts touching the body at one point). Outward normals. Split as the mesh
+  /// loader splits a file: `input_vertices` vertices of which each pinched vertex is one, then one
+  /// copy per pinch (3 vertices), linked as twins. Mirror-symmetric in z (vertex positions
+  /// exactly, the triangulation too).
+  Mesh mesh;
+  size_t input_vertices = 0;
+  /// The groups of twins: {torus vertex at (2, 0, 0), apex of the +x cone}, {torus vertex at
+  /// (-2, 0, 0), apex of the -x cone}, {the origin on the upper side, on the lower side}; in each
+  /// the original first, the copy second.
+  std::array<std::array<VertexHandle, 2>, 3> pinches;
+  /// Per cone, its lateral vertices (apex excluded): each lies on a straight edge path from the
+  /// apex (a generator), so its geodesic distance from the apex is its Euclidean distance.
+  std::array<std::vector<VertexHandle>, 2> cone_sides;
+};
+
+/// The pinched body above at a resolution: `around` (even, 6..1024) segments around the torus
+/// and around its tube, and around each cone (with around/4 rings, at least 2). Not one of the
+/// named shapes of `make` (it is a test mesh with twins). \throws InvalidInput
+PinchedBody pinched_body(int around = 12);
+
 /// True when v0, v1, v2 are pairwise joined by edges and no face of `mesh` has exactly these
 /// three vertices: a 3-edge cycle that is not a face (a minimum pathway).
 /// \throws InvalidInput if a handle is not a live vertex of `mesh` or two are equal.

@@ -3,6 +3,12 @@
 /// The Vertex Front (VF) of Annuth & Bohn, §2.1, algorithm 1: breadth-first expansion that keeps
 /// only three vertex sets (the previous level, the current front, the next level), so its memory
 /// follows the front, not the visited area. A loose set of vertices: no loops, no collisions.
+///
+/// Pinched vertices (split into twins, edgefront/vertex_twins.h) are one point: a vertex's twins
+/// join the front with it, at the same level (as the level completes; the twins of sources are
+/// sources; those of a loop
+/// source's vertices start at level 0 with their whole fans), so levels count a step between twins
+/// as 0.
 
 #include <functional>
 #include <memory>

@@ -14,6 +14,7 @@
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
 #include "edgefront/minimal_edge_front.h"
+#include "edgefront/vertex_twins.h"
 
 namespace edgefront::detail {
 
@@ -81,7 +82,13 @@ class EdgeFrontCore {
   std::function<void(VertexHandle, int)> on_enclosed;
   std::function<void(const FrontEvent&)> on_event;
 
-  EdgeFrontCore(const Mesh& m, MinimalEdgeFrontOptions o) : mesh(m), options(o) {}
+  // Pinched vertices split into twins (edgefront/vertex_twins.h): one point of the surface. A twin
+  // that joins the front as a seed (seed_twin) expands its whole fan into a loop of its own, like a
+  // source vertex. When they join is the scheduler's (the MEF: at the end of the level a group
+  // member joined in; the MDF: when a member settles).
+  TwinRing twins;
+
+  EdgeFrontCore(const Mesh& m, MinimalEdgeFrontOptions o) : mesh(m), options(o), twins(m) {}
   virtual ~EdgeFrontCore() = default;
   EdgeFrontCore(const EdgeFrontCore&) = delete;
   EdgeFrontCore& operator=(const EdgeFrontCore&) = delete;
@@ -169,6 +176,21 @@ class EdgeFrontCore {
     nodes[id].flags |= kNodeAttached;
     return had_nodes;
   }
+
+  // Twin `t` of a vertex that joined (or settled) joins the front as a seed, unless it is on the
+  // front already. Returns whether it joined. `event`: report a Pinch event.
+  [[gnu::noinline]] bool seed_twin(int t, bool event) {
+    auto [rec, inserted] = vt.insert(static_cast<uint32_t>(t), VRec{});
+    if (!inserted) return false;
+    check_joining(t);
+    rec->state = kVertexSeed;
+    on_join(t, *rec);
+    if (options.debug_tracking) {
+      EF_CHECK(!dbg_enclosed[t], "vertex " + std::to_string(t) + " joins the front after it was enclosed");
+    }
+    if (event) emit(FrontEvent::Kind::Pinch, t);
+    return true;
+  }
   void detach(int id) {
     Node& n = nodes[id];
     if (!(n.flags & kNodeAttached)) return;
@@ -225,8 +247,8 @@ class EdgeFrontCore {
   void require_manifold(int v) const {
     if (mesh_manifold) return;
     if (mesh.is_boundary(VertexHandle(v)) && !mesh.is_manifold(VertexHandle(v))) {
-      throw TopologyError("edge front: " + vname(v) +
-                          " is non-manifold (several fans meet there); split it before running a front");
+      throw TopologyError("edge front: " + vname(v) + " is non-manifold (several fans meet there): split it with "
+                          "edgefront::split_pinched_vertices (edgefront/vertex_twins.h) before running a front");
     }
   }
   void check_joining(int v) {
@@ -264,6 +286,7 @@ class EdgeFrontCore {
     mesh_manifold = false;
     manifold_checks_left = std::max<size_t>(mesh.n_vertices() / 8, 1);
     if (options.debug_tracking) dbg_enclosed.assign(mesh.n_vertices(), 0);
+    twins = TwinRing(mesh);
 
     if (!source.vertices.empty()) {
       for (VertexHandle v : source.vertices) {
@@ -303,6 +326,22 @@ class EdgeFrontCore {
       dirty.clear();
       for (uint32_t v : sources) dirty.push_back(static_cast<int>(v));
       settle();
+    }
+    // The twins of the source vertices are source vertices too (one point of the surface); those
+    // of a loop's vertices start with their whole fans (the loop does not divide them).
+    if (twins.any()) {
+      const size_t given = sources.size();
+      for (size_t i = 0; i < given; ++i) {
+        twins.for_each_twin(static_cast<int>(sources[i]), [&](int t) {
+          if (!vt.contains(static_cast<uint32_t>(t))) {
+            require_manifold(t);
+            VRec* rec = vt.insert(static_cast<uint32_t>(t), VRec{}).first;
+            rec->level = 0;
+            rec->state = kVertexSeed;
+            sources.push_back(static_cast<uint32_t>(t));
+          }
+        });
+      }
     }
     note_memory();
   }
