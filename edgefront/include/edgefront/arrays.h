@@ -78,6 +78,9 @@ class VertexArrayView {
   bool is_float() const { return f_ != nullptr; }
   /// Throws InvalidInput naming `what` unless the view is a non-empty n x 3 array.
   void check_shape(const char* what) const;
+  /// `check_shape`, and every value finite and at most 1e150 in magnitude (InvalidInput naming the
+  /// row and column).
+  void check_values(const char* what) const;
   /// Row i, column k (unchecked).
   double at(size_t i, size_t k) const { return d_ ? d_[i * cols_ + k] : static_cast<double>(f_[i * cols_ + k]); }
   Vec3 point(size_t i) const { return Vec3(at(i, 0), at(i, 1), at(i, 2)); }
@@ -275,6 +278,16 @@ class GeodesicSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The bounded queries behind `GeodesicSolver::distances_within` and `distance_between`, for a
+/// caller that keeps its own mesh, front and index map (`twist::RepairSession` on its mirror):
+/// `host_of_vertex` gives per mesh vertex the caller's index (-1: none), which the results use;
+/// a group of twins is listed once. \throws InvalidInput for a bad source, bound or method.
+SparseDistances distances_within(MinimalDistanceFront& front, const std::vector<VertexHandle>& sources,
+                                 double max_distance, DistanceMethod method, std::span<const int> host_of_vertex);
+/// The distance from `from` to `to` (or a twin of it) when at most `max_distance`.
+std::optional<double> distance_between(MinimalDistanceFront& front, VertexHandle from, VertexHandle to,
+                                       double max_distance, std::span<const int> host_of_vertex);
 
 /// One-shot distance field from input vertices: `GeodesicSolver(vertices, faces).distance_from_vertices(...)`.
 DistanceArrays geodesic_distance(const VertexArrayView& vertices, const FaceArrayView& faces,
