@@ -99,7 +99,7 @@ TEST(EditRecord, ABadRecordLeavesTheArraysUntouched) {
 /// Repairs the arrays of `mesh` in one shot, replays the record on a plain copy and compares it
 /// face for face with the mesh the same repair leaves (the conversion and `repair` without
 /// garbage collection, run here separately). Returns the report.
-twist::RepairReport replay_one_shot(const Mesh& mesh, const twist::RepairOptions& options) {
+twist::RepairReport replay_one_shot(const Mesh& mesh, const twist::RepairOptions& options, bool with_gc = false) {
   const MeshArrays a = mesh_to_arrays(mesh);
   const twist::ArrayRepair r = twist::repair_arrays(a.vertices, a.faces, options);
   std::vector<double> V = a.vertices;
@@ -124,6 +124,7 @@ twist::RepairReport replay_one_shot(const Mesh& mesh, const twist::RepairOptions
       for (int k = 0; k < 3; ++k) EXPECT_EQ(add.position[k], a.vertices[3 * static_cast<size_t>(add.original) + k]);
     }
   }
+  if (!with_gc) return r.report;
   // And with garbage collection (the default), the repair gives the same mesh, compacted.
   Mesh collected = mesh;
   const twist::RepairReport gc = twist::repair(collected, options);
@@ -134,18 +135,18 @@ twist::RepairReport replay_one_shot(const Mesh& mesh, const twist::RepairOptions
   return r.report;
 }
 
-TEST(EditRecord, OneShotRepairsOfTwistedShapesReplayFaceForFace) {
-  int repaired = 0;
-  for (int along : {16, 24}) {
-    for (int segment : {-1, 5}) {
-      twist::TwistedTubeOptions o;
-      o.along = along;
-      o.around = 12;
-      o.twist_segment = segment;
-      const twist::TwistedShape shape = twist::twisted_tube(o);
-      repaired += replay_one_shot(shape.mesh, {}).repairs > 0;
-    }
+TEST(EditRecord, OneShotRepairsOfTwistedTubesReplayFaceForFace) {
+  for (int segment : {-1, 5}) {
+    twist::TwistedTubeOptions o;
+    o.along = 16;
+    o.around = 12;
+    o.twist_segment = segment;
+    const twist::TwistedShape shape = twist::twisted_tube(o);
+    EXPECT_GT(replay_one_shot(shape.mesh, {}, segment < 0).repairs, 0u) << "the tube is twisted: the record holds a repair";
   }
+}
+
+TEST(EditRecord, OneShotRepairsOfFlippedDisksReplayFaceForFace) {
   for (int disk_rings : {2, 3}) {
     twist::FlippedDiskOptions o;
     o.rings = 10;
@@ -155,10 +156,9 @@ TEST(EditRecord, OneShotRepairsOfTwistedShapesReplayFaceForFace) {
     const twist::ReferenceNormals ref(twist::truth_points(shape));
     twist::RepairOptions ro;
     ro.detect.reference = &ref;
-    repaired += replay_one_shot(shape.mesh, ro).repairs > 0;
-    repaired += replay_one_shot(shape.mesh, {}).repairs > 0;
+    EXPECT_GT(replay_one_shot(shape.mesh, ro).repairs, 0u);
+    EXPECT_GT(replay_one_shot(shape.mesh, {}).repairs, 0u);
   }
-  EXPECT_EQ(repaired, 8) << "every shape is twisted: each record must hold a repair";
 }
 
 TEST(EditRecord, HandFlippedPatchesOnASphereReplayFaceForFace) {
@@ -174,7 +174,7 @@ TEST(EditRecord, HandFlippedPatchesOnASphereReplayFaceForFace) {
   o.peel_flaps = 2;           // the repair's later steps too: removals,
   o.drop_turned_patches = 4;  // collapses and straightening moves
   int repaired = 0;
-  for (unsigned seed = 1; seed <= 12; ++seed) {
+  for (unsigned seed = 1; seed <= 8; ++seed) {
     std::mt19937 rng(seed);
     Mesh m = sphere;
     const int patches = 1 + static_cast<int>(seed % 3);
@@ -185,7 +185,7 @@ TEST(EditRecord, HandFlippedPatchesOnASphereReplayFaceForFace) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     repaired += replay_one_shot(m, o).repairs > 0;
   }
-  EXPECT_GE(repaired, 10) << "most hand-flipped patches are found and repaired";
+  EXPECT_GE(repaired, 7) << "most hand-flipped patches are found and repaired";
 }
 
 }  // namespace

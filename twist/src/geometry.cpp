@@ -259,6 +259,7 @@ size_t split_fans(Mesh& mesh, VertexHandle v) {
 }
 
 void check_mesh(const Mesh& mesh, const char* what) {
+  edgefront::require_attributes(mesh, what);
   size_t live = 0;
   for (FaceHandle f : mesh.faces()) {
     if (!mesh.status(f).deleted()) ++live;

@@ -188,6 +188,44 @@ ArrayMesh mesh_from_arrays(const VertexArrayView& vertices, const FaceArrayView&
 /// `add_face(a, b, c)` gives the row a b c).
 MeshArrays mesh_to_arrays(const Mesh& mesh);
 
+/// The live vertices and faces of any OpenMesh mesh (`TriMesh_ArrayKernelT` or
+/// `PolyMesh_ArrayKernelT` of any traits: float or double points, with or without status
+/// attributes) as arrays: deleted elements (when the mesh has status) are skipped and the rest
+/// renumbered in index order, polygons fan-triangulated from their first vertex. What a host with
+/// its own OpenMesh type converts with, instead of `Mesh::assign` (which drops the attributes
+/// EdgeFront needs: see `has_attributes`).
+template <class OtherMesh>
+MeshArrays openmesh_to_arrays(const OtherMesh& other) {
+  MeshArrays out;
+  std::vector<int> row(other.n_vertices(), -1);
+  int next = 0;
+  for (size_t i = 0; i < other.n_vertices(); ++i) {
+    const typename OtherMesh::VertexHandle v(static_cast<int>(i));
+    if (other.has_vertex_status() && other.status(v).deleted()) continue;
+    row[i] = next++;
+    const auto& p = other.point(v);
+    out.vertices.insert(out.vertices.end(), {static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2])});
+  }
+  std::vector<int> corners;
+  for (size_t i = 0; i < other.n_faces(); ++i) {
+    const typename OtherMesh::FaceHandle f(static_cast<int>(i));
+    if (other.has_face_status() && other.status(f).deleted()) continue;
+    corners.clear();
+    for (auto v : other.fv_range(f)) corners.push_back(row[static_cast<size_t>(v.idx())]);
+    for (size_t k = 1; k + 1 < corners.size(); ++k) out.faces.insert(out.faces.end(), {corners[0], corners[k], corners[k + 1]});
+  }
+  return out;
+}
+
+/// `mesh_from_arrays(openmesh_to_arrays(other))`: an `edgefront::Mesh` (with its attributes) from
+/// any OpenMesh mesh; the index maps refer to `other`'s live elements in index order (its own
+/// indices when it has no deleted elements and only triangles).
+template <class OtherMesh>
+ArrayMesh mesh_from_openmesh(const OtherMesh& other, const ConversionOptions& options = {}) {
+  const MeshArrays a = openmesh_to_arrays(other);
+  return mesh_from_arrays(a.vertices, a.faces, options);
+}
+
 /// Options of the distance entry points, in the host's indices.
 struct ArrayDistanceOptions {
   DistanceMethod method = DistanceMethod::Mdf;  ///< see `DistanceMethod`
