@@ -62,4 +62,16 @@ ArrayRepair repair_arrays(const VertexArrayView& vertices, const FaceArrayView& 
   return out;
 }
 
+ArrayRepair orient_arrays(const VertexArrayView& vertices, const FaceArrayView& faces, const RepairOptions& options) {
+  edgefront::ArrayMesh converted = edgefront::mesh_from_arrays(vertices, faces);
+  detail::HostMirror host = detail::host_of_conversion(vertices, faces, converted);
+  RepairOptions o = options;
+  o.garbage_collect = false;  // the host's indices are never compacted
+  ArrayRepair out;
+  out.report = orient(converted.mesh, o);
+  out.record = detail::bring_up_to_date(host, converted.mesh);
+  out.conversion = converted.report;
+  return out;
+}
+
 }  // namespace twist

@@ -59,4 +59,12 @@ struct ArrayRepair {
 ArrayRepair repair_arrays(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
                           const RepairOptions& options = {});
 
+/// The global orientation of arrays (`orient`: a closed component faces outward, or into the
+/// cavity it bounds, an open one is left; with reference normals, each component follows their
+/// vote), as a record: the faces flipped. Faces wound against a neighbour cannot join the mesh and
+/// are removed by the record (see `edgefront::mesh_from_arrays`; orient a soup with `orient_soup`).
+/// \throws as `edgefront::mesh_from_arrays`.
+ArrayRepair orient_arrays(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
+                          const RepairOptions& options = {});
+
 }  // namespace twist

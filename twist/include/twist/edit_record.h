@@ -6,7 +6,7 @@
 /// Indices are the host's and are never compacted: a vertex or face keeps its index for as long
 /// as it exists; new vertices and faces are appended (vertex `vertices_before + i` is
 /// `vertices_added[i]`, face `faces_before + i` is `faces_added[i]`); a removed face leaves its
-/// slot empty, a vertex no face uses any more is listed in `vertices_removed` (its index is not
+/// slot empty, a vertex the repair deleted is listed in `vertices_removed` (its index is not
 /// reused by the record; the host may delete it). So the host's ids of everything that stays
 /// remain valid, and no old -> new map is needed.
 ///
@@ -16,7 +16,8 @@
 ///  2. move `vertices_moved` to their positions;
 ///  3. flip `faces_flipped`: reverse the corner order (a b c -> a c b);
 ///  4. in each `corners_replaced` face, the corner holding vertex `from` takes vertex `to` (how a
-///     cut detaches a side: `to` is a copy appended in step 1);
+///     cut detaches a side: `to` is a copy appended in step 1); the replacements of one face
+///     apply together, each to the corner that held `from` before any of them;
 ///  5. remove `faces_removed`;
 ///  6. append `faces_added`.
 /// Faces not named keep their corners in their order. A record is all or nothing: the functions
@@ -57,7 +58,8 @@ struct EditRecord {
   std::vector<CornerReplaced> corners_replaced; ///< by increasing face
   std::vector<int> faces_removed;               ///< increasing
   std::vector<std::array<int, 3>> faces_added;  ///< face faces_before + i
-  /// Vertices no face uses after the record that some face used before (increasing).
+  /// Vertices the repair deleted (increasing): no face uses them after the record; their indices
+  /// stay (the host may delete them). Nothing to replay.
   std::vector<int> vertices_removed;
 
   size_t vertices_after() const { return vertices_before + vertices_added.size(); }

@@ -108,8 +108,8 @@ class RepairSession {
   /// (`TwistRepairer::finish`).
   EditRecord finish();
   /// Per host face index (the host's face index space): the twisted region it lies in (0 = the
-  /// largest), -1 for none or an empty slot. Detection only; the edits are applied first and
-  /// their record (pinched vertices split) must be empty, else `InvalidInput`: call `sync` first.
+  /// largest), -1 for none or an empty slot. Detection only (`RepairOptions::detect`); no edits
+  /// may be pending (else `InvalidInput`: call `sync` first).
   std::vector<int> detect();
 
   // -- Bounded geodesic queries on the mirror (no edits pending: else InvalidInput) -------------
