@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
       app.add_option("--loop", loop_text, "source loop: closed vertex path V,V,V... joined by mesh edges");
   CLI::Option* point_opt = app.add_option(
       "--point", point_texts, "source point F:b0,b1,b2 (face index, barycentric coordinates in the face's vertex "
-                              "order); may be repeated (not with --method dijkstra)");
+                              "order); may be repeated");
   source_opt->excludes(loop_opt)->excludes(point_opt);
   loop_opt->excludes(source_opt)->excludes(point_opt);
   point_opt->excludes(source_opt)->excludes(loop_opt);

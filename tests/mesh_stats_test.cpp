@@ -199,7 +199,7 @@ class MeshStatsEfInfo : public ::testing::Test {
  protected:
   void SetUp() override {
     app_ = fs::path(EDGEFRONT_APP_DIR) / "ef-info";
-    if (!fs::exists(app_)) GTEST_SKIP() << "ef-info is not built at " << app_;
+    ASSERT_TRUE(fs::exists(app_)) << "ef-info is not built at " << app_;
     dir_ = fs::temp_directory_path() / ("edgefront_efinfo_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
   }

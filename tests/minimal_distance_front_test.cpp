@@ -884,3 +884,31 @@ TEST(MdfFast, BadInputLoopSourceAndNonManifoldVertex) {
   const FrontSource src = loop_from_vertices(grid, rectangle_ring(grid), LoopSide::Left);
   EXPECT_EQ(geodesic_distance(grid, src, kFast).distance, geodesic_distance(grid, src).distance);
 }
+
+// Dijkstra from surface points: a point at a corner is that vertex; a point inside a face starts
+// each corner at its straight distance; the method enum reaches the same code.
+TEST(DijkstraPoints, CornerPointIsItsVertexAndInteriorPointsStartAtStraightDistances) {
+  const Mesh mesh = shapes::icosphere(2);
+  const FaceHandle f(5);
+  std::vector<VertexHandle> corners;
+  for (const VertexHandle v : mesh.fv_range(f)) corners.push_back(v);
+  const DistanceField from_vertex = dijkstra_distance(mesh, FrontSource::vertex(corners[0]));
+  const DistanceField from_corner = dijkstra_distance(mesh, std::vector<SurfacePoint>{{f, {1.0, 0.0, 0.0}}});
+  EXPECT_EQ(from_vertex.distance, from_corner.distance);
+  const SurfacePoint mid{f, {0.2, 0.3, 0.5}};
+  const DistanceField inner =
+      geodesic_distance(mesh, std::vector<SurfacePoint>{mid}, {.method = DistanceMethod::Dijkstra});
+  Vec3 x(0, 0, 0);
+  for (size_t k = 0; k < 3; ++k) x += mesh.point(corners[k]) * mid.bary[k];
+  for (const VertexHandle v : corners) {
+    EXPECT_NEAR(inner.distance[static_cast<size_t>(v.idx())], (mesh.point(v) - x).norm(), 1e-15);
+  }
+  for (const VertexHandle v : mesh.vertices()) {
+    EXPECT_GE(inner.distance[static_cast<size_t>(v.idx())], (mesh.point(v) - x).norm() - 1e-12);
+  }
+  EXPECT_EQ(parse_distance_method("dijkstra"), DistanceMethod::Dijkstra);
+  EXPECT_STREQ(to_string(DistanceMethod::Windows), "windows");
+  EXPECT_THROW(parse_distance_method("heat"), InvalidInput);
+  MinimalDistanceFront front(mesh);
+  EXPECT_THROW(front.reset(FrontSource::vertex(corners[0]), {.method = DistanceMethod::Dijkstra}), InvalidInput);
+}

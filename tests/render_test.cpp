@@ -292,6 +292,55 @@ TEST(Render, ColorRampRunsFromLowToHighAcrossTheField) {
   EXPECT_EQ(image.at(view.column(0.3), 40), image.at(view.column(0.3), 160));
 }
 
+// The color bar: the mesh fills the image without the bar's columns exactly as it would fill an
+// image that narrow; the bar's strip runs through the colormap from the bottom (min) to the top
+// (max); its labels are dark pixels to the strip's right; small images get no bar.
+TEST(Render, ColorBarBesideTheFieldShowsTheColormapAndLabels) {
+  GridView view;
+  render::Scene scene{.mesh = &view.grid, .field = render::ScalarField{.values = view.field_x(), .isoline_step = -1}};
+  render::RenderOptions o = ortho_options(400, 300, 0, 0);
+  const render::Image plain = render::render(scene, o);
+  o.color_bar = true;
+  const render::Image with_bar = render::render(scene, o);
+  ASSERT_EQ(with_bar.width, 400);
+  // Find the strip: the column (right of the mesh) whose middle row has colormap(0.5).
+  int strip = -1;
+  for (int x = 399; x >= 200 && strip < 0; --x) {
+    if (channel_distance(with_bar.at(x, 150), render::colormap(0.5)) <= 8) strip = x;
+  }
+  ASSERT_GE(strip, 0) << "no colormap strip found";
+  int top = 0, bottom = 299;
+  while (top < 300 && channel_distance(with_bar.at(strip, top), render::colormap(1.0)) > 8) ++top;
+  while (bottom >= 0 && channel_distance(with_bar.at(strip, bottom), render::colormap(0.0)) > 8) --bottom;
+  EXPECT_LT(top, 100);      // the high end near the top
+  EXPECT_GT(bottom, 200);   // the low end near the bottom
+  // Labels: dark text pixels right of the strip.
+  int dark = 0;
+  for (int y = 0; y < 300; ++y) {
+    for (int x = strip + 4; x < 400; ++x) dark += channel_distance(with_bar.at(x, y), Rgb{40, 40, 40}) <= 2 ? 1 : 0;
+  }
+  EXPECT_GT(dark, 100);
+  // The mesh part equals a render of the narrower image.
+  int bar_width = 400 - strip;
+  while (bar_width < 200) {
+    render::RenderOptions narrow = ortho_options(400 - bar_width, 300, 0, 0);
+    const render::Image left = render::render(scene, narrow);
+    bool same = true;
+    for (int y = 0; y < 300 && same; ++y) {
+      for (int x = 0; x < left.width && same; ++x) same = left.at(x, y) == with_bar.at(x, y);
+    }
+    if (same) break;
+    ++bar_width;
+  }
+  EXPECT_LT(bar_width, 200) << "the mesh part is not the narrower image";
+  EXPECT_NE(plain.rgb, with_bar.rgb);
+  // Too small for a bar: drawn without it.
+  render::RenderOptions tiny = ortho_options(100, 60, 0, 0);
+  const render::Image tiny_plain = render::render(scene, tiny);
+  tiny.color_bar = true;
+  EXPECT_EQ(render::render(scene, tiny).rgb, tiny_plain.rgb);
+}
+
 TEST(Render, ExplicitRangeClampsTheColormap) {
   GridView view;
   render::Scene scene{.mesh = &view.grid,

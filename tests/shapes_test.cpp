@@ -990,7 +990,7 @@ std::pair<int, std::string> run(const std::string& command, const std::filesyste
 
 TEST(ShapesCli, WritesPointsAndMeshesWithDocumentedExitCodes) {
   const std::filesystem::path app = std::filesystem::path(EDGEFRONT_APP_DIR) / "ef-shapes";
-  if (!std::filesystem::exists(app)) GTEST_SKIP() << "ef-shapes not built at " << app;
+  ASSERT_TRUE(std::filesystem::exists(app)) << "ef-shapes not built at " << app;
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ef-shapes-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string exe = "'" + app.string() + "'";

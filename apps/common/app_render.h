@@ -77,6 +77,9 @@ class PngOutput {
             },
             "WxH"));
     app.add_flag("--orthographic", orthographic_, "picture: orthographic instead of perspective projection");
+    options_.color_bar = true;
+    app.add_flag("--no-color-bar{false}", options_.color_bar,
+                 "picture: no color bar beside a scalar field (default: a bar with the field's values)");
   }
   PngOutput(const PngOutput&) = delete;
   PngOutput& operator=(const PngOutput&) = delete;

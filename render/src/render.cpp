@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "detail/color_bar.h"
 #include "edgefront/error.h"
 
 namespace edgefront::render {
@@ -448,6 +449,23 @@ void draw_polyline(Target& target, const Camera& cam, const Polyline& line, int 
 Image render(const Scene& scene, const RenderOptions& options) {
   validate_options(options);
   validate_scene(scene);
+  if (options.color_bar && scene.field && scene.mesh != nullptr) {
+    // The mesh in the image without the bar's columns, then the bar beside it.
+    const FieldInfo info = field_info(*scene.field);
+    const int bar = detail::color_bar_width(options.width, options.height, info.lo, info.span);
+    if (bar > 0) {
+      RenderOptions inner = options;
+      inner.width = options.width - bar;
+      inner.color_bar = false;
+      const Image left = render(scene, inner);
+      Image image(options.width, options.height, options.background);
+      for (int y = 0; y < left.height; ++y) {
+        for (int x = 0; x < left.width; ++x) image.set(x, y, left.at(x, y));
+      }
+      detail::draw_color_bar(image, bar, info.lo, info.span, Rgb{40, 40, 40});
+      return image;
+    }
+  }
   const int ss = options.supersample;
   Target target;
   target.w = options.width * ss;

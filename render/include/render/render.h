@@ -37,6 +37,10 @@ struct RenderOptions {
   /// normal); false: flat per face.
   bool smooth_shading = true;
   double isoline_width_px = 1.2;  ///< in output pixels, 0 ... 100
+  /// With a scalar field: a vertical color bar at the right edge with the field's values at
+  /// "nice" ticks (1, 2 or 5 x 10^k); the mesh is fitted into the rest of the image. Needs an
+  /// image at least 160 pixels wide and 80 high (smaller images are drawn without it).
+  bool color_bar = false;
 };
 
 /// Largest accepted width or height, and the largest number of samples (width * height *
