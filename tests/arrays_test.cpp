@@ -200,6 +200,50 @@ TEST(Arrays, BadArraysAreRefusedNamingTheRow) {
   expect(message_of([&] { mesh_from_arrays(v, std::vector<int>{}); }), {"faces", "empty"});
 }
 
+/// Expects `m` to be, element for element, the mesh that OpenMesh's add_face builds from the same
+/// vertices and the same corners row by row (the builder emulates add_face on flat arrays).
+void expect_add_face_mesh(const Mesh& m) {
+  const MeshArrays a = mesh_to_arrays(m);
+  Mesh ref;
+  for (size_t i = 0; i < a.n_vertices(); ++i) ref.add_vertex(Vec3(a.vertices[3 * i], a.vertices[3 * i + 1], a.vertices[3 * i + 2]));
+  for (size_t f = 0; f < a.n_faces(); ++f) {
+    ASSERT_TRUE(ref.add_face(VertexHandle(a.faces[3 * f]), VertexHandle(a.faces[3 * f + 1]), VertexHandle(a.faces[3 * f + 2])).is_valid());
+  }
+  ref.update_face_normals();
+  ASSERT_EQ(m.n_vertices(), ref.n_vertices());
+  ASSERT_EQ(m.n_edges(), ref.n_edges());
+  ASSERT_EQ(m.n_faces(), ref.n_faces());
+  for (HalfedgeHandle h : ref.halfedges()) {
+    ASSERT_EQ(m.to_vertex_handle(h), ref.to_vertex_handle(h)) << "halfedge " << h.idx();
+    ASSERT_EQ(m.next_halfedge_handle(h), ref.next_halfedge_handle(h)) << "halfedge " << h.idx();
+    ASSERT_EQ(m.prev_halfedge_handle(h), ref.prev_halfedge_handle(h)) << "halfedge " << h.idx();
+    ASSERT_EQ(m.face_handle(h), ref.face_handle(h)) << "halfedge " << h.idx();
+  }
+  for (VertexHandle v : ref.vertices()) ASSERT_EQ(m.halfedge_handle(v), ref.halfedge_handle(v)) << "vertex " << v.idx();
+  for (FaceHandle f : ref.faces()) {
+    ASSERT_EQ(m.halfedge_handle(f), ref.halfedge_handle(f)) << "face " << f.idx();
+    ASSERT_EQ(m.normal(f), ref.normal(f)) << "face " << f.idx();
+  }
+}
+
+TEST(Arrays, TheBuilderGivesTheMeshAddFaceGives) {
+  expect_add_face_mesh(mesh_from_arrays(mesh_to_arrays(shapes::icosphere(2)).vertices, mesh_to_arrays(shapes::icosphere(2)).faces).mesh);
+  const MeshArrays p = pinched_body();
+  expect_add_face_mesh(mesh_from_arrays(p.vertices, p.faces).mesh);
+  const MeshArrays torus = mesh_to_arrays(shapes::torus(12, 6));
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<std::array<int, 3>> rows = rows_of(torus.faces);
+    std::shuffle(rows.begin(), rows.end(), rng);
+    rows.resize(rows.size() - static_cast<size_t>(trial % 10) * 7);
+    for (size_t i = 0; i < rows.size(); i += 11) std::rotate(rows[i].begin(), rows[i].begin() + 1, rows[i].end());
+    std::vector<int> f;
+    for (const auto& r : rows) f.insert(f.end(), r.begin(), r.end());
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    expect_add_face_mesh(mesh_from_arrays(torus.vertices, f).mesh);
+  }
+}
+
 // Any row order and any removal of faces: every face that fits is added, every vertex manifold.
 TEST(Arrays, ShuffledAndHoledMeshesAlwaysBuild) {
   const MeshArrays torus = mesh_to_arrays(shapes::torus(16, 8));
