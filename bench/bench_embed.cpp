@@ -6,13 +6,13 @@
 //  2. The incremental twist repair through a RepairSession (host edits, repair, edit record, and
 //     the host's replay of the record on its plain arrays) against the same TwistRepairer calls on
 //     an edgefront::Mesh, in the same run: a host loop that, per batch, moves a share of the
-//     vertices a little (as a GCS loop's smoothing does) and every other batch turns a patch over
-//     (a twist for the repair to find, with the sphere's normals as reference).
+//     vertices a little (as a GCS loop's smoothing does) and every --flip-every batches turns a
+//     patch over (a twist for the repair to find, with the sphere's normals as reference).
 // Times are thread CPU seconds, best of --repeats runs; both paths of part 2 give the same mesh
 // (checked).
 //
 //   bench_embed [--subdivisions 8] [--repair-subdivisions 5] [--batches 20] [--move-share 0.2]
-//               [--repeats 3] [--seed 1]
+//               [--flip-every 2] [--repeats 3] [--seed 1] [--only conversion|direct|session]
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +39,10 @@ struct Args {
   int repair_subdivisions = 5;
   int batches = 20;
   double move_share = 0.2;
+  int flip_every = 2;  // a patch is turned over every this many batches
   int repeats = 3;
   unsigned seed = 1;
+  std::string only;  // "conversion", "direct" or "session": run only that (for callgrind)
 };
 
 template <class F>
@@ -126,7 +128,7 @@ std::vector<Batch> make_batches(const Mesh& sphere, const Args& a, double mel) {
       moved[static_cast<size_t>(v.idx())] = 1;
       m.set_point(v, m.point(v) + 0.02 * mel * Vec3(unit(rng), unit(rng), unit(rng)));
     }
-    if (b % 2 == 1) {
+    if (b % a.flip_every == a.flip_every - 1) {
       // Turn a patch over (2 rings) like a coin, about a tangent axis through its centroid.
       const VertexHandle centre(std::uniform_int_distribution<int>(0, static_cast<int>(m.n_vertices()) - 1)(rng));
       const std::vector<int> level = edge_front_levels(m, FrontSource::vertex(centre), 2);
@@ -234,6 +236,11 @@ void incremental(const Args& a) {
     session_result = mesh_to_arrays(s.mirror());
     return t;
   };
+  if (a.only == "direct" || a.only == "session") {  // one path, once (instruction counts)
+    const double t = a.only == "direct" ? direct() : session();
+    std::printf("  %s: %.4f s, %zu repairs\n", a.only.c_str(), t, a.only == "direct" ? direct_repairs : session_repairs);
+    return;
+  }
   double best_direct = 1e300, best_session = 1e300, best_session_only = 1e300;
   for (int r = 0; r < a.repeats; ++r) {  // alternating, so both see the same machine load
     best_direct = std::min(best_direct, direct());
@@ -241,7 +248,8 @@ void incremental(const Args& a) {
     best_session_only = std::min(best_session_only, session_only);
   }
   const bool same = direct_result.faces == session_result.faces && direct_result.vertices == session_result.vertices;
-  std::printf("  repairs: %zu (direct), %zu (session); same mesh: %s\n", direct_repairs, session_repairs, same ? "yes" : "NO");
+  std::printf("  repairs: %zu (direct), %zu (session); same mesh: %s; a patch turned over every %d batches\n", direct_repairs,
+              session_repairs, same ? "yes" : "NO", a.flip_every);
   std::printf("  TwistRepairer on an edgefront::Mesh      %8.4f s\n", best_direct);
   std::printf("  RepairSession (edits, repair, record)    %8.4f s  (%.3f x)\n", best_session_only, best_session_only / best_direct);
   std::printf("  ... and the host's replay of the records %8.4f s  (%.3f x)\n", best_session, best_session / best_direct);
@@ -265,16 +273,18 @@ int main(int argc, char** argv) {
     else if (k == "--repair-subdivisions") a.repair_subdivisions = std::stoi(value());
     else if (k == "--batches") a.batches = std::stoi(value());
     else if (k == "--move-share") a.move_share = std::stod(value());
+    else if (k == "--flip-every") a.flip_every = std::max(1, std::stoi(value()));
     else if (k == "--repeats") a.repeats = std::stoi(value());
     else if (k == "--seed") a.seed = static_cast<unsigned>(std::stoul(value()));
+    else if (k == "--only") a.only = value();
     else {
       std::fprintf(stderr, "bench_embed: unknown option %s\n", k.c_str());
       return 2;
     }
   }
   try {
-    conversion(a);
-    incremental(a);
+    if (a.only.empty() || a.only == "conversion") conversion(a);
+    if (a.only != "conversion") incremental(a);
   } catch (const Error& e) {
     std::fprintf(stderr, "bench_embed: %s\n", e.what());
     return 1;

@@ -137,6 +137,29 @@ std::vector<int> compact_faces(std::vector<int>& faces) {
 
 namespace detail {
 
+void HostMirror::map_face(size_t slot, int face, const Mesh& mirror) {
+  if (slot >= mirror_of_face.size()) {
+    mirror_of_face.resize(slot + 1, -1);
+    mirror_corners.resize(3 * (slot + 1), -1);
+  }
+  const int old = mirror_of_face[slot];
+  if (old >= 0 && static_cast<size_t>(old) < host_of_face.size() && host_of_face[static_cast<size_t>(old)] == static_cast<int>(slot)) {
+    host_of_face[static_cast<size_t>(old)] = -1;
+  }
+  mirror_of_face[slot] = face;
+  if (face < 0) {
+    std::fill_n(mirror_corners.begin() + 3 * static_cast<std::ptrdiff_t>(slot), 3, -1);
+    return;
+  }
+  if (host_of_face.size() < mirror.n_faces()) host_of_face.resize(mirror.n_faces(), -1);
+  host_of_face[static_cast<size_t>(face)] = static_cast<int>(slot);
+  HalfedgeHandle he = mirror.halfedge_handle(FaceHandle(face));
+  for (size_t k = 0; k < 3; ++k) {
+    mirror_corners[3 * slot + k] = mirror.to_vertex_handle(he).idx();
+    he = mirror.next_halfedge_handle(he);
+  }
+}
+
 HostMirror host_of_conversion(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
                               edgefront::ArrayMesh& converted) {
   HostMirror h;
@@ -153,8 +176,16 @@ HostMirror host_of_conversion(const edgefront::VertexArrayView& vertices, const 
   h.mirror_of_vertex.resize(n);
   h.host_of_vertex.assign(mesh.n_vertices(), -1);
   for (size_t i = 0; i < n; ++i) h.mirror_of_vertex[i] = h.host_of_vertex[i] = static_cast<int>(i);
-  h.mirror_of_face = converted.face_of_row;
-  h.host_of_face = converted.face_row;
+  h.mirror_of_face.assign(converted.face_of_row.size(), -1);
+  h.mirror_corners.assign(3 * converted.face_of_row.size(), -1);
+  h.host_of_face.assign(mesh.n_faces(), -1);
+  for (size_t r = 0; r < converted.face_of_row.size(); ++r) {
+    h.map_face(r, converted.face_of_row[r], mesh);
+    // A face with a pinched vertex's copy differs from the host's row: the first record says so.
+    for (size_t k = 0; k < 3; ++k) {
+      if (h.mirror_corners[3 * r + k] >= static_cast<int>(n)) std::fill_n(h.mirror_corners.begin() + 3 * static_cast<std::ptrdiff_t>(r), 3, -1);
+    }
+  }
   OpenMesh::VPropHandleT<int> journal;
   if (!mesh.get_property_handle(journal, kCopyJournal)) mesh.add_property(journal, kCopyJournal);
   for (size_t i = n; i < mesh.n_vertices(); ++i) {
@@ -260,17 +291,27 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
     }
   }
 
+  // A live mirror face's corners in host indices (x), and with copies counted as the host vertex
+  // they copy (y, -1 for a new point).
   auto corners = [&](FaceHandle f) {
-    std::array<int, 3> x{}, y{};
+    std::array<int, 3> x{};
+    HalfedgeHandle he = mirror.halfedge_handle(f);
+    for (size_t k = 0; k < 3; ++k) {
+      x[k] = host_of_vertex[static_cast<size_t>(mirror.to_vertex_handle(he).idx())];
+      he = mirror.next_halfedge_handle(he);
+    }
+    EF_CHECK(x[0] >= 0 && x[1] >= 0 && x[2] >= 0, "edit record: a live mirror face uses a vertex the host does not know");
+    return x;
+  };
+  auto roots = [&](FaceHandle f) {
+    std::array<int, 3> y{};
     HalfedgeHandle he = mirror.halfedge_handle(f);
     for (size_t k = 0; k < 3; ++k) {
       const size_t m = static_cast<size_t>(mirror.to_vertex_handle(he).idx());
-      x[k] = host_of_vertex[m];
-      EF_CHECK(x[k] >= 0, "edit record: a live mirror face uses a vertex the host does not know");
-      y[k] = static_cast<size_t>(x[k]) < r.vertices_before ? x[k] : root[m];
+      y[k] = static_cast<size_t>(host_of_vertex[m]) < r.vertices_before ? host_of_vertex[m] : root[m];
       he = mirror.next_halfedge_handle(he);
     }
-    return std::pair(x, y);
+    return y;
   };
   auto key_of = [](std::array<int, 3> t) {
     std::sort(t.begin(), t.end());
@@ -293,10 +334,18 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
       gone[key_of(a)].push_back(static_cast<int>(s));
       continue;
     }
-    const auto [x, y] = corners(f);
+    HalfedgeHandle he = mirror.halfedge_handle(f);
+    bool as_mapped = true;  // the quick test: the corners it had when mapped
+    for (size_t k = 0; k < 3; ++k) {
+      as_mapped = as_mapped && mirror.to_vertex_handle(he).idx() == h.mirror_corners[3 * s + k];
+      he = mirror.next_halfedge_handle(he);
+    }
+    if (as_mapped) continue;
+    face_maps.emplace_back(static_cast<int>(s), m);  // note its corners again
+    const std::array<int, 3> x = corners(f);
     const bool same = (x[0] == a[0] && x[1] == a[1] && x[2] == a[2]) || (x[1] == a[0] && x[2] == a[1] && x[0] == a[2]) ||
                       (x[2] == a[0] && x[0] == a[1] && x[1] == a[2]);
-    if (!same) align(static_cast<int>(s), a, x, y, r);
+    if (!same) align(static_cast<int>(s), a, x, roots(f), r);
   }
   // New mirror faces: the continuation of a gone host face with the same corners (copies counted
   // as their originals), or added.
@@ -304,7 +353,7 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
   for (size_t m = h.mirror_faces_seen; m < nfm; ++m) {
     const FaceHandle f(static_cast<int>(m));
     if (mirror.status(f).deleted() || (m < h.host_of_face.size() && h.host_of_face[m] >= 0)) continue;
-    const auto [x, y] = corners(f);
+    const std::array<int, 3> x = corners(f), y = roots(f);
     auto it = y[0] >= 0 && y[1] >= 0 && y[2] >= 0 ? gone.find(key_of(y)) : gone.end();
     if (it != gone.end() && !it->second.empty()) {
       const int s = it->second.front();
@@ -341,19 +390,9 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
     h.host_of_vertex[static_cast<size_t>(h.mirror_of_vertex[static_cast<size_t>(v)])] = -1;
     h.mirror_of_vertex[static_cast<size_t>(v)] = -1;
   }
-  h.mirror_of_face.resize(r.faces_after(), -1);
   h.host_of_face.resize(nfm, -1);
-  for (const auto& [s, m] : face_maps) {
-    const int old = h.mirror_of_face[static_cast<size_t>(s)];
-    if (old >= 0 && static_cast<size_t>(old) < h.host_of_face.size()) h.host_of_face[static_cast<size_t>(old)] = -1;
-    h.mirror_of_face[static_cast<size_t>(s)] = m;
-    if (m >= 0) h.host_of_face[static_cast<size_t>(m)] = s;
-  }
-  for (int s : r.faces_removed) {
-    const int old = h.mirror_of_face[static_cast<size_t>(s)];
-    if (old >= 0) h.host_of_face[static_cast<size_t>(old)] = -1;
-    h.mirror_of_face[static_cast<size_t>(s)] = -1;
-  }
+  for (int s : r.faces_removed) h.map_face(static_cast<size_t>(s), -1, mirror);
+  for (const auto& [s, m] : face_maps) h.map_face(static_cast<size_t>(s), m, mirror);
   h.mirror_vertices_seen = nvm;
   h.mirror_faces_seen = nfm;
   return r;

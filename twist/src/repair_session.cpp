@@ -39,6 +39,36 @@ std::string corners_text(const std::array<int, 3>& c) {
   return out;
 }
 
+/// The host's edits of one kind in a batch, by index, the last edit of an index winning.
+template <class T>
+class EditList {
+ public:
+  using Item = std::pair<int, std::optional<T>>;  ///< (index, value; nullopt: remove)
+  void set(int i, std::optional<T> e) { items_.emplace_back(i, std::move(e)); }
+  bool empty() const { return items_.empty(); }
+  void clear() { items_.clear(); }
+  /// Sorts by index and keeps the last edit of each index (call before reading).
+  void settle() {
+    std::stable_sort(items_.begin(), items_.end(), [](const Item& a, const Item& b) { return a.first < b.first; });
+    size_t out = 0;
+    for (size_t i = 0; i < items_.size(); ++i) {
+      if (i + 1 < items_.size() && items_[i + 1].first == items_[i].first) continue;  // a later edit wins
+      items_[out++] = std::move(items_[i]);
+    }
+    items_.resize(out);
+  }
+  typename std::vector<Item>::const_iterator begin() const { return items_.begin(); }
+  typename std::vector<Item>::const_iterator end() const { return items_.end(); }
+  /// The settled edit of index i, or null.
+  const std::optional<T>* find(int i) const {
+    const auto it = std::lower_bound(items_.begin(), items_.end(), i, [](const Item& a, int x) { return a.first < x; });
+    return it != items_.end() && it->first == i ? &it->second : nullptr;
+  }
+
+ private:
+  std::vector<Item> items_;
+};
+
 }  // namespace
 
 struct RepairSession::Impl {
@@ -48,11 +78,12 @@ struct RepairSession::Impl {
   EditRecord initial;
   TwistRepairer repairer;
   SessionStats stats;
-  std::vector<int> use_count;  // per host vertex: faces using it
+  std::vector<int> use_count;  // per host vertex: faces using it (recounted when stale and needed)
+  bool use_count_stale = false;
   size_t live_faces = 0;       // host faces
-  // The batch: last edit per index wins; std::map keeps the application order deterministic.
-  std::map<int, std::optional<std::array<int, 3>>> face_edits;    // nullopt: remove
-  std::map<int, std::optional<std::array<double, 3>>> vertex_edits;  // nullopt: remove
+  // The batch, applied in index order (deterministic).
+  EditList<std::array<int, 3>> face_edits;
+  EditList<std::array<double, 3>> vertex_edits;
   std::unique_ptr<edgefront::MinimalDistanceFront> front;
   size_t front_vertices = 0, front_faces = 0;  // the mirror's size when the front was made
   double mean_edge = 0;
@@ -69,12 +100,18 @@ struct RepairSession::Impl {
         host(detail::host_of_conversion(v, f, converted)),
         repairer(repair_options(options.repair), options.max_retwists) {
     initial = detail::bring_up_to_date(host, mirror());
+    count_uses();
+  }
+
+  void count_uses() {
     use_count.assign(host.vertex_slots(), 0);
+    live_faces = 0;
     for (size_t s = 0; s < host.face_slots(); ++s) {
       if (host.faces[3 * s] < 0) continue;
       ++live_faces;
       for (size_t k = 0; k < 3; ++k) ++use_count[static_cast<size_t>(host.faces[3 * s + k])];
     }
+    use_count_stale = false;
   }
 
   Mesh& mirror() { return converted.mesh; }
@@ -116,13 +153,20 @@ struct RepairSession::Impl {
     } clear{*this};
     Mesh& m = mirror();
     const size_t nv_slots = host.vertex_slots(), nf_slots = host.face_slots();
+    face_edits.settle();
+    vertex_edits.settle();
+    if (use_count_stale) {
+      bool removes_vertex = false;
+      for (const auto& [v, e] : vertex_edits) removes_vertex = removes_vertex || !e;
+      if (removes_vertex) count_uses();
+    }
 
     // 1. Checks, nothing touched yet.
     check_new_indices(vertex_edits, nv_slots, [&](int v) { return vertex_alive(v); }, "vertex");
     check_new_indices(face_edits, nf_slots, [&](int f) { return face_alive(f); }, "face");
     auto alive_after = [&](int v) {
-      const auto it = vertex_edits.find(v);
-      return it != vertex_edits.end() ? it->second.has_value() : vertex_alive(v);
+      const auto* e = vertex_edits.find(v);
+      return e ? e->has_value() : vertex_alive(v);
     };
     std::map<int, long> use_change;
     for (const auto& [f, e] : face_edits) {
@@ -190,10 +234,7 @@ struct RepairSession::Impl {
                                            VertexHandle(host.mirror_of_vertex[static_cast<size_t>(a[2])]));
         EF_CHECK(back.is_valid(), "RepairSession: a face removed by a refused batch could not be put back");
         m.set_normal(back, m.calc_face_normal(back));
-        host.host_of_face.resize(m.n_faces(), -1);
-        host.host_of_face[static_cast<size_t>(old.idx())] = -1;
-        host.mirror_of_face[static_cast<size_t>(slot)] = back.idx();
-        host.host_of_face[static_cast<size_t>(back.idx())] = slot;
+        host.map_face(static_cast<size_t>(slot), back.idx(), m);
       }
       for (const auto& [v, old] : moved) m.set_point(v, old);
       for (const auto& [id, v] : added_vertices) m.delete_vertex(v, false);
@@ -242,23 +283,22 @@ struct RepairSession::Impl {
     }
     host.host_of_face.resize(m.n_faces(), -1);
     for (const auto& [f, old] : removed_faces) {
-      for (int v : host_face(f)) --use_count[static_cast<size_t>(v)];
+      if (!use_count_stale) {
+        for (int v : host_face(f)) --use_count[static_cast<size_t>(v)];
+      }
       std::fill_n(host.faces.begin() + 3 * static_cast<std::ptrdiff_t>(f), 3, -1);
-      host.host_of_face[static_cast<size_t>(old.idx())] = -1;
-      host.mirror_of_face[static_cast<size_t>(f)] = -1;
+      host.map_face(static_cast<size_t>(f), -1, m);
       --live_faces;
     }
     for (const auto& [f, nf] : added_faces) {
       const size_t i = static_cast<size_t>(f);
-      if (i >= host.face_slots()) {
-        host.faces.resize(3 * (i + 1), -1);
-        host.mirror_of_face.resize(i + 1, -1);
-      }
-      const auto& c = *face_edits.at(f);
+      if (i >= host.face_slots()) host.faces.resize(3 * (i + 1), -1);
+      const auto& c = **face_edits.find(f);
       std::copy(c.begin(), c.end(), host.faces.begin() + 3 * static_cast<std::ptrdiff_t>(i));
-      for (int v : c) ++use_count[static_cast<size_t>(v)];
-      host.mirror_of_face[i] = nf.idx();
-      host.host_of_face[static_cast<size_t>(nf.idx())] = f;
+      if (!use_count_stale) {
+        for (int v : c) ++use_count[static_cast<size_t>(v)];
+      }
+      host.map_face(i, nf.idx(), m);
       ++live_faces;
       changed.push_back(nf);
     }
@@ -311,13 +351,10 @@ struct RepairSession::Impl {
       return r;
     }
     EditRecord r = detail::bring_up_to_date(host, mirror());
-    use_count.assign(host.vertex_slots(), 0);
-    live_faces = 0;
-    for (size_t s = 0; s < host.face_slots(); ++s) {
-      if (host.faces[3 * s] < 0) continue;
-      ++live_faces;
-      for (size_t k = 0; k < 3; ++k) ++use_count[static_cast<size_t>(host.faces[3 * s + k])];
-    }
+    use_count.resize(host.vertex_slots(), 0);
+    live_faces += r.faces_added.size();
+    live_faces -= r.faces_removed.size();
+    use_count_stale = use_count_stale || !r.corners_replaced.empty() || !r.faces_removed.empty() || !r.faces_added.empty();
     return r;
   }
 
@@ -360,7 +397,7 @@ const edgefront::ConversionReport& RepairSession::conversion() const { return im
 
 void RepairSession::set_vertex(int v, const std::array<double, 3>& position) {
   if (v < 0) refuse("vertex index " + std::to_string(v) + " is negative");
-  impl_->vertex_edits[v] = position;
+  impl_->vertex_edits.set(v, position);
 }
 
 void RepairSession::set_vertices(std::span<const int> ids, const edgefront::VertexArrayView& positions) {
@@ -371,22 +408,22 @@ void RepairSession::set_vertices(std::span<const int> ids, const edgefront::Vert
   for (size_t i = 0; i < ids.size(); ++i) {
     if (ids[i] < 0) refuse("vertex index " + std::to_string(ids[i]) + " is negative");
   }
-  for (size_t i = 0; i < ids.size(); ++i) impl_->vertex_edits[ids[i]] = std::array<double, 3>{positions.at(i, 0), positions.at(i, 1), positions.at(i, 2)};
+  for (size_t i = 0; i < ids.size(); ++i) impl_->vertex_edits.set(ids[i], std::array<double, 3>{positions.at(i, 0), positions.at(i, 1), positions.at(i, 2)});
 }
 
 void RepairSession::set_face(int f, const std::array<int, 3>& corners) {
   if (f < 0) refuse("face index " + std::to_string(f) + " is negative");
-  impl_->face_edits[f] = corners;
+  impl_->face_edits.set(f, corners);
 }
 
 void RepairSession::remove_face(int f) {
   if (f < 0) refuse("face index " + std::to_string(f) + " is negative");
-  impl_->face_edits[f] = std::nullopt;
+  impl_->face_edits.set(f, std::nullopt);
 }
 
 void RepairSession::remove_vertex(int v) {
   if (v < 0) refuse("vertex index " + std::to_string(v) + " is negative");
-  impl_->vertex_edits[v] = std::nullopt;
+  impl_->vertex_edits.set(v, std::nullopt);
 }
 
 bool RepairSession::pending() const { return !impl_->face_edits.empty() || !impl_->vertex_edits.empty(); }

@@ -23,6 +23,9 @@ struct HostMirror {
   std::vector<int> host_of_vertex;    ///< by mirror vertex
   std::vector<int> mirror_of_face;    ///< by host face slot
   std::vector<int> host_of_face;      ///< by mirror face
+  /// By host face slot, 3 each: the corners (mirror vertices, in circulation order) its mirror face
+  /// had when mapped; a face still showing them is unchanged (the record's quick test).
+  std::vector<int> mirror_corners;
   // Mirror elements below these indices were there at the last record (mapped or gone); newer
   // unmapped ones are what the next record adds.
   size_t mirror_vertices_seen = 0;
@@ -30,6 +33,8 @@ struct HostMirror {
 
   size_t vertex_slots() const { return vertices.size() / 3; }
   size_t face_slots() const { return faces.size() / 3; }
+  /// Maps host face slot `slot` to mirror face `face` (-1: unmaps it), both ways, noting its corners.
+  void map_face(size_t slot, int face, const edgefront::Mesh& mirror);
   /// Host vertex of a mirror vertex (-1 none).
   int host_vertex(int m) const {
     return m >= 0 && static_cast<size_t>(m) < host_of_vertex.size() ? host_of_vertex[static_cast<size_t>(m)] : -1;
