@@ -274,18 +274,19 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
     r.vertices_added.push_back(VertexAdded{root[m], {p[0], p[1], p[2]}});
   }
 
-  // 2. Moved and deleted vertices of the host.
+  // 2. Moved and deleted vertices of the host (the mirror's status and points read as arrays).
+  const OpenMesh::Attributes::StatusInfo* vertex_status = nvm ? &mirror.status(VertexHandle(0)) : nullptr;
+  const edgefront::Vec3* point = nvm ? &mirror.point(VertexHandle(0)) : nullptr;
   std::vector<int> unmapped_vertices;
   for (size_t i = 0; i < r.vertices_before; ++i) {
     const int m = h.mirror_of_vertex[i];
     if (m < 0) continue;
-    const VertexHandle v(m);
-    if (mirror.status(v).deleted()) {
+    if (vertex_status[m].deleted()) {
       r.vertices_removed.push_back(static_cast<int>(i));
       unmapped_vertices.push_back(static_cast<int>(i));
       continue;
     }
-    const edgefront::Vec3& p = mirror.point(v);
+    const edgefront::Vec3& p = point[m];
     if (p[0] != h.vertices[3 * i] || p[1] != h.vertices[3 * i + 1] || p[2] != h.vertices[3 * i + 2]) {
       r.vertices_moved.push_back(VertexMoved{static_cast<int>(i), {p[0], p[1], p[2]}});
     }
@@ -321,6 +322,7 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
   // 3. Host faces: unchanged, changed in place, or gone (then perhaps re-added as a new face).
   std::vector<std::pair<int, int>> face_maps;  // (host slot, mirror face; -1 none)
   std::map<std::array<int, 3>, std::vector<int>> gone;  // by sorted corners, in slot order
+  const OpenMesh::Attributes::StatusInfo* face_status = nfm ? &mirror.status(FaceHandle(0)) : nullptr;
   for (size_t s = 0; s < r.faces_before; ++s) {
     const std::array<int, 3> a{h.faces[3 * s], h.faces[3 * s + 1], h.faces[3 * s + 2]};
     if (a[0] < 0) continue;
@@ -330,7 +332,7 @@ EditRecord bring_up_to_date(HostMirror& h, const Mesh& mirror) {
       continue;
     }
     const FaceHandle f(m);
-    if (mirror.status(f).deleted()) {
+    if (face_status[m].deleted()) {
       gone[key_of(a)].push_back(static_cast<int>(s));
       continue;
     }

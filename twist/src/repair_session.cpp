@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -49,13 +50,18 @@ class EditList {
   void clear() { items_.clear(); }
   /// Sorts by index and keeps the last edit of each index (call before reading).
   void settle() {
-    std::stable_sort(items_.begin(), items_.end(), [](const Item& a, const Item& b) { return a.first < b.first; });
-    size_t out = 0;
+    // Sort (index, arrival) keys, then keep the last arrival of each index.
+    order_.resize(items_.size());
     for (size_t i = 0; i < items_.size(); ++i) {
-      if (i + 1 < items_.size() && items_[i + 1].first == items_[i].first) continue;  // a later edit wins
-      items_[out++] = std::move(items_[i]);
+      order_[i] = static_cast<std::uint64_t>(static_cast<std::uint32_t>(items_[i].first)) << 32 | static_cast<std::uint32_t>(i);
     }
-    items_.resize(out);
+    std::sort(order_.begin(), order_.end());
+    settled_.clear();
+    for (size_t i = 0; i < order_.size(); ++i) {
+      if (i + 1 < order_.size() && order_[i + 1] >> 32 == order_[i] >> 32) continue;  // a later edit wins
+      settled_.push_back(std::move(items_[order_[i] & 0xffffffffu]));
+    }
+    items_.swap(settled_);
   }
   typename std::vector<Item>::const_iterator begin() const { return items_.begin(); }
   typename std::vector<Item>::const_iterator end() const { return items_.end(); }
@@ -66,7 +72,8 @@ class EditList {
   }
 
  private:
-  std::vector<Item> items_;
+  std::vector<Item> items_, settled_;
+  std::vector<std::uint64_t> order_;
 };
 
 }  // namespace
@@ -337,8 +344,10 @@ struct RepairSession::Impl {
     }
     std::sort(changed.begin(), changed.end());
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-    changed.erase(std::remove_if(changed.begin(), changed.end(), [&](FaceHandle f) { return !edgefront::is_live(m, f); }),
-                  changed.end());
+    if (stats.pinched_split > 0) {  // the splits deleted faces listed before
+      changed.erase(std::remove_if(changed.begin(), changed.end(), [&](FaceHandle f) { return !edgefront::is_live(m, f); }),
+                    changed.end());
+    }
   }
 
   /// The record since the last one: a pass over the mirror when something changed it.

@@ -2,10 +2,14 @@
 /// \file repair_session.h
 /// A session that mirrors a host's mesh: created once from
 /// the host's arrays, told what the host changed (in the host's own vertex and face indices),
-/// asked to repair; each answer is an `EditRecord` the host replays on its own structure. A call
-/// costs about what changed (the session keeps an `edgefront::Mesh` mirror, index maps both ways
-/// and a `TwistRepairer`), not the whole mesh: what a refinement loop (GCS) needs after every
-/// batch. It also answers bounded geodesic queries on the mirror.
+/// asked to repair; each answer is an `EditRecord` the host replays on its own structure. The
+/// session keeps an `edgefront::Mesh` mirror, index maps both ways and a `TwistRepairer`: applying
+/// the edits and the repair cost about what changed, as `TwistRepairer::repair_changed` does on a
+/// mesh; an answer whose repair changed the mirror adds one pass over the host's slots to write
+/// the record (a status and corner check per face, a position check per vertex: no geometry).
+/// What a refinement loop (GCS) needs after every batch (bench/results/embedding.md: within a
+/// few percent of the same repair on an `edgefront::Mesh`). It also answers bounded geodesic
+/// queries on the mirror.
 ///
 /// \code
 ///   twist::RepairSession session(V, F);            // the host's arrays
