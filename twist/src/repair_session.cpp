@@ -233,8 +233,8 @@ struct RepairSession::Impl {
     }
     auto undo = [&](int f, const std::array<int, 3>& c, const std::string& why) {
       for (auto it = added_faces.rbegin(); it != added_faces.rend(); ++it) m.delete_face(it->second, false);
-      for (const auto& [slot, old] : removed_faces) {
-        (void)old;
+      for (const auto& removed : removed_faces) {
+        const int slot = removed.first;
         const std::array<int, 3> a = host_face(slot);
         const FaceHandle back = m.add_face(VertexHandle(host.mirror_of_vertex[static_cast<size_t>(a[0])]),
                                            VertexHandle(host.mirror_of_vertex[static_cast<size_t>(a[1])]),
@@ -311,9 +311,8 @@ struct RepairSession::Impl {
     }
     host.mirror_vertices_seen = m.n_vertices();
     host.mirror_faces_seen = m.n_faces();
-    for (const auto& [v, old] : moved) {
-      (void)old;
-      for (FaceHandle f : m.vf_range(v)) changed.push_back(f);
+    for (const auto& mv : moved) {
+      for (FaceHandle f : m.vf_range(mv.first)) changed.push_back(f);
     }
     stats.faces_changed = changed.size();
 
