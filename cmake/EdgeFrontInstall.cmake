@@ -6,6 +6,7 @@
 #   <prefix>/<libdir>/lib{edgefront,render,twist,gcs}.a   libraries (twist and gcs only once they have sources)
 #   <prefix>/bin/<app>                               apps (their install() is in apps/CMakeLists.txt)
 #   <prefix>/<libdir>/cmake/EdgeFront/               EdgeFrontConfig.cmake, version file, targets
+#   <prefix>/<datadir>/doc/EdgeFront/LICENSE         the license (BSD-3-Clause)
 #
 # A consumer writes `find_package(EdgeFront REQUIRED)` and links `edgefront::edgefront`,
 # `render::render`, `twist::twist` and `gcs::gcs`, the names used inside this build. Each library has its own export
@@ -63,3 +64,4 @@ install(FILES
   "${PROJECT_BINARY_DIR}/EdgeFrontConfig.cmake"
   "${PROJECT_BINARY_DIR}/EdgeFrontConfigVersion.cmake"
   DESTINATION ${EDGEFRONT_INSTALL_CMAKEDIR})
+install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION ${CMAKE_INSTALL_DOCDIR})

@@ -234,6 +234,7 @@ struct ConnectionPathFinder::Impl {
   }
 
   void check_vertex(VertexHandle v, const char* what) const {
+    require_attributes(mesh, "connection path");
     if (!is_live(mesh, v)) {
       throw InvalidInput(std::string("connection path: the ") + what + " vertex " + std::to_string(v.idx()) +
                          " is not a live vertex of the mesh (" + std::to_string(mesh.n_vertices()) + " vertices)");

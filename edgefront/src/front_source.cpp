@@ -13,6 +13,7 @@ std::string vname(VertexHandle v) { return "vertex " + std::to_string(v.idx()); 
 }  // namespace
 
 FrontSource loop_from_vertices(const Mesh& mesh, const std::vector<VertexHandle>& path, LoopSide side) {
+  require_attributes(mesh, "loop source");
   if (path.size() < 3) {
     throw InvalidInput("loop source: a closed edge path needs at least 3 vertices, got " +
                        std::to_string(path.size()));
@@ -48,6 +49,7 @@ FrontSource loop_from_vertices(const Mesh& mesh, const std::vector<VertexHandle>
 }
 
 void validate_source(const Mesh& mesh, const FrontSource& source) {
+  require_attributes(mesh, "front source");
   if (source.vertices.empty() && source.loop.empty()) throw InvalidInput("front source is empty");
   if (!source.vertices.empty() && !source.loop.empty()) {
     throw InvalidInput("front source names both vertices and a loop; give one of them");

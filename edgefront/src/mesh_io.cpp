@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
-
-#include <OpenMesh/Core/System/omstream.hh>
 
 #include "detail/io_common.h"
+#include "detail/mesh_builder.h"
 #include "detail/mesh_parsers.h"
 #include "edgefront/atomic_write.h"
 #include "edgefront/error.h"
@@ -21,39 +19,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Building the mesh
-
-/// Mutes OpenMesh's `omerr()` (add_face reports refused faces there) while alive. Nested and
-/// concurrent use from EdgeFront's readers is counted under a mutex.
-class OpenMeshErrorsMuted {
- public:
-  OpenMeshErrorsMuted() {
-    std::lock_guard<std::mutex> lock(mutex());
-    if (depth()++ == 0) {
-      was_enabled() = omerr().is_enabled();
-      omerr().disable();
-    }
-  }
-  ~OpenMeshErrorsMuted() {
-    std::lock_guard<std::mutex> lock(mutex());
-    if (--depth() == 0 && was_enabled()) omerr().enable();
-  }
-  OpenMeshErrorsMuted(const OpenMeshErrorsMuted&) = delete;
-  OpenMeshErrorsMuted& operator=(const OpenMeshErrorsMuted&) = delete;
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  static int& depth() {
-    static int d = 0;
-    return d;
-  }
-  static bool& was_enabled() {
-    static bool e = true;
-    return e;
-  }
-};
 
 /// Number of entries equal to an earlier entry (sorts `keys`).
 size_t count_repeats(std::vector<std::array<int, 3>>& keys) {
@@ -93,24 +58,22 @@ double bbox_diagonal(const std::vector<Vec3>& points) {
 
 MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, const fs::path& file) {
   MeshReadResult result;
-  Mesh& mesh = result.mesh;
   MeshReadReport& report = result.report;
   const size_t nv = raw.points.size();
-  size_t triangles = 0;
-  for (const detail::RawFace& f : raw.faces) triangles += f.count - 2;
-  mesh.reserve(nv, triangles * 3 / 2 + 3, triangles);
-  for (const Vec3& p : raw.points) mesh.add_vertex(p);
   report.vertices = nv;
   report.faces_in_file = raw.faces.size();
 
-  const double diagonal = bbox_diagonal(raw.points);
-  const double degenerate_area = kDegenerateAreaFactor * diagonal * diagonal;
+  // Fan-triangulate the records (from their first vertex); records with a repeated index go.
+  std::vector<int> tris;
+  std::vector<uint64_t> tri_where;
+  size_t triangles = 0;
+  for (const detail::RawFace& f : raw.faces) triangles += f.count - 2;
+  tris.reserve(3 * triangles);
+  tri_where.reserve(triangles);
   std::vector<std::array<int, 3>> keys;  // sorted vertex triples, for counting duplicates
   keys.reserve(triangles);
   size_t triangles_from_polygons = 0;
-  uint64_t first_invalid = 0, first_refused = 0;
-
-  OpenMeshErrorsMuted muted;
+  uint64_t first_invalid = 0;
   for (const detail::RawFace& face : raw.faces) {
     const int* idx = raw.indices.data() + face.first;
     if (has_repeated_index(idx, face.count)) {
@@ -122,32 +85,43 @@ MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, 
       triangles_from_polygons += face.count - 2;
     }
     for (uint32_t k = 1; k + 1 < face.count; ++k) {
-      const int a = idx[0], b = idx[k], c = idx[k + 1];
-      std::array<int, 3> key{a, b, c};
+      tris.insert(tris.end(), {idx[0], idx[k], idx[k + 1]});
+      tri_where.push_back(face.where);
+      std::array<int, 3> key{idx[0], idx[k], idx[k + 1]};
       std::sort(key.begin(), key.end());
       keys.push_back(key);
-      const FaceHandle fh = mesh.add_face(VertexHandle(a), VertexHandle(b), VertexHandle(c));
-      if (!fh.is_valid()) {
-        if (!options.drop_nonmanifold_faces) {
-          throw IoError(file.string() + ": " + where_text(raw, face.where) + ": face (" + std::to_string(a) +
-                        ", " + std::to_string(b) + ", " + std::to_string(c) +
-                        ") cannot be added: it would make an edge or a vertex non-manifold, or it repeats an "
-                        "existing face with the same orientation (strict mode refuses such files)");
-        }
-        if (report.faces_dropped_nonmanifold++ == 0) first_refused = face.where;
-        continue;
-      }
-      ++report.triangles_added;
-      const Vec3& pa = raw.points[a];
-      const double area = 0.5 * cross(raw.points[b] - pa, raw.points[c] - pa).norm();
-      if (area <= degenerate_area) ++report.degenerate_faces;
     }
   }
-  report.duplicate_faces = count_repeats(keys);
-  for (size_t i = 0; i < nv; ++i) {
-    if (mesh.is_isolated(VertexHandle(static_cast<int>(i)))) ++report.isolated_vertices;
+
+  // The mesh: the same builder as the array conversion (faces a half-edge mesh cannot hold
+  // dropped, pinched vertices split into copies appended after the file's vertices).
+  ArrayMesh built = detail::build_mesh(detail::PointRows{nullptr, &raw.points}, tris);
+  const std::vector<DroppedFace>& dropped = built.report.dropped_faces;
+  if (!options.drop_nonmanifold_faces && !dropped.empty()) {
+    const DroppedFace& d = dropped.front();
+    const int a = tris[3 * d.row], b = tris[3 * d.row + 1], c = tris[3 * d.row + 2];
+    throw IoError(file.string() + ": " + where_text(raw, tri_where[d.row]) + ": face (" + std::to_string(a) + ", " +
+                  std::to_string(b) + ", " + std::to_string(c) +
+                  ") cannot be added: it would make an edge non-manifold, or it repeats an existing face with the "
+                  "same orientation (strict mode refuses such files)");
   }
-  mesh.update_face_normals();
+  result.mesh = std::move(built.mesh);
+  report.faces_dropped_nonmanifold = dropped.size();
+  report.triangles_added = tri_where.size() - dropped.size();
+  report.pinched_vertices = built.report.pinched_vertices;
+  report.vertex_copies = built.report.vertex_copies;
+  report.isolated_vertices = built.report.isolated_vertices;
+  const double diagonal = bbox_diagonal(raw.points);
+  const double degenerate_area = kDegenerateAreaFactor * diagonal * diagonal;
+  for (size_t r = 0; r < tri_where.size(); ++r) {
+    if (built.face_of_row[r] < 0) continue;
+    const Vec3& pa = raw.points[static_cast<size_t>(tris[3 * r])];
+    const double area =
+        0.5 * cross(raw.points[static_cast<size_t>(tris[3 * r + 1])] - pa, raw.points[static_cast<size_t>(tris[3 * r + 2])] - pa).norm();
+    if (area <= degenerate_area) ++report.degenerate_faces;
+  }
+  report.duplicate_faces = count_repeats(keys);
+  const uint64_t first_refused = dropped.empty() ? 0 : tri_where[dropped.front().row];
 
   std::vector<std::string>& w = report.warnings;
   w = std::move(raw.warnings);
@@ -161,8 +135,13 @@ MeshReadResult build_mesh(detail::RawMesh& raw, const MeshReadOptions& options, 
   }
   if (report.faces_dropped_nonmanifold > 0) {
     w.push_back(detail::count_noun(report.faces_dropped_nonmanifold, "triangle", "triangles") +
-                " dropped because they would make an edge or vertex non-manifold (first at " +
+                " dropped because they would make an edge non-manifold (first at " +
                 where_text(raw, first_refused) + ")");
+  }
+  if (report.pinched_vertices > 0) {
+    w.push_back(detail::count_noun(report.pinched_vertices, "pinched vertex was", "pinched vertices were") +
+                " split into one vertex per fan (" + detail::count_noun(report.vertex_copies, "copy", "copies") +
+                " appended after the file's vertices, linked as twins)");
   }
   if (report.duplicate_faces > 0) {
     w.push_back(detail::count_noun(report.duplicate_faces, "triangle repeats", "triangles repeat") +

@@ -196,6 +196,7 @@ void check_finite_vertex(const Vec3& position, int v) {
 
 // Checks source points; returns the vertices of their faces (each once).
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points) {
+  require_attributes(mesh, "distance");
   if (points.empty()) throw InvalidInput("distance: no source points given");
   std::vector<VertexHandle> verts;
   for (size_t i = 0; i < points.size(); ++i) {

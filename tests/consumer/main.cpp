@@ -2,11 +2,14 @@
 // a point index, a small GCS reconstruction with the twist repair registered, a twist check and
 // an offscreen picture. Exits non-zero on the first wrong answer. Built and run by .ci/run
 // against `cmake --install`.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <vector>
 
+#include "edgefront/arrays.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_stats.h"
@@ -16,7 +19,9 @@
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
 #include "render/render.h"
+#include "twist/arrays.h"
 #include "twist/detect.h"
+#include "twist/repair_session.h"
 
 namespace {
 
@@ -85,6 +90,20 @@ int main() {
     opts.height = 48;
     const edgefront::render::Image image = edgefront::render::render(scene, opts);
     check(image.width == 64 && image.height == 48 && image.rgb.size() == 64u * 48u * 3u, "rendered image size");
+
+    // 7. The array API: a host's plain arrays in, distances and an edit record out.
+    const edgefront::MeshArrays arrays = edgefront::mesh_to_arrays(sphere);
+    edgefront::GeodesicSolver solver(arrays.vertices, arrays.faces);
+    const edgefront::DistanceArrays d = solver.distance_from_vertices(std::vector<int>{0});
+    check(d.distance.size() == arrays.n_vertices() && d.distance[0] == 0.0, "array distances");
+    check(std::abs(*std::max_element(d.distance.begin(), d.distance.end()) - far) < 1e-12, "array distances = mesh distances");
+    twist::RepairSession session(arrays.vertices, arrays.faces);
+    check(session.initial_record().empty() && session.repair().empty(), "a sphere needs no repair");
+    const twist::ArrayRepair repaired = twist::repair_arrays(arrays.vertices, arrays.faces);
+    std::vector<double> V = arrays.vertices;
+    std::vector<int> F = arrays.faces;
+    twist::apply(repaired.record, V, F);
+    check(F == arrays.faces, "the record of a clean sphere changes no face");
   } catch (const edgefront::Error& e) {
     std::fprintf(stderr, "edgefront_consumer: %s\n", e.what());
     return 1;

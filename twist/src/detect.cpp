@@ -605,6 +605,7 @@ namespace {
 /// One detection. `quick`: no layer is looked for in front of faces the reference confirms, and
 /// the pass ends after the evidence, setting `has_core` (see `detect_regions`).
 DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool quick, bool& has_core) {
+  edgefront::require_attributes(mesh, "twist::detect");
   if (options.face_grid && options.restrict_to) {
     // Incremental: no pass over the mesh; the candidates' vertices are checked.
     if (mesh.n_faces() == 0) throw InvalidInput("twist::detect: the mesh has no faces");

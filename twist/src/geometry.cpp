@@ -120,6 +120,13 @@ double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
 // ---------------------------------------------------------------------------------------------
 // Surgery
 
+VertexHandle copy_vertex(Mesh& mesh, VertexHandle v) {
+  const VertexHandle copy = mesh.add_vertex(edgefront::Vec3(mesh.point(v)));  // a copy: add_vertex may reallocate the points
+  OpenMesh::VPropHandleT<int> journal;
+  if (mesh.get_property_handle(journal, kCopyJournal)) mesh.property(journal, copy) = v.idx() + 1;
+  return copy;
+}
+
 size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool reverse,
                        std::vector<std::pair<VertexHandle, VertexHandle>>* duplicates) {
   std::unordered_set<int> in_side;
@@ -177,7 +184,7 @@ size_t cut_and_reverse(Mesh& mesh, const std::vector<FaceHandle>& side, bool rev
           in_run = true;
           if (!want_side && first_run) continue;  // the first run of other faces keeps v
           if (!copy.is_valid()) {
-            copy = mesh.add_vertex(edgefront::Vec3(mesh.point(v)));  // a copy: add_vertex may reallocate the points
+            copy = copy_vertex(mesh, v);
             ++duplicated;
             if (duplicates) duplicates->emplace_back(copy, v);
           }
@@ -233,7 +240,7 @@ size_t split_fans(Mesh& mesh, VertexHandle v) {
   std::vector<std::array<VertexHandle, 3>> tris;
   std::vector<FaceHandle> redo;
   for (size_t k = 1; k < fans.size(); ++k) {
-    const VertexHandle copy = mesh.add_vertex(edgefront::Vec3(mesh.point(v)));  // a copy: add_vertex may reallocate the points
+    const VertexHandle copy = copy_vertex(mesh, v);
     for (FaceHandle f : fans[k]) {
       std::array<VertexHandle, 3> t;
       int i = 0;
@@ -252,6 +259,7 @@ size_t split_fans(Mesh& mesh, VertexHandle v) {
 }
 
 void check_mesh(const Mesh& mesh, const char* what) {
+  edgefront::require_attributes(mesh, what);
   size_t live = 0;
   for (FaceHandle f : mesh.faces()) {
     if (!mesh.status(f).deleted()) ++live;

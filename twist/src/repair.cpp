@@ -959,6 +959,14 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   return repair_impl(mesh, options, nullptr, dups);
 }
 
+RepairReport orient(Mesh& mesh, const RepairOptions& options) {
+  detail::check_mesh(mesh, "twist::orient");
+  RepairReport report;
+  orient_globally(mesh, options, DupList{}, report);
+  if (options.garbage_collect) mesh.garbage_collection();
+  return report;
+}
+
 StackedLayerReport remove_stacked_layers(Mesh& mesh, const StackedLayerOptions& options) {
   detail::check_mesh(mesh, "twist::remove_stacked_layers");
   if (options.rounds < 1 || options.rounds > 16) throw InvalidInput("twist::remove_stacked_layers: option rounds must lie in [1, 16]");

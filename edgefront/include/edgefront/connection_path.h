@@ -140,6 +140,7 @@ struct ConnectionPath {
 class ConnectionPathFinder {
  public:
   explicit ConnectionPathFinder(const Mesh& mesh);
+  explicit ConnectionPathFinder(const Mesh&& mesh) = delete;  ///< the finder reads the mesh: no temporaries
   ~ConnectionPathFinder();
   ConnectionPathFinder(ConnectionPathFinder&&) noexcept;
   ConnectionPathFinder& operator=(ConnectionPathFinder&&) noexcept;

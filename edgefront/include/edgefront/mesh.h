@@ -28,6 +28,17 @@ using HalfedgeHandle = OpenMesh::HalfedgeHandle;
 using EdgeHandle = OpenMesh::EdgeHandle;
 using FaceHandle = OpenMesh::FaceHandle;
 
+/// True when `mesh` has the attributes `MeshTraits` promise: status on vertices, edges, halfedges
+/// and faces, and face normals. `Mesh::assign(other)` from an OpenMesh mesh of other traits
+/// (floats, no status) copies only connectivity and points and leaves them out; every entry point
+/// that reads them refuses such a mesh (`require_attributes`). Convert with
+/// `edgefront::mesh_from_openmesh` (edgefront/arrays.h) or call `restore_attributes` after `assign`.
+bool has_attributes(const Mesh& mesh);
+/// Adds the attributes `has_attributes` checks (no element deleted) and computes the face normals.
+void restore_attributes(Mesh& mesh);
+/// \throws InvalidInput naming `what` when `has_attributes(mesh)` is false, with the fix.
+void require_attributes(const Mesh& mesh, const char* what);
+
 /// True when `v` names an existing, non-deleted vertex of `mesh`.
 inline bool is_live(const Mesh& mesh, VertexHandle v) {
   return v.is_valid() && static_cast<size_t>(v.idx()) < mesh.n_vertices() && !mesh.status(v).deleted();

@@ -25,10 +25,10 @@
 namespace edgefront {
 
 struct MeshReadOptions {
-  /// Faces that OpenMesh cannot add (a third face on an edge, a face that would make a vertex
-  /// non-manifold in a way the halfedge structure cannot hold, a second copy of an oriented face)
-  /// are dropped and counted when true (default); when false the file is refused with IoError
-  /// naming the face.
+  /// Faces a half-edge mesh cannot hold (a third face on an edge, a face using an edge in the same
+  /// direction as an earlier face: wound against it, or a second copy of an oriented face) are
+  /// dropped and counted when true (default); when false the file is refused with IoError naming
+  /// the face. (Pinched vertices are split, never a reason to drop: see `read_mesh`.)
   bool drop_nonmanifold_faces = true;
 };
 
@@ -38,12 +38,14 @@ struct MeshReadReport {
   size_t faces_in_file = 0;              ///< face records in the file (facets for STL)
   size_t triangles_added = 0;            ///< triangles in the mesh
   size_t polygons_triangulated = 0;      ///< face records with more than 3 vertices (fan-triangulated)
-  size_t faces_dropped_nonmanifold = 0;  ///< triangles OpenMesh refused (dropped; after triangulation)
+  size_t faces_dropped_nonmanifold = 0;  ///< triangles a half-edge mesh cannot hold (dropped; after triangulation)
   size_t faces_dropped_invalid = 0;      ///< face records with a repeated vertex index (dropped)
   size_t degenerate_faces = 0;           ///< added triangles with area <= 1e-12 * bbox_diagonal^2 (kept)
   size_t duplicate_faces =
       0;  ///< triangles with the vertex set of an earlier one (kept if OpenMesh accepts them)
   size_t isolated_vertices = 0;  ///< vertices used by no triangle of the mesh (kept)
+  size_t pinched_vertices = 0;   ///< file vertices where several fans meet, split (see `read_mesh`)
+  size_t vertex_copies = 0;      ///< copies appended for them
   std::vector<std::string>
       warnings;  ///< human-readable, e.g. "12 polygons were triangulated into 30 triangles"
 };
@@ -72,8 +74,11 @@ struct MeshReadResult {
 ///
 /// Vertex i of the file is `VertexHandle(i)` of the mesh (STL: i-th distinct corner), isolated
 /// vertices included; a file with vertices and no faces is a valid mesh without faces. Polygons
-/// are fan-triangulated from their first vertex (exact for convex polygons). Face normals of
-/// the result are up to date.
+/// are fan-triangulated from their first vertex (exact for convex polygons). A pinched vertex
+/// (several fans of faces meeting only at the vertex) is split as by `mesh_from_arrays`
+/// (edgefront/arrays.h, the same builder): the fan of its first face keeps it, every other fan
+/// gets a copy appended after the file's vertices, linked as twins (edgefront/vertex_twins.h).
+/// Face normals of the result are up to date.
 ///
 /// \throw IoError naming the file, the line (text formats) or element index, and the problem,
 ///        for: a missing or unreadable file, anything but a regular file, an unknown extension,
@@ -83,9 +88,7 @@ struct MeshReadResult {
 ///        as such), face indices out of range or
 ///        negative, faces with fewer than 3 indices, bad PLY headers, element counts that cannot
 ///        fit in the file, content that is not a mesh in the expected format, and (with
-///        `drop_nonmanifold_faces == false`) faces OpenMesh refuses.
-/// \note Not safe to call concurrently with code that enables or disables OpenMesh's `omerr()`
-///       stream: its chatter is muted while faces are added.
+///        `drop_nonmanifold_faces == false`) faces a half-edge mesh cannot hold.
 MeshReadResult read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
 /// Like read_mesh, for file content already in memory (network buffers, embedded resources,

@@ -178,6 +178,7 @@ struct DistanceField {
 class MinimalDistanceFront {
  public:
   explicit MinimalDistanceFront(const Mesh& mesh);
+  explicit MinimalDistanceFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~MinimalDistanceFront();
   MinimalDistanceFront(MinimalDistanceFront&&) noexcept;
   MinimalDistanceFront& operator=(MinimalDistanceFront&&) noexcept;

@@ -93,6 +93,7 @@ enum class FrontStop {
 class MinimalEdgeFront {
  public:
   explicit MinimalEdgeFront(const Mesh& mesh, MinimalEdgeFrontOptions options = {});
+  explicit MinimalEdgeFront(const Mesh&& mesh, MinimalEdgeFrontOptions options = {}) = delete;  ///< no temporaries
   ~MinimalEdgeFront();
   MinimalEdgeFront(MinimalEdgeFront&&) noexcept;
   MinimalEdgeFront& operator=(MinimalEdgeFront&&) noexcept;

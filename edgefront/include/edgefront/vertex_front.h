@@ -31,6 +31,7 @@ namespace edgefront {
 class VertexFront {
  public:
   explicit VertexFront(const Mesh& mesh);
+  explicit VertexFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~VertexFront();
   VertexFront(VertexFront&&) noexcept;
   VertexFront& operator=(VertexFront&&) noexcept;

@@ -14,6 +14,7 @@
 #include <optional>
 #include <vector>
 
+#include "edgefront/borrowed.h"
 #include "edgefront/mesh.h"
 #include "render/color.h"
 
@@ -60,7 +61,7 @@ struct PointSet {
 
 /// The scene. Everything in it counts for the camera fit (render/render.h).
 struct Scene {
-  const Mesh* mesh = nullptr;  ///< not owned; may be null for a scene of lines and points only
+  Borrowed<const Mesh> mesh = nullptr;  ///< the caller's; may be null for a scene of lines and points only
   Rgb base_color = {200, 200, 200};  ///< front faces without field or highlight
   std::optional<ScalarField> field = std::nullopt;
   std::vector<FaceHighlight> highlights = {};  ///< later entries win where they overlap

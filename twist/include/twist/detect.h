@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "edgefront/borrowed.h"
 #include "edgefront/mesh.h"
 #include "twist/reference_normals.h"
 
@@ -164,8 +165,9 @@ struct DetectOptions {
   /// (`reference_side_weight` > 0 and a vote of 0): wherever the reference decides, a layer in
   /// front of a face it confirms is another right part of the surface across a narrow gap.
   bool require_orientation_evidence = true;
-  /// Oriented reference points (not owned; may be null). When set, reference evidence is used.
-  const ReferenceNormals* reference = nullptr;
+  /// Oriented reference points (the caller's, borrowed; may be null). When set, reference
+  /// evidence is used.
+  edgefront::Borrowed<const ReferenceNormals> reference = nullptr;
   /// A face disagrees with its reference normal when n·n_ref < this. In [-1, 1].
   double reference_cos = -0.2;
   /// How the reference judges a face: 0 = the nearest point to its centroid (disagrees when
@@ -193,11 +195,11 @@ struct DetectOptions {
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
   size_t audit_faces = 64;
   size_t audit_offset = 0;
-  /// Incremental index of face centroids kept up to date by the caller (not owned; may be null).
+  /// Incremental index of face centroids kept up to date by the caller (borrowed; may be null).
   /// With it and `restrict_to`, a detection touches only the candidates, their neighbourhoods
   /// and the audit: no pass over the whole mesh (pass `mean_edge_length` too). Without it, a
   /// k-d tree over all face centroids is built per call.
-  const FaceGrid* face_grid = nullptr;
+  edgefront::Borrowed<const FaceGrid> face_grid = nullptr;
   /// The mesh's mean edge length if known (> 0), else 0: computed (a pass over the edges).
   double mean_edge_length = 0;
 };

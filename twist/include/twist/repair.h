@@ -152,6 +152,13 @@ struct RepairReport {
 ///         be partly modified).
 RepairReport repair(edgefront::Mesh& mesh, const RepairOptions& options = {});
 
+/// Only the global orientation convention (see the file comment): no detection, no cut; each
+/// component is flipped as the convention says (`components_flipped`, `faces_flipped_globally`).
+/// A flipped component's faces are re-added (new face handles); the old ones are garbage-collected
+/// when `options.garbage_collect`.
+/// \throws edgefront::InvalidInput for an empty mesh or non-finite coordinates.
+RepairReport orient(edgefront::Mesh& mesh, const RepairOptions& options = {});
+
 /// Options of `remove_stacked_layers`.
 struct StackedLayerOptions {
   /// How pairs are found (`same_orientation_pairs` with `LayerRule::Stacked`; `reference`,

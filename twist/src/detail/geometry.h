@@ -45,6 +45,14 @@ double projected_overlap(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>
 bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
                     const Vec3& nb, double lb);
 
+/// The copy journal: when a mesh has this int vertex property (edit records add it), every copy
+/// made by `copy_vertex` records 1 + the index of its original (0: not a copy).
+inline constexpr const char* kCopyJournal = "twist:copy_of";
+
+/// Appends a copy of `v` (same position) and notes it in the copy journal when the mesh has one.
+/// Every vertex copy the surgery makes goes through here.
+VertexHandle copy_vertex(Mesh& mesh, VertexHandle v);
+
 /// Removes the faces of `side` from the mesh and adds them again with reversed winding (when
 /// `reverse`), giving every vertex where `side` meets other faces one new copy per fan of `side`
 /// faces around it, so `side` becomes its own component(s). Faces are re-added in the given

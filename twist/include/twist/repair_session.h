@@ -1,0 +1,142 @@
+#pragma once
+/// \file repair_session.h
+/// A session that mirrors a host's mesh: created once from
+/// the host's arrays, told what the host changed (in the host's own vertex and face indices),
+/// asked to repair; each answer is an `EditRecord` the host replays on its own structure. The
+/// session keeps an `edgefront::Mesh` mirror, index maps both ways and a `TwistRepairer`: applying
+/// the edits and the repair cost about what changed, as `TwistRepairer::repair_changed` does on a
+/// mesh; an answer whose repair changed the mirror adds one pass over the host's slots to write
+/// the record (a status and corner check per face, a position check per vertex: no geometry).
+/// What a refinement loop (GCS) needs after every batch (bench/results/embedding.md: within a
+/// few percent of the same repair on an `edgefront::Mesh`). It also answers bounded geodesic
+/// queries on the mirror.
+///
+/// \code
+///   twist::RepairSession session(V, F);            // the host's arrays
+///   host.apply(session.initial_record());          // pinched vertices split, if any
+///   for (;;) {
+///     // ... the host's batch: it moves vertices, splits, collapses ...
+///     session.set_vertex(v, x, y, z);              // moved or added
+///     session.set_face(f, a, b, c);                // added or re-connected
+///     session.remove_face(g);
+///     host.apply(session.repair());                // the twists near what changed, repaired
+///     if (session.distance_between(u, w, 0.1))     // near along the surface?
+///       ...
+///   }
+///   host.apply(session.finish());                  // a full repair and the global orientation
+/// \endcode
+///
+/// Indices: the host's. A vertex or face index the host names for the first time is added; the
+/// session's own new vertices and faces (cuts) get the indices after the largest the host has
+/// used (`EditRecord`: appended, never compacted). The host replays every record before its next
+/// edit (the record's new indices are the next free ones at that moment).
+///
+/// Edits are buffered and applied at the next answer (`sync`, `repair`, `finish`), all at once:
+/// removals first, then faces added or re-connected, then positions. Edits that a half-edge mesh
+/// cannot hold (a third face on an edge, a face wound against a neighbour, a face at a vertex
+/// whose fan is closed) are refused with `edgefront::InvalidInput` naming the host's face; then
+/// nothing of the batch is applied (the session is as before the batch, the buffer cleared).
+/// Vertices left pinched by removed faces (two fans meeting at one vertex) are split by the
+/// session, as in the conversion: the answer's record adds the copy and re-connects the faces.
+///
+/// Not thread-safe. Deterministic: the same edits give the same records.
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "edgefront/arrays.h"
+#include "twist/edit_record.h"
+#include "twist/repair.h"
+
+namespace twist {
+
+/// Options of a `RepairSession`.
+struct SessionOptions {
+  /// The repair (`garbage_collect` is ignored: the mirror keeps its indices while the host does).
+  RepairOptions repair = {};
+  size_t max_retwists = 2;  ///< see `TwistRepairer`
+  edgefront::ConversionOptions conversion = {};
+};
+
+/// What the last answer did besides its record.
+struct SessionStats {
+  size_t calls = 0;              ///< answers so far
+  size_t faces_changed = 0;      ///< faces the last batch added, re-connected or moved
+  size_t pinched_split = 0;      ///< vertices the last batch left pinched, split
+  RepairReport report;           ///< of the last repair
+};
+
+class RepairSession {
+ public:
+  /// Converts the host's arrays (`edgefront::mesh_from_arrays`).
+  /// \throws edgefront::InvalidInput as `mesh_from_arrays`, or for options out of range.
+  RepairSession(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
+                SessionOptions options = {});
+  ~RepairSession();
+  RepairSession(RepairSession&&) noexcept;
+  RepairSession& operator=(RepairSession&&) noexcept;
+
+  /// What the conversion changed (faces dropped, pinched vertices split) as a record on the
+  /// host's arrays: the host applies it before its first edit. Empty for a manifold mesh.
+  const EditRecord& initial_record() const;
+  const edgefront::ConversionReport& conversion() const;
+
+  // -- The host's edits (buffered; see the file comment) ----------------------------------------
+  /// Moves vertex `v` there, or adds it when `v` is not a vertex yet (>= 0). Finite coordinates.
+  void set_vertex(int v, const std::array<double, 3>& position);
+  /// `set_vertex` for many: `ids[i]` to row i of `positions` (k x 3).
+  void set_vertices(std::span<const int> ids, const edgefront::VertexArrayView& positions);
+  /// Face `f` becomes a b c: added when `f` is not a face yet (>= 0), else re-connected.
+  void set_face(int f, const std::array<int, 3>& corners);
+  /// Removes face `f`.
+  void remove_face(int f);
+  /// Removes vertex `v` (no face may use it once the batch is applied).
+  void remove_vertex(int v);
+  /// True when edits wait for the next answer.
+  bool pending() const;
+
+  // -- Answers ---------------------------------------------------------------------------------
+  /// Applies the buffered edits, repairs nothing: the record holds the splits of pinched vertices
+  /// the batch left (usually empty).
+  /// \throws edgefront::InvalidInput for edits that do not fit (naming the host's index).
+  EditRecord sync();
+  /// Applies the edits and repairs the twists near what changed (`TwistRepairer::repair_changed`
+  /// in its local mode). `mean_edge_length` > 0: the host's value; 0: the session's estimate
+  /// (recomputed when the live edge count changed by more than 10% since the last time).
+  EditRecord repair(double mean_edge_length = 0);
+  /// Applies the edits and repairs the whole mesh with the global orientation
+  /// (`TwistRepairer::finish`).
+  EditRecord finish();
+  /// Per host face index (the host's face index space): the twisted region it lies in (0 = the
+  /// largest), -1 for none or an empty slot. Detection only (`RepairOptions::detect`); no edits
+  /// may be pending (else `InvalidInput`: call `sync` first).
+  std::vector<int> detect();
+
+  // -- Bounded geodesic queries on the mirror (no edits pending: else InvalidInput) -------------
+  /// The distance along the surface from `from` to `to` when at most `max_distance`, else nothing.
+  std::optional<double> distance_between(int from, int to, double max_distance);
+  /// The vertices within `max_distance` of the sources, in settling order.
+  edgefront::SparseDistances distances_within(std::span<const int> sources, double max_distance);
+
+  // -- State -----------------------------------------------------------------------------------
+  size_t vertex_slots() const;  ///< the host's vertex index space (largest index + 1)
+  size_t face_slots() const;    ///< the host's face index space
+  const SessionStats& stats() const;
+  /// The mirror (read-only: for tests, benchmarks and rendering; indices are the session's).
+  const edgefront::Mesh& mirror() const;
+  /// The mirror vertex of host vertex `v` (invalid for none), and the host vertex of a mirror vertex (-1).
+  edgefront::VertexHandle mirror_vertex(int v) const;
+  int host_vertex(edgefront::VertexHandle v) const;
+  edgefront::FaceHandle mirror_face(int f) const;
+  int host_face(edgefront::FaceHandle f) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace twist
