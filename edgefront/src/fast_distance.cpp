@@ -187,7 +187,9 @@ DistanceField fast_field(Rings&& rings, const TwinRing& twins, const std::vector
   size_t peak = heap.size();
   std::vector<Ray> ring;  // the ring of the vertex being settled
   while (!heap.empty()) {
-    const auto [d, node] = heap.top();
+    // Plain names, not a structured binding: C++20 lambdas may capture those, but clang 14 cannot.
+    const double d = heap.top().first;
+    const Node node = heap.top().second;
     const int x = node.x;
     heap.pop();
     if (!heap.empty()) {
