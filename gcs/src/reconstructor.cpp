@@ -301,9 +301,9 @@ struct Reconstructor::Impl {
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
     if (std::isfinite(opt.smooth_noise_ratio) && cloud.size() >= 8) {
-      const NoiseEstimate noise = estimate_noise(cloud);
+      const NoiseEstimate noise = estimate_noise(cloud, {.threads = opt.threads});
       noise_ratio = noise.ratio();
-      if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud) > 0;
+      if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud, {.threads = opt.threads}) > 0;
     }
     // Collinear: the second principal extent vanishes.
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -506,7 +506,7 @@ struct Reconstructor::Impl {
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
     if (opt.quadric_normals) {
-      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
+      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {.threads = opt.threads}, &fitted_residual);
       return fitted_normal[i];
     }
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));

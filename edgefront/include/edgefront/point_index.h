@@ -2,7 +2,8 @@
 /// \file point_index.h
 /// A k-d tree over a fixed set of points: nearest, k nearest and radius queries. One index for
 /// the whole project (the reconstructor's cloud, the evaluation's samples, the twist detector's
-/// face centres); nanoflann stays behind this header, so users need not find it.
+/// face centres); nanoflann stays behind this header, so users need not find it. The queries are
+/// const and may run from several threads at once.
 
 #include <cstddef>
 #include <memory>

@@ -65,6 +65,9 @@ struct NoiseOptions {
   /// than 4 times as many is looked at in 16 patches (cubes around evenly strided points, holding
   /// about this many points in all), so that no k-d tree over the whole cloud is built.
   std::size_t max_points = 5000;
+  /// Threads for the fits, >= 0; 0 (the default) = all cores. The estimate is the same for any
+  /// count.
+  unsigned threads = 0;
 };
 
 /// Estimates the noise of `cloud`. \throws edgefront::InvalidInput for fewer than 8 points, a
@@ -78,6 +81,8 @@ struct SmoothNoiseOptions {
   /// creased pointed vault (noise 0.06-0.7 point spacings): 64 came closest to the true surface,
   /// then 40, then 20 (bench/results/gcs-noise.md).
   std::size_t neighbours = 64;
+  /// Threads, >= 0; 0 (the default) = all cores. The points are the same bytes for any count.
+  unsigned threads = 0;
 };
 
 /// Moves every point of `cloud` along the quadric's normal onto the quadric fitted to its neighbours

@@ -49,6 +49,9 @@ struct NormalFitOptions {
   /// Take the quadric's normal at the point; false: the fitted plane's (the smallest principal
   /// axis of the neighbours).
   bool quadric_normal = true;
+  /// Threads for the fits, >= 0; 0 (the default) = all cores. The normals are the same bytes for
+  /// any count.
+  unsigned threads = 0;
 };
 
 /// Unit normals of `points` (unsigned: either sign), NaN (all three coordinates) where undefined.

@@ -68,6 +68,9 @@ struct EvaluationOptions {
   /// as in many published evaluations (and the kitten figures of anchors.md). The point-to-point
   /// variant adds the sampling gap (about 0.5 / sqrt(samples / area)) to every distance to a mesh.
   bool exact_surface_distance = true;
+  /// Threads for the nearest-point queries and the self-intersection count, >= 0; 0 (the
+  /// default) = all cores. The figures are the same for any count.
+  unsigned threads = 0;
 };
 
 /// What a reconstruction is compared with: an oriented or unoriented point set, or a mesh.

@@ -247,6 +247,10 @@ struct ReconstructOptions {
   /// cloud of at most that many points (or without normals) is used whole. Otherwise at least
   /// target_vertices.
   std::size_t max_query_points = 0;
+  /// Threads for the phases that are parallel over points (noise estimate and smoothing, the
+  /// quadric normal fits), >= 0; 0 (the default) = all cores. The loop itself is sequential; the
+  /// mesh is the same bytes for any count.
+  unsigned threads = 0;
 };
 
 /// Why run() stopped.
