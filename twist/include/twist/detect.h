@@ -202,6 +202,11 @@ struct DetectOptions {
   edgefront::Borrowed<const FaceGrid> face_grid = nullptr;
   /// The mesh's mean edge length if known (> 0), else 0: computed (a pass over the edges).
   double mean_edge_length = 0;
+  /// Threads for the per-face evidence of a whole-mesh detection (no `restrict_to`), >= 0; 0 (the
+  /// default) = all cores. Each thread tests a contiguous range of faces with its own detector
+  /// (its own k-d tree over the face centroids), at most one thread per 2,000 faces; the regions
+  /// are the same for any count. Incremental detection (`restrict_to`) runs on one thread.
+  unsigned threads = 0;
 };
 
 /// Statistics of a detection run (for reports and benchmarks).
