@@ -1,6 +1,6 @@
 /// ef-twist: find and repair twisted (inconsistently oriented) regions of a mesh.
 ///
-///   ef-twist MESH [--points CLOUD] [--radius R] [--max-repairs N] -o FIXED [--png FILE.png ...]
+///   ef-twist MESH [--points CLOUD] [--radius R] [--max-repairs N] [--threads N] -o FIXED [--png FILE.png ...]
 ///
 /// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input with the twisted
 /// regions found in red and their sealed borders in purple); back faces are tinted orange.
@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
       ->check(edgefront::apps::non_negative());
   app.add_option("--max-repairs", max_repairs, "most regions repaired")
       ->check(edgefront::apps::integer_range(1, std::numeric_limits<std::size_t>::max()));
+  unsigned threads = 0;
+  edgefront::apps::add_threads_option(app, threads);
   edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
     options.detect.radius = radius;
     options.detect.reference = reference.get();
     options.max_repairs = max_repairs;
+    options.detect.threads = threads;
     const size_t faces_before = read.mesh.n_faces();
     if (png.requested()) {
       // The input with what the detector finds: twisted regions in red, their sealed borders as lines.
