@@ -9,11 +9,12 @@
 // points), and evaluate (gcs-eval's work: the bumpy sphere's 81,920-face mesh against the cloud as
 // ground truth, 100,000 samples, exact surface distances and the self-intersection count). For
 // each: best wall time of R runs per thread count, the speed-up against the first thread count
-// of the same run; every result is compared byte for byte with the first thread count's (a
+// of the same run, the process CPU time per run (all threads) and its ratio to the wall time; every result is compared byte for byte with the first thread count's (a
 // difference is an error, exit 1). Prints a Markdown table.
 
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -36,6 +37,14 @@ std::vector<std::string> split(const std::string& text) {
   std::stringstream ss(text);
   for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
   return out;
+}
+
+// User + system CPU time of the whole process (all threads), seconds.
+double process_cpu_seconds() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
 double load_average() {
@@ -88,14 +97,18 @@ int main(int argc, char** argv) {
   std::printf("cloud: bumpy sphere, %zu points, noise 0.002; mesh for evaluate: %zu faces; best of %d; hardware "
               "threads %u; load before %.2f\n\n",
               n, mesh.n_faces(), repeats, edgefront::default_threads(), load_average());
-  std::printf("| phase | threads | best s | speed-up |\n|---|---|---|---|\n");
+  std::printf("| phase | threads | best s | speed-up | CPU s per run | CPU / wall |\n|---|---|---|---|---|---|\n");
   int status = 0;
   auto phase = [&](const char* name, auto&& run) {  // run(threads) -> the result's bytes
     std::string reference;
     double base = 0;
     for (const unsigned t : thread_counts) {
       std::string bytes;
+      const double cpu0 = process_cpu_seconds();
+      const auto w0 = std::chrono::steady_clock::now();
       const double s = efbench::best_seconds(repeats, [&] { bytes = run(t); });
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+      const double cpu = process_cpu_seconds() - cpu0;
       if (reference.empty() && t == thread_counts.front()) {
         reference = bytes;
         base = s;
@@ -104,7 +117,8 @@ int main(int argc, char** argv) {
                      thread_counts.front());
         status = 1;
       }
-      std::printf("| %s | %u | %.3f | %.2fx |\n", name, edgefront::resolve_threads(t), s, base / s);
+      std::printf("| %s | %u | %.3f | %.2fx | %.3f | %.2f |\n", name, edgefront::resolve_threads(t), s, base / s,
+                  cpu / repeats, cpu / wall);
       std::fflush(stdout);
     }
   };
