@@ -18,6 +18,9 @@
 #include "gcs/cloud_normals.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
+#include "twist/detect.h"
+#include "twist/reference_normals.h"
+#include "twist/twisted_shapes.h"
 
 namespace {
 
@@ -106,6 +109,49 @@ TEST(ThreadsPhases, EvaluationIsTheSameForAnyThreadCount) {
     for (unsigned t : {2u, 3u}) {
       o.threads = t;
       EXPECT_EQ(gcs::evaluation_to_json(gcs::evaluate(mesh, truth, o)), one) << t << " threads, exact " << exact;
+    }
+  }
+}
+
+// Everything a detection returns, as text (handles, evidence, areas as exact bits).
+std::string describe(const twist::DetectResult& r) {
+  std::string out = std::to_string(r.stats.faces_tested) + " " + std::to_string(r.stats.distance_queries) + " " +
+                    std::to_string(r.stats.vertices_settled) + " " + std::to_string(r.stats.flagged_faces) + "\n";
+  for (const twist::TwistRegion& region : r.regions) {
+    out += "region";
+    for (const auto f : region.faces) out += " " + std::to_string(f.idx());
+    out += " |";
+    for (const auto& loop : region.border) {
+      for (const auto h : loop) out += " " + std::to_string(h.idx());
+      out += ";";
+    }
+    for (const twist::Evidence& e : region.evidence) {
+      out += " " + std::to_string(static_cast<int>(e.kind)) + ":" + std::to_string(e.face.idx()) + ":" +
+             std::to_string(e.partner.idx());
+    }
+    out += " " + std::to_string(region.flagged_faces) + " " + bytes_of(std::vector<double>{region.area}) + "\n";
+  }
+  return out;
+}
+
+TEST(ThreadsPhases, WholeMeshTwistDetectionIsTheSameForAnyThreadCount) {
+  twist::TwistedTubeOptions to;
+  to.along = 80;
+  to.around = 40;
+  const twist::TwistedShape shape = twist::twisted_tube(to);
+  ASSERT_GE(shape.mesh.n_faces(), 6000u) << "too few faces for 3 detector threads";
+  const twist::ReferenceNormals reference(twist::truth_points(shape));
+  for (bool with_reference : {false, true}) {
+    twist::DetectOptions o;
+    if (with_reference) o.reference = &reference;
+    o.threads = 1;
+    const twist::DetectResult one = twist::detect_regions(shape.mesh, o);
+    EXPECT_FALSE(one.regions.empty()) << "the twisted tube shows no region: the test compares nothing";
+    EXPECT_EQ(one.stats.faces_tested, shape.mesh.n_faces());
+    const std::string want = describe(one);
+    for (unsigned t : {2u, 3u}) {
+      o.threads = t;
+      EXPECT_EQ(describe(twist::detect_regions(shape.mesh, o)), want) << t << " threads, reference " << with_reference;
     }
   }
 }
