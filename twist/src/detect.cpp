@@ -666,7 +666,7 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
     return true;
   };
   // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
-  constexpr std::size_t kFacesPerThread = 2000;
+  constexpr std::size_t kFacesPerThread = 1000;
   const unsigned threads =
       options.restrict_to ? 1u
                           : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),

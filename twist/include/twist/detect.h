@@ -204,7 +204,7 @@ struct DetectOptions {
   double mean_edge_length = 0;
   /// Threads for the per-face evidence of a whole-mesh detection (no `restrict_to`), >= 0; 0 (the
   /// default) = all cores. Each thread tests a contiguous range of faces with its own detector
-  /// (its own k-d tree over the face centroids), at most one thread per 2,000 faces; the regions
+  /// (its own k-d tree over the face centroids), at most one thread per 1,000 faces; the regions
   /// are the same for any count. Incremental detection (`restrict_to`) runs on one thread.
   unsigned threads = 0;
 };
