@@ -239,6 +239,10 @@ int main(int argc, char** argv) {
   targets_opt->excludes(targets_file_opt);
   edgefront::apps::add_threads_option(app, threads);
   app.add_flag("-q,--quiet", quiet, "batch: no progress bar");
+  app.footer("Batch output (--sources, --sources-file): CSV with one header line. Without targets: "
+             "\"vertex,S1,S2,...\" then one line per vertex \"v,d(S1,v),d(S2,v),...\"; with targets: "
+             "\"source,T1,T2,...\" then one line per source \"S,d(S,T1),...\". \"inf\" where not reached; numbers "
+             "read back to the same double. The numbers do not depend on --threads.");
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
     const bool batch = sources_opt->count() > 0 || sources_file_opt->count() > 0;
