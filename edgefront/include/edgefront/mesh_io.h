@@ -24,6 +24,7 @@
 
 namespace edgefront {
 
+/// Options of read_mesh and read_mesh_from_buffer.
 struct MeshReadOptions {
   /// Faces a half-edge mesh cannot hold (a third face on an edge, a face using an edge in the same
   /// direction as an earlier face: wound against it, or a second copy of an oriented face) are
@@ -50,9 +51,10 @@ struct MeshReadReport {
       warnings;  ///< human-readable, e.g. "12 polygons were triangulated into 30 triangles"
 };
 
+/// What read_mesh returns: the mesh and the report of what was found and changed.
 struct MeshReadResult {
-  Mesh mesh;
-  MeshReadReport report;
+  Mesh mesh;              ///< the mesh, face normals computed
+  MeshReadReport report;  ///< counts and warnings of the read
 };
 
 /// Reads a mesh; the format comes from the extension (case-insensitive):
@@ -102,6 +104,7 @@ MeshReadResult read_mesh_from_buffer(std::string_view data, const std::filesyste
 /// \throw IoError as read_mesh.
 Mesh load_mesh(const std::filesystem::path& path);
 
+/// Options of write_mesh.
 struct MeshWriteOptions {
   /// PLY only: binary_little_endian when true (default), ascii when false.
   bool binary = true;
