@@ -215,7 +215,7 @@ struct PinchedBody {
   /// copy per pinch (3 vertices), linked as twins. Mirror-symmetric in z (vertex positions
   /// exactly, the triangulation too).
   Mesh mesh;
-  size_t input_vertices = 0;
+  size_t input_vertices = 0;  ///< vertices before the split (the copies are appended after them)
   /// The groups of twins: {torus vertex at (2, 0, 0), apex of the +x cone}, {torus vertex at
   /// (-2, 0, 0), apex of the -x cone}, {the origin on the upper side, on the lower side}; in each
   /// the original first, the copy second.
