@@ -198,8 +198,7 @@ struct DetectOptions {
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
   size_t audit_faces = 64;  ///< incremental mode: evenly spaced faces tested besides `restrict_to` (0: none)
   /// Incremental mode: where the evenly spaced audit starts (a face index, modulo the face count;
-  /// the repair advances it
-  /// every call so that the audits cover the whole mesh over time).
+  /// the repair advances it every call so that the audits cover the whole mesh over time).
   size_t audit_offset = 0;
   /// Incremental index of face centroids kept up to date by the caller (borrowed; may be null).
   /// With it and `restrict_to`, a detection touches only the candidates, their neighbourhoods
