@@ -131,8 +131,8 @@ struct DistanceOptions {
   /// on planar convex regions, open cylinders and cones (vertex or point sources); on scanned
   /// models less accurate than the default mode and far more than Dijkstra, in a small multiple
   /// of `dijkstra_distance`'s time, less than the default's (accuracy:
-  /// bench/results/geodesic-accuracy.md; time: bench/results/geodesic-speed.md). Not provided: the edge front (`peak_front` is 0),
-  /// the stepwise `MinimalDistanceFront` (its `reset` refuses the method), loop sources (they run
+  /// bench/results/geodesic-accuracy.md; time: bench/results/geodesic-speed.md). Not provided:
+  /// the edge front (`peak_front` is 0), the stepwise `MinimalDistanceFront` (its `reset` refuses the method), loop sources (they run
   /// `Mdf`). A vertex nearer the source than all its neighbours gets
   /// its first settled neighbour's distance.
   DistanceMethod method = DistanceMethod::Mdf;
