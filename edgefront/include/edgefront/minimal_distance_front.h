@@ -132,9 +132,9 @@ struct DistanceOptions {
   /// models less accurate than the default mode and far more than Dijkstra, in a small multiple
   /// of `dijkstra_distance`'s time, less than the default's (accuracy:
   /// bench/results/geodesic-accuracy.md; time: bench/results/geodesic-speed.md). Not provided:
-  /// the edge front (`peak_front` is 0), the stepwise `MinimalDistanceFront` (its `reset` refuses the method), loop sources (they run
-  /// `Mdf`). A vertex nearer the source than all its neighbours gets
-  /// its first settled neighbour's distance.
+  /// the edge front (`peak_front` is 0), the stepwise `MinimalDistanceFront` (its `reset` refuses
+  /// the method), loop sources (they run `Mdf`). A vertex nearer the source than all its
+  /// neighbours gets its first settled neighbour's distance.
   DistanceMethod method = DistanceMethod::Mdf;
   /// Keep the Minimal Edge Front under the distances: `front_size`, `peak_front` and `validate`
   /// follow it, and its loops count in the working memory. The distances do not need it. Off, the
