@@ -76,7 +76,7 @@ struct MinimalEdgeFrontOptions {
   /// Keep an O(mesh) record of enclosed vertices so that `validate()` can also check that every
   /// front halfedge has unprocessed surface ahead and that no vertex is enclosed twice. For tests.
   bool debug_tracking = false;
-  /// When non-zero, the vertices of each level are expanded in a pseudo-random order drawn from
+  /// When non-zero (any value), the vertices of each level are expanded in a pseudo-random order drawn from
   /// this seed instead of the order they joined in. Levels do not depend on it; tests use it to
   /// show that.
   uint64_t order_seed = 0;

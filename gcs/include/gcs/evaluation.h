@@ -56,7 +56,7 @@ namespace gcs {
 struct EvaluationOptions {
   /// Area-uniform samples per mesh surface (the result, and a mesh ground truth), in [1, 10^8].
   std::size_t samples = 100000;
-  /// Seed of the sampling (same seed, same figures).
+  /// Seed of the sampling (same seed, same figures); any value.
   std::uint64_t seed = 1;
   /// F-score thresholds as fractions of the ground truth's bounding-box diagonal; each finite
   /// and > 0. Default 0.5% and 1%.

@@ -79,8 +79,9 @@ struct ReconstructOptions {
   bool create_borders = true;
   /// A face is unsupported when its centroid is farther than this times the mean edge length from
   /// every input point; such faces are removed (only after the mesh has `topology_min_vertices`).
+  /// Finite, > 0.
   double unsupported_distance = 1.5;
-  /// Edges longer than this times the mean edge length are removed with their faces.
+  /// Edges longer than this times the mean edge length are removed with their faces. Finite, > 1.
   double long_edge_factor = 10.0;
   /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
   bool merge_borders = true;
@@ -228,6 +229,7 @@ struct ReconstructOptions {
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
   /// Seed of the sample draws: the same seed, input and options give the same mesh, byte for byte.
+  /// Any value.
   std::uint64_t seed = 1;
   /// Call the progress callback every this many vertex splits (and once at the end). >= 1.
   std::size_t progress_interval = 100;

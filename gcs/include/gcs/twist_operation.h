@@ -51,8 +51,8 @@ struct TwistOperationOptions {
   /// than this ratio times the square root of its face count (plus 16 edges) is left alone as
   /// scattered evidence (see `twist::RepairOptions::max_border_ratio`). 0 = no limit; finite, >= 0.
   double max_border_ratio_without_normals = 4.0;
-  std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
-  std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
+  std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out; >= 0
+  std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers); >= 0
   /// Use the input normals as reference when the cloud has them (for a large cloud the loop
   /// queries through a subsample, that subsample: OperationContext::query_points).
   bool use_point_normals = true;

@@ -58,7 +58,7 @@ namespace twist {
 struct SessionOptions {
   /// The repair (`garbage_collect` is ignored: the mirror keeps its indices while the host does).
   RepairOptions repair = {};
-  size_t max_retwists = 2;  ///< see `TwistRepairer`
+  size_t max_retwists = 2;  ///< see `TwistRepairer`; >= 0
   edgefront::ConversionOptions conversion = {};  ///< how the host's arrays are converted (`mesh_from_arrays`)
 };
 
