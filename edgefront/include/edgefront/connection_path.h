@@ -151,6 +151,10 @@ class ConnectionPathFinder {
   ConnectionPathFinder& operator=(ConnectionPathFinder&& other) noexcept;
 
   /// One path. from == to gives a one-vertex path of length 0; adjacent vertices (or twins) the edge.
+  /// \param from, to live vertices of the finder's mesh.
+  /// \param options the method and what to compute besides the vertex chain.
+  /// \return the path, or `PathStatus::NoPath` (empty `vertices`) when `from` and `to` lie in
+  ///         different components.
   /// \throws InvalidInput for an invalid or deleted vertex or bad options (naming it).
   /// \throws TopologyError when a front meets a non-manifold vertex.
   ConnectionPath find(VertexHandle from, VertexHandle to, const ConnectionPathOptions& options = {});
@@ -172,7 +176,7 @@ class ConnectionPathFinder {
   std::unique_ptr<Impl> impl_;
 };
 
-/// One connection path (see `ConnectionPathFinder::find`).
+/// One connection path: `ConnectionPathFinder(mesh).find(from, to, options)` (see there).
 ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle to,
                                const ConnectionPathOptions& options = {});
 
@@ -182,7 +186,13 @@ ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle
 /// the funnel algorithm; wherever the straightened path wraps around a vertex with the corridor on
 /// the wrong side (the other side is shorter), the corridor is moved to that side and the path
 /// straightened again, until no change shortens it or `max_flips` changes were made.
-/// Returns the points (see `ConnectionPath::polyline`); `converged` tells why it stopped.
+/// \param mesh the mesh of the chain.
+/// \param chain vertices from one end to the other, at least one.
+/// \param max_flips at most this many corridor changes tried (<= 0: none, only the first
+///        straightening).
+/// \param converged when not null, set to true when the straightening stopped because nothing
+///        shortened any more, false when it stopped at `max_flips`.
+/// \return the points (see `ConnectionPath::polyline`), from the first vertex of `chain` to its last.
 /// \throws InvalidInput when the chain is empty, has an invalid vertex or two consecutive
 ///         vertices that are neither joined by an edge nor twins.
 std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain,
@@ -203,7 +213,7 @@ std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoi
                                      int steiner_points = 8, int max_flips = 10000, bool* converged = nullptr,
                                      size_t* band_vertices = nullptr);
 
-/// Sum of the distances between consecutive points.
+/// Sum of the Euclidean distances between consecutive points' positions (0 for fewer than two).
 double polyline_length(const std::vector<PathPoint>& points);
 
 }  // namespace edgefront

@@ -91,6 +91,9 @@ struct MeshReadResult {
 ///        negative, faces with fewer than 3 indices, bad PLY headers, element counts that cannot
 ///        fit in the file, content that is not a mesh in the expected format, and (with
 ///        `drop_nonmanifold_faces == false`) faces a half-edge mesh cannot hold.
+/// \param path the file; its extension picks the format.
+/// \param options what to do with faces a half-edge mesh cannot hold.
+/// \return the mesh and the report of everything that was changed on the way in.
 MeshReadResult read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
 /// Like read_mesh, for file content already in memory (network buffers, embedded resources,
@@ -125,6 +128,9 @@ struct MeshWriteOptions {
 /// has deleted vertices the rest are renumbered in index order. Coordinates are written exactly
 /// (shortest round-trip decimal text, or `double` in binary PLY; STL stores `float`). The file is
 /// written atomically (see write_file_atomically).
+/// \param mesh the mesh to write (not changed).
+/// \param path the file to create or replace; its extension picks the format.
+/// \param options PLY/OFF extras (binary or ascii PLY, per-vertex scalars and colors).
 /// \throw InvalidInput for an unsupported extension, option arrays whose size is not
 ///        `mesh.n_vertices()`, bad scalar property names, options the format cannot store
 ///        (scalars outside PLY, colors in OBJ or STL), or non-finite vertex coordinates.

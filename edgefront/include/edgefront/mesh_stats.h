@@ -56,6 +56,7 @@ struct MeshStats {
 };
 
 /// Statistics of the live (non-deleted) elements of `mesh`. Linear time.
+/// \return counts, measures (in the mesh's length unit) and per-component figures.
 /// \throw InternalError if the halfedge structure is inconsistent (a boundary cycle that does
 ///        not close).
 MeshStats compute_stats(const Mesh& mesh);

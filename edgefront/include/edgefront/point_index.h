@@ -39,9 +39,15 @@ class PointIndex {
   /// The nearest point (ties: any of them). \throws InvalidInput on an empty index.
   Neighbor nearest(const Vec3& p) const;
   /// The min(k, size()) nearest points, nearest first, written to `out` (cleared first).
+  /// \param p the query point.
+  /// \param k how many neighbours (0: none).
+  /// \param out receives the neighbours (index and squared distance).
   void k_nearest(const Vec3& p, size_t k, std::vector<Neighbor>& out) const;
   /// Indices of the points closer than `radius` to `p` (strictly), in increasing index order
   /// (deterministic whatever the tree's traversal), written to `out` (cleared first).
+  /// \param p the query point.
+  /// \param radius the search radius, in the points' length unit; negative or NaN finds nothing.
+  /// \param out receives the point indices.
   void radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const;
 
   /// The points the tree was built over, in the order given.

@@ -51,6 +51,9 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr double kMaxSamples = 128.0 * 1024 * 1024;
 
 /// Renders `scene`.
+/// \param scene what to draw (the mesh it borrows must be alive).
+/// \param options camera and image settings.
+/// \return the image, `options.width` x `options.height` pixels.
 /// \throw InvalidInput for a zero, negative or absurd image size or option, a scene with nothing
 ///        to draw, a mesh without faces, non-finite coordinates (naming the vertex or point),
 ///        or a field/highlight that does not fit the mesh.
