@@ -311,10 +311,10 @@ class GeodesicSolver {
   /// Takes a mesh already converted.
   explicit GeodesicSolver(ArrayMesh converted);
   ~GeodesicSolver();
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  GeodesicSolver(GeodesicSolver&& other) noexcept;
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  GeodesicSolver& operator=(GeodesicSolver&& other) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  GeodesicSolver(GeodesicSolver&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  GeodesicSolver& operator=(GeodesicSolver&&) noexcept;
 
   /// The converted mesh and its index maps (see the file comment).
   const ArrayMesh& converted() const;

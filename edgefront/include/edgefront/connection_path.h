@@ -145,10 +145,10 @@ class ConnectionPathFinder {
   explicit ConnectionPathFinder(const Mesh& mesh);
   explicit ConnectionPathFinder(const Mesh&& mesh) = delete;  ///< the finder reads the mesh: no temporaries
   ~ConnectionPathFinder();
-  /// Takes over `other`'s buffers; `other` may then only be destroyed or assigned to.
-  ConnectionPathFinder(ConnectionPathFinder&& other) noexcept;
-  /// Takes over `other`'s buffers; `other` may then only be destroyed or assigned to.
-  ConnectionPathFinder& operator=(ConnectionPathFinder&& other) noexcept;
+  /// Takes over the moved-from object's buffers; that object may then only be destroyed or assigned to.
+  ConnectionPathFinder(ConnectionPathFinder&&) noexcept;
+  /// Takes over the moved-from object's buffers; that object may then only be destroyed or assigned to.
+  ConnectionPathFinder& operator=(ConnectionPathFinder&&) noexcept;
 
   /// One path. from == to gives a one-vertex path of length 0; adjacent vertices (or twins) the edge.
   /// \param from, to live vertices of the finder's mesh.

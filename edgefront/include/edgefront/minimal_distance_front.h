@@ -180,10 +180,10 @@ class MinimalDistanceFront {
   explicit MinimalDistanceFront(const Mesh& mesh);
   explicit MinimalDistanceFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~MinimalDistanceFront();
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  MinimalDistanceFront(MinimalDistanceFront&& other) noexcept;
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  MinimalDistanceFront& operator=(MinimalDistanceFront&& other) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  MinimalDistanceFront(MinimalDistanceFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  MinimalDistanceFront& operator=(MinimalDistanceFront&&) noexcept;
 
   /// Starts from vertices (distance 0) or a closed edge path (distance to the path, on its ahead
   /// side). \throws InvalidInput for a bad source or options.

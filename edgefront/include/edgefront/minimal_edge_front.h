@@ -98,10 +98,10 @@ class MinimalEdgeFront {
   explicit MinimalEdgeFront(const Mesh& mesh, MinimalEdgeFrontOptions options = {});
   explicit MinimalEdgeFront(const Mesh&& mesh, MinimalEdgeFrontOptions options = {}) = delete;  ///< no temporaries
   ~MinimalEdgeFront();
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  MinimalEdgeFront(MinimalEdgeFront&& other) noexcept;
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  MinimalEdgeFront& operator=(MinimalEdgeFront&& other) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  MinimalEdgeFront(MinimalEdgeFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  MinimalEdgeFront& operator=(MinimalEdgeFront&&) noexcept;
 
   /// Starts a new query from `source`. The sources join at level 0.
   /// \throws InvalidInput for a bad source (see `validate_source`).

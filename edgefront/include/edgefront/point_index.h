@@ -22,11 +22,11 @@ class PointIndex {
   /// \throws InvalidInput if a coordinate is NaN or infinite (naming the point).
   explicit PointIndex(std::vector<Vec3> points);
   ~PointIndex();
-  /// Takes over the tree and points of `other`, which is left empty-like and may only be
-  /// destroyed or assigned to.
-  PointIndex(PointIndex&& other) noexcept;
-  /// Takes over the tree and points of `other` (as the move constructor).
-  PointIndex& operator=(PointIndex&& other) noexcept;
+  /// Takes over the moved-from index's tree and points; that index may then only be destroyed or
+  /// assigned to.
+  PointIndex(PointIndex&&) noexcept;
+  /// Takes over the moved-from index's tree and points (as the move constructor).
+  PointIndex& operator=(PointIndex&&) noexcept;
   PointIndex(const PointIndex&) = delete;
   PointIndex& operator=(const PointIndex&) = delete;
 

@@ -35,10 +35,10 @@ class VertexFront {
   explicit VertexFront(const Mesh& mesh);
   explicit VertexFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~VertexFront();
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  VertexFront(VertexFront&& other) noexcept;
-  /// Takes over `other`'s state; `other` may then only be destroyed or assigned to.
-  VertexFront& operator=(VertexFront&& other) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  VertexFront(VertexFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
+  VertexFront& operator=(VertexFront&&) noexcept;
 
   /// \throws InvalidInput for a bad source.
   void reset(const FrontSource& source);

@@ -19,10 +19,10 @@ class ReferenceNormals {
   ///         normals (the message names the first bad index).
   explicit ReferenceNormals(edgefront::PointCloud cloud);
   ~ReferenceNormals();
-  /// Takes over `other`'s points and tree; `other` may then only be destroyed or assigned to.
-  ReferenceNormals(ReferenceNormals&& other) noexcept;
-  /// Takes over `other`'s points and tree; `other` may then only be destroyed or assigned to.
-  ReferenceNormals& operator=(ReferenceNormals&& other) noexcept;
+  /// Takes over the moved-from object's points and tree; that object may then only be destroyed or assigned to.
+  ReferenceNormals(ReferenceNormals&&) noexcept;
+  /// Takes over the moved-from object's points and tree; that object may then only be destroyed or assigned to.
+  ReferenceNormals& operator=(ReferenceNormals&&) noexcept;
 
   /// Index of the reference point nearest to `p` (ties: lowest index).
   size_t nearest(const edgefront::Vec3& p) const;

@@ -79,10 +79,10 @@ class RepairSession {
   RepairSession(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
                 SessionOptions options = {});
   ~RepairSession();
-  /// Takes over `other`'s mirror and buffers; `other` may then only be destroyed or assigned to.
-  RepairSession(RepairSession&& other) noexcept;
-  /// Takes over `other`'s mirror and buffers; `other` may then only be destroyed or assigned to.
-  RepairSession& operator=(RepairSession&& other) noexcept;
+  /// Takes over the moved-from object's mirror and buffers; that object may then only be destroyed or assigned to.
+  RepairSession(RepairSession&&) noexcept;
+  /// Takes over the moved-from object's mirror and buffers; that object may then only be destroyed or assigned to.
+  RepairSession& operator=(RepairSession&&) noexcept;
 
   /// What the conversion changed (faces dropped, pinched vertices split) as a record on the
   /// host's arrays: the host applies it before its first edit. Empty for a manifold mesh.
