@@ -25,7 +25,7 @@
 #include "edgefront/batch_distance.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/parallel.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

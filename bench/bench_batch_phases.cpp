@@ -25,7 +25,7 @@
 #include "bench_timing.h"
 #include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/cloud_noise.h"
 #include "gcs/cloud_normals.h"
 #include "gcs/evaluation.h"

@@ -14,14 +14,14 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud_io.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/cloud_noise.h"
 #include "gcs/cloud_normals.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 #include "twist/detect.h"
 #include "twist/reference_normals.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

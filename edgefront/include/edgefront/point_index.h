@@ -14,8 +14,8 @@
 namespace edgefront {
 
 /// A k-d tree over a fixed set of points (see the file comment). The points are fixed at
-/// construction. Use one index from one thread at a time (k_nearest reuses scratch buffers held
-/// inside); give each thread its own index. Movable, not copyable.
+/// construction. The queries are const and may run from several threads at once on one index
+/// (k_nearest keeps its scratch per thread). Movable, not copyable.
 class PointIndex {
  public:
   /// Builds the tree over `points` (kept inside; read them back with points()). An empty set is
