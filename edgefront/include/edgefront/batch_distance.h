@@ -72,6 +72,7 @@ struct DistanceMatrix {
   std::vector<DistanceStop> stop;
   /// Per row, 1 when computed.
   std::vector<unsigned char> computed;
+  /// Whether every row was computed (`Cancelled`: see `computed`).
   BatchStatus status = BatchStatus::Complete;
   /// Threads that ran.
   unsigned threads = 1;
