@@ -79,7 +79,7 @@ void register_reconstruct(py::module_& m) {
           }
           throw std::move(*state.error);
         }
-        if (!return_info) return std::move(mesh);
+        if (!return_info) return mesh;
         py::dict info;
         info["stop_reason"] = gcs::to_string(r.stop_reason);
         info["cancelled"] = r.stop_reason == gcs::StopReason::cancelled;
