@@ -160,9 +160,9 @@ class PySolver {
 };
 
 constexpr const char* kMethods =
-    "method: \"mdf\" (default: the Minimal Distance Front, 0.1-0.3% mean error on scanned models, O(front) "
-    "memory), \"windows\" (per-edge windows: near exact, about 3-4x the MDF's time), \"fast\" (one unfolding per "
-    "edge: about 2x Dijkstra's time), \"dijkstra\" (along mesh edges; overestimates by 4-9%).";
+    "method: \"mdf\" (default: the Minimal Distance Front, 0.1-0.3% mean error on scanned models, O(front)\n"
+    "memory), \"windows\" (per-edge windows: near exact, about 3-4x the MDF's time), \"fast\" (one unfolding\n"
+    "per edge: about 2x Dijkstra's time), \"dijkstra\" (along mesh edges; overestimates by 4-9%).";
 
 }  // namespace
 
@@ -200,9 +200,10 @@ void register_geodesic(py::module_& m) {
                        "first method=\"fast\" query, its table) across queries. `distance` and `levels` may run from\n"
                        "several Python threads at once (the GIL is released); the other queries take a lock.\n"
                        "Raises ValueError for bad arrays, as geodesic_distance.")
-      .def(py::init<const py::handle&, const py::handle&>(), py::arg("V"), py::arg("F"))
-      .def_property_readonly("n_vertices", &PySolver::n_vertices, "Rows of V.")
-      .def_property_readonly("n_faces", &PySolver::n_faces, "Rows of F.")
+      .def(py::init<const py::handle&, const py::handle&>(), py::arg("V"), py::arg("F"),
+           "GeodesicSolver(V, F)\n\nConverts the mesh once (V (n, 3) float64/float32, F (m, 3) int32/int64).")
+      .def_property_readonly("n_vertices", &PySolver::n_vertices, "Rows of V (int).")
+      .def_property_readonly("n_faces", &PySolver::n_faces, "Rows of F (int).")
       .def_property_readonly("dropped_faces", &PySolver::dropped_faces,
                              "Rows of F the conversion dropped (faces a half-edge mesh cannot hold).")
       .def("distance", &PySolver::distance, py::arg("sources"), py::arg("method") = "mdf",

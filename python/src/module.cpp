@@ -12,6 +12,10 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_edgefront, m) {
   m.doc() = "EdgeFront's C++ core (use the package `edgefront`, which re-exports everything here).";
+  // Every docstring starts with its own signature line in Python terms (pybind11's would name the
+  // array arguments `handle`).
+  py::options options;
+  options.disable_function_signatures();
 
   // The library's errors, with its message: InvalidInput -> ValueError, IoError -> OSError,
   // every other error (TopologyError, InternalError, std::exception) -> RuntimeError.
