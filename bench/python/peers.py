@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Our reconstruction beside Open3D's screened Poisson and ball pivoting, on the same clouds, from
-Python: wall time, Chamfer-L1 and Hausdorff-95 (edgefront.evaluate: the figures of gcs-eval, in %
+Python: wall and CPU time (the process's, all threads), Chamfer-L1 and Hausdorff-95 (edgefront.evaluate: the figures of gcs-eval, in %
 of the ground truth's bounding-box diagonal), closedness (border loops) and components.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python/peers.py [--cgal-data /work/cgal-data/data]
@@ -48,25 +48,26 @@ def run_open3d(P, N, which):
     import open3d as o3d
     pcd = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(P))
     pcd.normals = o3d.utility.Vector3dVector(N)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     if which == "poisson":
         mesh, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(pcd, depth=8)
     else:
         spacing = float(np.mean(pcd.compute_nearest_neighbor_distance()))
         radii = o3d.utility.DoubleVector([spacing, 2 * spacing, 4 * spacing])
         mesh = o3d.geometry.TriangleMesh.create_from_point_cloud_ball_pivoting(pcd, radii)
-    seconds = time.perf_counter() - t0
+    seconds = (time.perf_counter() - t0, time.process_time() - c0)
     return np.asarray(mesh.vertices), np.asarray(mesh.triangles).astype(np.int64), seconds
 
 
 def row(cloud, method, V, F, seconds, gt):
     if len(F) == 0:
-        return f"| {cloud} | {method} | {seconds:.2f} | 0 | - | - | - | - |"
+        return f"| {cloud} | {method} | {seconds[0]:.2f} | {seconds[1]:.2f} | 0 | - | - | - | - | no faces |"
     e = ef.evaluate(V, F, *gt[0], **gt[1], samples=100000, self_intersections=False)
     m = e["mesh"]
-    return (f"| {cloud} | {method} | {seconds:.2f} | {m['vertices']} | {e['chamfer_l1_percent']:.3f} | "
-            f"{e['hausdorff_p95_percent']:.3f} | {m['border_loops']} | {m['components']} |"
-            + (f" ({m['faces_dropped_when_read']} non-manifold faces dropped)" if m["faces_dropped_when_read"] else ""))
+    return (f"| {cloud} | {method} | {seconds[0]:.2f} | {seconds[1]:.2f} | {m['vertices']} | {e['chamfer_l1_percent']:.3f} | "
+            f"{e['hausdorff_p95_percent']:.3f} | {m['border_loops']} | {m['components']} | "
+            + (f"{m['faces_dropped_when_read']} non-manifold face(s) dropped for the evaluation"
+               if m["faces_dropped_when_read"] else "") + " |")
 
 
 def main():
@@ -92,12 +93,13 @@ def main():
     print(f"Open3D {o3d.__version__}, OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}; "
           f"ours at {args.vertices} vertices; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
     print()
-    print("| cloud | method | time (s) | vertices | Chamfer-L1 (%) | Hausdorff-95 (%) | border loops | components |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| cloud | method | wall (s) | CPU (s) | vertices | Chamfer-L1 (%) | Hausdorff-95 (%) | border loops | components | notes |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for cloud, P, N, gt in clouds:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         V, F = ef.reconstruct(P, N, vertices=min(args.vertices, len(P)), seed=1)
-        print(row(cloud, "edgefront GCS", V, F, time.perf_counter() - t0, gt), flush=True)
+        seconds = (time.perf_counter() - t0, time.process_time() - c0)
+        print(row(cloud, "edgefront GCS", V, F, seconds, gt), flush=True)
         for which in ["poisson", "ball-pivoting"]:
             V, F, seconds = run_open3d(P, N, which)
             print(row(cloud, f"Open3D {which}", V, F, seconds, gt), flush=True)

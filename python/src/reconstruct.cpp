@@ -59,7 +59,14 @@ void register_reconstruct(py::module_& m) {
          const py::handle& progress, bool twist, bool return_info) -> py::object {
         edgefront::PointCloud cloud = point_cloud(points, normals);
         gcs::ReconstructOptions o;
-        o.target_vertices = vertices.is_none() ? std::min<std::size_t>(5000, cloud.size()) : vertices.cast<std::size_t>();
+        if (vertices.is_none()) {
+          o.target_vertices = std::min<std::size_t>(5000, cloud.size());
+        } else {
+          // operator.index: an int or numpy integer, else TypeError (as Python's own functions do).
+          const long long target = py::module_::import("operator").attr("index")(vertices).cast<long long>();
+          if (target < 0) throw py::value_error("vertices must be a positive count, got " + std::to_string(target));
+          o.target_vertices = static_cast<std::size_t>(target);
+        }
         o.seed = seed;
         o.progress_interval = 50;  // as gcs-reconstruct: the same bytes for the same input, seed and target
         Progress state{py::reinterpret_borrow<py::object>(progress), std::nullopt};

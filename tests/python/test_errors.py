@@ -87,6 +87,10 @@ def test_bad_options(mesh):
         ef.repair_twists(V, F, points=V)
     with pytest.raises(ValueError):
         ef.reconstruct(V, None, vertices=len(V) + 1)
+    with pytest.raises(ValueError, match="vertices must be a positive count"):
+        ef.reconstruct(V, None, vertices=-5)
+    with pytest.raises(TypeError):
+        ef.reconstruct(V, None, vertices=20.5)
     with pytest.raises(ValueError, match="normals: 5 rows for 36 points"):
         ef.reconstruct(V, V[:5], vertices=10)
     with pytest.raises(ValueError):
