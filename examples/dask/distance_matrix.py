@@ -105,12 +105,12 @@ def main(argv=None):
     else:
         from dask.distributed import Client, LocalCluster
         if args.scheduler:
-            client = Client(args.scheduler)
+            with Client(args.scheduler) as client:
+                matrix, computed = distance_matrix(V, F, sources, args.out, client, args.chunk, args.method)
         else:
-            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                                         dashboard_address=None))
-        with client:
-            matrix, computed = distance_matrix(V, F, sources, args.out, client, args.chunk, args.method)
+            with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                              dashboard_address=None) as cluster, Client(cluster) as client:
+                matrix, computed = distance_matrix(V, F, sources, args.out, client, args.chunk, args.method)
     print(f"distance matrix {matrix.shape[0]} x {matrix.shape[1]} -> {args.out}/matrix.npy "
           f"({len(computed)} chunk(s) computed, the rest were done already)")
     return 0

@@ -60,12 +60,12 @@ def main(argv=None):
     else:
         from dask.distributed import Client, LocalCluster
         if args.scheduler:
-            client = Client(args.scheduler)
+            with Client(args.scheduler) as client:
+                written = reconstruct_folder(args.folder, args.out, client, args.vertices, args.seed)
         else:
-            client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                                         dashboard_address=None))
-        with client:
-            written = reconstruct_folder(args.folder, args.out, client, args.vertices, args.seed)
+            with LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                              dashboard_address=None) as cluster, Client(cluster) as client:
+                written = reconstruct_folder(args.folder, args.out, client, args.vertices, args.seed)
     print(f"{len(written)} mesh(es) written to {args.out} (the others were done already)")
     return 0
 
