@@ -86,6 +86,7 @@ std::vector<int> index_list(const py::handle& obj, const char* name) {
   if (py::isinstance<py::bool_>(obj)) throw py::value_error(std::string(name) + " must be integers, got a bool");
   py::array a = as_array(obj, name);
   const char k = a.dtype().kind();
+  if (a.size() == 0 && a.ndim() == 1) return {};  // [] is float64 to numpy; the callee says what is missing
   if (k != 'i' && k != 'u') {
     throw py::value_error(std::string(name) + " must be integer vertex indices, got dtype " + dtype_text(a));
   }

@@ -26,6 +26,8 @@ def test_wrong_dtypes(mesh):
         ef.geodesic_distance(V.astype(np.float16), F, 0)
     with pytest.raises(ValueError, match="sources must be integer vertex indices"):
         ef.geodesic_distance(V, F, [0.5])
+    with pytest.raises(ValueError, match="no source vertex given"):
+        ef.geodesic_distance(V, F, [])
 
 
 def test_wrong_shapes(mesh):
