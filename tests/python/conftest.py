@@ -11,6 +11,9 @@ SOURCE_DIR = pathlib.Path(os.environ.get("EDGEFRONT_SOURCE_DIR", pathlib.Path(__
 APP_DIR = pathlib.Path(os.environ.get("EDGEFRONT_APP_DIR", SOURCE_DIR / "build" / "apps"))
 DATA_DIR = SOURCE_DIR / "data"
 TEST_DATA_DIR = SOURCE_DIR / "tests" / "data"
+# The Python tests' own inputs (kept out of tests/data, which seeds the fuzzers' corpus: an 88 KB
+# cloud there would raise libFuzzer's input size limit).
+PY_DATA_DIR = SOURCE_DIR / "tests" / "python" / "data"
 
 
 def app(name, *args, cwd=None):

@@ -13,7 +13,7 @@ pytest.importorskip("dask", reason="dask is not importable (Debian: python3-dask
 pytest.importorskip("distributed", reason="dask.distributed is not importable (Debian: python3-distributed)")
 
 import edgefront as ef  # noqa: E402
-from conftest import DATA_DIR, SOURCE_DIR, TEST_DATA_DIR  # noqa: E402
+from conftest import DATA_DIR, PY_DATA_DIR, SOURCE_DIR  # noqa: E402
 
 sys.path.insert(0, str(SOURCE_DIR / "examples" / "dask"))
 import distance_matrix as dm  # noqa: E402
@@ -54,7 +54,7 @@ def test_distance_matrix_sharded_equals_serial(tmp_path, client):
 
 
 def test_folder_of_scans_one_task_per_scan(tmp_path, client):
-    P, N = ef.read_points(TEST_DATA_DIR / "bumpy-sphere-2k.xyz")
+    P, N = ef.read_points(PY_DATA_DIR / "bumpy-sphere-2k.xyz")
     scans = tmp_path / "scans"
     scans.mkdir()
     ef.write_points(scans / "a.xyz", P, N)

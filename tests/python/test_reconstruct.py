@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 import edgefront as ef
-from conftest import TEST_DATA_DIR, app
+from conftest import PY_DATA_DIR, app
 
-# tests/data/bumpy-sphere-2k.xyz was written by
-#   build/apps/ef-shapes bumpy-sphere --points 2000 --seed 1 --decimals 4 -o tests/data/bumpy-sphere-2k.xyz
-CLOUD = TEST_DATA_DIR / "bumpy-sphere-2k.xyz"
+# tests/python/data/bumpy-sphere-2k.xyz was written by
+#   build/apps/ef-shapes bumpy-sphere --points 2000 --seed 1 --decimals 4 -o tests/python/data/bumpy-sphere-2k.xyz
+CLOUD = PY_DATA_DIR / "bumpy-sphere-2k.xyz"
 TARGET = 400
 
 
