@@ -19,11 +19,12 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 BUILD_DIR=${EDGEFRONT_BUILD_DIR:-build}
 
-# Libraries, tests and apps. libpng-dev: PNG pictures (render/). pybind11-dev python3-dev
-# python3-numpy: the Python package (python/); python3-pytest: its tests; python3-dask
-# python3-distributed: the Dask examples and their test.
+# Libraries, tests and apps. libpng-dev: PNG pictures (render/). doxygen: the API reference
+# (scripts/docs.sh, CI phase docs). pybind11-dev python3-dev python3-numpy: the Python package
+# (python/); python3-pytest: its tests; python3-dask python3-distributed: the Dask examples and
+# their test.
 PACKAGES=(build-essential cmake libopenmesh-dev libnanoflann-dev libeigen3-dev
-          libgtest-dev libgmock-dev libcli11-dev libpng-dev
+          libgtest-dev libgmock-dev libcli11-dev libpng-dev doxygen
           pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed)
 CGAL_PACKAGES=(libcgal-dev)
 FUZZ_PACKAGES=(clang libfuzzer-14-dev)
