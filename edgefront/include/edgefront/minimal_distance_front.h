@@ -24,8 +24,9 @@
 /// `DistanceMethod::Windows` keeps windows per edge instead (MMP/ICH carried in the same front
 /// order): below 5e-4% mean error on the scanned models, about 3-4x the time of the default.
 ///
-/// Accuracy: exact (to round-off) on planar meshes under any triangulation and on open cylinders
-/// and cones; on CGAL's scanned models a mean relative error of a few tenths of a percent, well
+/// Accuracy: exact (to round-off) on regular planar triangulations and on open cylinders and
+/// cones; on irregular planar triangulations with obtuse triangles a few vertices come out up to
+/// about 2% long (`Windows` is exact there); on CGAL's scanned models a mean relative error of a few tenths of a percent, well
 /// below Dijkstra's and CGAL's heat method's (figures per model: bench/results/geodesic-accuracy.md).
 ///
 /// Memory: the loops, the front-vertex table and the priority queue hold O(front) elements; the
