@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <exception>
 #include <cstdint>
 #include <limits>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include "bindings.h"
 #include "convert.h"
 #include "edgefront/arrays.h"
+#include "edgefront/batch_distance.h"
 #include "edgefront/error.h"
 
 namespace efpy {
@@ -115,6 +117,40 @@ class PySolver {
     return py::make_tuple(to_numpy(std::move(d.vertex)), to_numpy(std::move(d.distance)));
   }
 
+  py::array_t<double> batch(const py::handle& sources, const py::handle& targets, const std::string& method,
+                            double max_distance, unsigned threads, const py::object& progress) const {
+    const std::vector<int> s = index_list(sources, "sources");
+    const std::vector<int> t = targets.is_none() ? std::vector<int>() : index_list(targets, "targets");
+    edgefront::ArrayBatchOptions o;
+    o.method = edgefront::parse_distance_method(method);
+    o.max_distance = max_distance;
+    edgefront::BatchOptions b;
+    b.threads = threads;
+    // The callback runs on the worker threads, one call at a time: it takes the GIL for the call.
+    // An exception in it cancels the batch and is raised here.
+    std::exception_ptr raised;
+    if (!progress.is_none()) {
+      b.progress = [&progress, &raised](std::size_t done, std::size_t total) {
+        py::gil_scoped_acquire acquire;
+        try {
+          const py::object r = progress(done, total);
+          return r.is_none() || r.cast<bool>();
+        } catch (...) {
+          raised = std::current_exception();
+          return false;
+        }
+      };
+    }
+    edgefront::DistanceMatrix d;
+    {
+      py::gil_scoped_release release;
+      d = edgefront::geodesic_distances(solver_, s, t, o, b);
+    }
+    if (raised) std::rethrow_exception(raised);
+    const auto rows = static_cast<py::ssize_t>(d.rows), cols = static_cast<py::ssize_t>(d.columns);
+    return to_numpy<double>(std::move(d.values), {rows, cols});
+  }
+
   std::optional<double> between(int a, int b, double max_distance) {
     py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(mutex_);
@@ -212,6 +248,20 @@ void register_geodesic(py::module_& m) {
             "The distance field from `sources` (as in geodesic_distance): n float64 values, inf where not "
             "reached.\n" +
             methods)
+               .c_str())
+      .def("distances", &PySolver::batch, py::arg("sources"), py::arg("targets") = py::none(),
+           py::arg("method") = "mdf", py::arg("max_distance") = kInf, py::arg("threads") = 0u,
+           py::arg("progress") = py::none(),
+           ("distances(sources, targets=None, method=\"mdf\", max_distance=inf, threads=0, progress=None)\n"
+            "    -> numpy.ndarray\n\n"
+            "One distance field per source vertex, computed on `threads` threads (0: all cores): a (k, n)\n"
+            "float64 array, row i the field of sources[i]; with targets (vertex indices), the (k, t) matrix\n"
+            "between the two sets (MDF and windows rows stop once every target has settled). The values\n"
+            "are the same bytes for any thread count, and row i equals distance(sources[i]).\n" +
+            methods +
+            "\nprogress(done, total): called after each row (with the GIL); return False to cancel: the rows\n"
+            "not computed are NaN. An exception raised in it cancels and is raised here.\n"
+            "Raises ValueError for no source, an index out of range, a bad method or max_distance.")
                .c_str())
       .def("distances_within", &PySolver::within, py::arg("sources"), py::arg("max_distance"),
            py::arg("method") = "mdf",

@@ -162,3 +162,41 @@ def test_edge_front_levels_on_a_grid():
     assert levels.max() >= 4
     capped = ef.edge_front_levels(V, F, 40, max_levels=2)
     assert np.all((capped == -1) | (capped == levels)) and (capped == -1).any()
+
+
+@pytest.mark.parametrize("method", ["mdf", "fast", "windows", "dijkstra"])
+def test_batch_rows_equal_single_fields_for_any_thread_count(method):
+    V, F = icosphere(3)
+    solver = ef.GeodesicSolver(V, F)
+    sources = [0, 17, 40, 99, 300]
+    one = solver.distances(sources, method=method, threads=1)
+    assert one.shape == (len(sources), len(V)) and one.dtype == np.float64
+    for threads in (2, 3):
+        assert solver.distances(sources, method=method, threads=threads).tobytes() == one.tobytes()
+    for i, s in enumerate(sources):
+        assert one[i].tobytes() == solver.distance([s], method=method).tobytes()
+    targets = [5, 6, 7, 200]
+    matrix = solver.distances(sources, targets, method=method, threads=2)
+    assert matrix.shape == (len(sources), len(targets))
+    np.testing.assert_array_equal(matrix, one[:, targets])
+
+
+def test_batch_progress_cancels_and_errors():
+    V, F = icosphere(3)
+    solver = ef.GeodesicSolver(V, F)
+    calls = []
+    partial = solver.distances(list(range(8)), threads=1, progress=lambda done, total: calls.append(done) or done < 3)
+    assert calls == [1, 2, 3]
+    assert np.isnan(partial[3:]).all() and not np.isnan(partial[:3]).any()
+
+    def boom(done, total):
+        raise KeyError("stop")
+
+    with pytest.raises(KeyError):
+        solver.distances([0, 1, 2], threads=2, progress=boom)
+    with pytest.raises(ValueError):
+        solver.distances([len(V)])
+    with pytest.raises(ValueError):
+        solver.distances([], threads=1)
+    with pytest.raises(ValueError):
+        solver.distances([0], method="nope")
