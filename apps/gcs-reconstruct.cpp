@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
       distinct_points = gcs::max_target_vertices(cloud);
       if (distinct_points < 4) {
         throw edgefront::InvalidInput("the cloud has only " + std::to_string(distinct_points) +
-                                      " distinct points: at least 4 are needed");
+                                      " distinct points: at least 4 points are needed");
       }
       vertices = std::min(vertices, distinct_points);
     }

@@ -241,7 +241,7 @@ TEST_F(InputTolerance, AppDropsInvalidNormalsWithAWarningAndIgnoreNormalsNeverRe
   const eftest::CommandResult r = run(q(path) + " -o " + q(out) + " --vertices 300");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("gcs-reconstruct: warning:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("300 of 1500 normals are invalid (150 zero-length"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("300 of 1500 normals are invalid (150 zero-length, 150 NaN"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("300 missing normal(s) fitted"), std::string::npos) << r.out;
   const edgefront::MeshStats s = edgefront::compute_stats(edgefront::load_mesh(out));
   EXPECT_EQ(s.components, 1u);

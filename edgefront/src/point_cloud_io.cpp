@@ -60,13 +60,17 @@ struct NormalTally {
     report->normals_ignored = had_normals && options.ignore_normals;
     if (none_valid) {
       report->warning = zero == total ? "all " + std::to_string(total) + " normals are zero-length: the cloud is read without normals"
-                                      : "none of the " + std::to_string(total) +
-                                            " normals is valid (" + std::to_string(zero) +
-                                            " zero-length, the others NaN, infinite or too short/long): the cloud is read without normals";
+                                      : "none of the " + std::to_string(total) + " normals is valid (" +
+                                            std::to_string(zero) + " zero-length, " + std::to_string(total - zero) +
+                                            " NaN, infinite or too short/long): the cloud is read without normals";
     } else if (invalid > 0) {
-      report->warning = std::to_string(invalid) + " of " + std::to_string(total) + " normals are invalid (" +
-                        std::to_string(zero) + " zero-length; the others NaN, infinite or too short/long) and were dropped (first: " +
-                        first + ")";
+      const std::string kinds =
+          zero == invalid ? std::to_string(zero) + " zero-length"
+          : zero == 0     ? std::to_string(invalid) + " NaN, infinite or too short/long"
+                          : std::to_string(zero) + " zero-length, " + std::to_string(invalid - zero) +
+                                " NaN, infinite or too short/long";
+      report->warning = std::to_string(invalid) + " of " + std::to_string(total) + " normals are invalid (" + kinds +
+                        ") and were dropped (first: " + first + ")";
     }
   }
 };

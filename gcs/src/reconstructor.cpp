@@ -1576,7 +1576,8 @@ struct Reconstructor::Impl {
       finished_reason = reason;
       report();
     }
-    ReconstructResult r = make_result(seconds_since(t0), post);
+    // After a cancel the callback is not called again (the post-processing still runs, unreported).
+    ReconstructResult r = make_result(seconds_since(t0), reason == StopReason::cancelled ? std::function<void(double)>() : post);
     r.stop_reason = reason;
     return r;
   }

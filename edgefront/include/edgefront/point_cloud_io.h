@@ -60,7 +60,7 @@ struct PointReadReport {
   /// The file had normals and they were not read (ignore_normals).
   bool normals_ignored = false;
   /// One line per fact above worth telling a user, e.g. "3 of 20000 normals are invalid
-  /// (zero-length or NaN) and were dropped (first: line 12: zero-length normal)"; empty when the
+  /// (3 zero-length) and were dropped (first: line 12: zero-length normal)"; empty when the
   /// file was read as it is.
   std::string warning;
 };

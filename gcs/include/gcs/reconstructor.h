@@ -366,8 +366,8 @@ class Reconstructor {
 
   /// Runs until the target, a cancel or the step limit. The callback (may be empty) is called
   /// every `progress_interval` splits (Phase::growth), and at the start and after each step of
-  /// the post-processing (Phase::post_processing); in the growth it may call validate() and
-  /// inspect mesh(). Calling run()
+  /// the post-processing (Phase::post_processing; not after a cancel); in the growth it may call
+  /// validate() and inspect mesh(). Calling run()
   /// again after a cancel continues from where it stopped; after the target it returns at once.
   /// The returned mesh is a garbage-collected copy in input coordinates.
   /// \throw whatever an operation throws (the reconstructor is then unusable).
