@@ -18,9 +18,10 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 BUILD_DIR=${EDGEFRONT_BUILD_DIR:-build}
 
-# Libraries, tests and apps. libpng-dev: PNG pictures (render/).
+# Libraries, tests and apps. libpng-dev: PNG pictures (render/). doxygen: the API reference
+# (scripts/docs.sh, CI phase docs).
 PACKAGES=(build-essential cmake libopenmesh-dev libnanoflann-dev libeigen3-dev
-          libgtest-dev libgmock-dev libcli11-dev libpng-dev)
+          libgtest-dev libgmock-dev libcli11-dev libpng-dev doxygen)
 CGAL_PACKAGES=(libcgal-dev)
 FUZZ_PACKAGES=(clang libfuzzer-14-dev)
 
