@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -18,7 +19,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 
 namespace {
