@@ -12,12 +12,18 @@
 /// loops in blue). --snapshots writes DIR/gcs-NNNNN.png (same camera options) every K
 /// vertices of growth, so the growth, a twist and its repair can be watched.
 ///
-/// Prints a one-line summary on stdout; a progress bar on stderr when stderr is a terminal and
-/// --quiet is not given. Exit codes: 0 ok, 1 error (one line "gcs-reconstruct: error: ..." on
+/// Without --vertices the target is min(5000, the cloud's distinct points), stated in the summary.
+/// Invalid normals in the file (zero-length, NaN, infinite) are dropped with a warning on stderr and
+/// fitted from the neighbours; a file whose normals are all invalid is read as one without normals.
+///
+/// Prints a one-line summary on stdout; a progress bar on stderr, naming the phase (noise
+/// estimate, normal fitting, growth, post-processing), when stderr is a terminal and --quiet is
+/// not given. Exit codes: 0 ok, 1 error (one line "gcs-reconstruct: error: ..." on
 /// stderr), 2 usage error.
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -32,6 +38,7 @@
 #include "app_options.h"
 #include "app_render.h"
 #include "app_util.h"
+#include "edgefront/error.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
@@ -52,7 +59,8 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "output mesh (.ply, .off, .obj, .stl)")
       ->required()
       ->check(edgefront::apps::output_file({".ply", ".off", ".obj", ".stl"}));
-  app.add_option("--vertices", vertices, "target vertex count (default 5000)")
+  CLI::Option* vertices_option = app.add_option(
+      "--vertices", vertices, "target vertex count (default: 5000, or the number of distinct points when the cloud has fewer)")
       ->check(edgefront::apps::integer_range(4, 50000000));
   edgefront::apps::add_seed_option(app, "--seed", seed, "random seed; the same seed gives the same mesh");
   app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default; off with --no-borders)");
@@ -79,8 +87,8 @@ int main(int argc, char** argv) {
                "sometimes more self-intersections; off by default)");
   bool ignore_normals = false;
   app.add_flag("--ignore-normals", ignore_normals,
-               "reconstruct from the points alone, as if the file had no normals (they are fitted to the points "
-               "and oriented instead; for files whose normals are unreliable)");
+               "reconstruct from the points alone, as if the file had no normals (they are not read; normals are "
+               "fitted to the points and oriented instead; for files whose normals are unreliable)");
   bool keep_noise = false;
   app.add_flag("--keep-noise", keep_noise,
                "do not smooth a noisy cloud before the loop (by default a cloud whose estimated noise exceeds 5% of "
@@ -114,8 +122,23 @@ int main(int argc, char** argv) {
       ->check(edgefront::apps::integer_range(1, 100000000));
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
-    edgefront::PointCloud cloud = edgefront::read_points(input);
-    if (ignore_normals) cloud.normals.clear();
+    edgefront::PointReadOptions read_options;
+    read_options.tolerate_invalid_normals = true;
+    read_options.ignore_normals = ignore_normals;
+    edgefront::PointReadReport read_report;
+    edgefront::PointCloud cloud = edgefront::read_points(input, read_options, &read_report);
+    if (!read_report.warning.empty()) std::cerr << "gcs-reconstruct: warning: " << input << ": " << read_report.warning << "\n";
+    // Without --vertices: 5000, or what the cloud can hold (its distinct points) when that is less.
+    const bool default_target = vertices_option->count() == 0;
+    std::size_t distinct_points = 0;
+    if (default_target) {
+      distinct_points = gcs::max_target_vertices(cloud);
+      if (distinct_points < 4) {
+        throw edgefront::InvalidInput("the cloud has only " + std::to_string(distinct_points) +
+                                      " distinct points: at least 4 points are needed");
+      }
+      vertices = std::min(vertices, distinct_points);
+    }
     options.target_vertices = vertices;
     options.seed = seed;
     options.progress_interval = 50;
@@ -143,19 +166,24 @@ int main(int argc, char** argv) {
                                     (std::filesystem::path(snapshots) / name).string());
     };
     gcs::ProgressCallback progress = [&, bar](const gcs::Progress& p) {
-      snapshot(p);
+      if (p.phase == gcs::Phase::growth) snapshot(p);
       if (bar) {
         const int width = 40;
-        const double f = p.target_vertices ? static_cast<double>(p.vertices) / static_cast<double>(p.target_vertices) : 1;
-        const int filled = static_cast<int>(std::min(1.0, std::max(0.0, f)) * width);
-        std::fprintf(stderr, "\r[%s%s] %zu/%zu vertices, %.1f s", std::string(filled, '#').c_str(),
-                     std::string(width - filled, ' ').c_str(), p.vertices, p.target_vertices, p.seconds);
+        const int filled = static_cast<int>(std::min(1.0, std::max(0.0, p.phase_fraction)) * width);
+        const std::string phase = gcs::to_string(p.phase);
+        if (p.phase == gcs::Phase::growth) {
+          std::fprintf(stderr, "\r%-16s [%s%s] %zu/%zu vertices, %.1f s   ", phase.c_str(), std::string(filled, '#').c_str(),
+                       std::string(width - filled, ' ').c_str(), p.vertices, p.target_vertices, p.seconds);
+        } else {
+          std::fprintf(stderr, "\r%-16s [%s%s] %.1f s                    ", phase.c_str(), std::string(filled, '#').c_str(),
+                       std::string(width - filled, ' ').c_str(), p.seconds);
+        }
         std::fflush(stderr);
       }
       return true;
     };
     if (!snapshots.empty()) options.progress_interval = std::min<std::size_t>(options.progress_interval, every);
-    gcs::Reconstructor reconstructor(cloud, options);
+    gcs::Reconstructor reconstructor(cloud, options, progress);
     running = &reconstructor;
     std::shared_ptr<gcs::TwistOperation> twist_op;
     // The repair cuts twisted regions off and relies on the loop's border merging to heal the
@@ -171,13 +199,24 @@ int main(int argc, char** argv) {
     edgefront::write_mesh(r.mesh, output);
     if (png.requested()) png.write(edgefront::render::Scene{.mesh = &r.mesh});
     const edgefront::MeshStats s = edgefront::compute_stats(r.mesh);
-    std::cout << "gcs-reconstruct: " << s.vertices << " vertices, " << s.faces << " faces, " << s.components
+    std::cout << "gcs-reconstruct: ";
+    if (default_target) {
+      std::cout << "target " << vertices << " vertices ("
+                << (vertices < 5000 ? "the default 5000 is more than the cloud's " + std::to_string(distinct_points) +
+                                          " distinct points"
+                                    : std::string("default"))
+                << "): ";
+    }
+    std::cout << s.vertices << " vertices, " << s.faces << " faces, " << s.components
               << " component(s), " << s.border_loops << " border loop(s), " << gcs::to_string(r.stop_reason) << ", "
               << r.seconds_total << " s -> " << output;
     if (r.crossing_pairs_found > 0)
       std::cout << "; " << r.crossing_pairs_found << " self-intersecting face pair(s) resolved ("
                 << r.crossing_vertices_moved << " vertices smoothed, " << r.crossing_faces_removed << " faces cut out, "
                 << r.crossing_holes_filled << " hole(s) filled), " << r.crossing_pairs_left << " left";
+    if (r.normals_filled > 0)
+      std::cout << "; " << r.normals_filled << " missing normal(s) fitted from the neighbours";
+    if (r.normals_unusable) std::cout << "; no usable normal: normals fitted to the points";
     if (r.cloud_smoothed) std::cout << "; cloud smoothed first (noise " << r.noise_ratio << " of the point spacing)";
     if (twist_op) {  // on the same summary line
       const gcs::TwistOperationStats& t = twist_op->stats();

@@ -1,6 +1,8 @@
 #include "edgefront/point_cloud_io.h"
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "detail/io_common.h"
 #include "detail/mesh_parsers.h"
@@ -26,7 +28,54 @@ std::string normalize_normal(Vec3& n) {
   return {};
 }
 
-PointCloud read_xyz(std::string_view data, const fs::path& file) {
+// The normals of one file under PointReadOptions: checks and normalizes each, throws for an
+// invalid one unless tolerated, then counts it and stores NaN.
+struct NormalTally {
+  const PointReadOptions& options;
+  size_t total = 0, invalid = 0, zero = 0;
+  std::string first;  // where and what the first invalid normal was
+
+  // `where` names the line or vertex for messages ("line 3", "vertex 2").
+  template <class Fail>
+  Vec3 take(Vec3 n, const std::string& where, Fail&& fail) {
+    ++total;
+    const std::string problem = normalize_normal(n);
+    if (problem.empty()) return n;
+    if (!options.tolerate_invalid_normals) fail(problem);
+    if (invalid++ == 0) first = where + ": " + problem;
+    if (n == Vec3(0, 0, 0)) ++zero;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return Vec3(nan, nan, nan);
+  }
+
+  // Clears the normals when none is valid; fills the report.
+  void finish(PointCloud& cloud, bool had_normals, PointReadReport* report) const {
+    const bool none_valid = total > 0 && invalid == total;
+    if (none_valid) cloud.normals.clear();
+    if (!report) return;
+    report->points = cloud.size();
+    report->invalid_normals = invalid;
+    report->zero_normals = zero;
+    report->all_normals_invalid = none_valid;
+    report->normals_ignored = had_normals && options.ignore_normals;
+    if (none_valid) {
+      report->warning = zero == total ? "all " + std::to_string(total) + " normals are zero-length: the cloud is read without normals"
+                                      : "none of the " + std::to_string(total) + " normals is valid (" +
+                                            std::to_string(zero) + " zero-length, " + std::to_string(total - zero) +
+                                            " NaN, infinite or too short/long): the cloud is read without normals";
+    } else if (invalid > 0) {
+      const std::string kinds =
+          zero == invalid ? std::to_string(zero) + " zero-length"
+          : zero == 0     ? std::to_string(invalid) + " NaN, infinite or too short/long"
+                          : std::to_string(zero) + " zero-length, " + std::to_string(invalid - zero) +
+                                " NaN, infinite or too short/long";
+      report->warning = std::to_string(invalid) + " of " + std::to_string(total) + " normals are invalid (" + kinds +
+                        ") and were dropped (first: " + first + ")";
+    }
+  }
+};
+
+PointCloud read_xyz(std::string_view data, const fs::path& file, NormalTally& tally, bool& had_normals) {
   data = detail::text_content(data, file, "a text point");
   PointCloud cloud;
   detail::LineReader lines(data);
@@ -64,18 +113,17 @@ PointCloud read_xyz(std::string_view data, const fs::path& file) {
                                 std::to_string(per_line_first) + ", found " + std::to_string(tokens.size()));
     }
     double v[6];
-    for (size_t k = 0; k < per_line; ++k) {
+    const size_t parsed = tally.options.ignore_normals ? 3 : per_line;
+    for (size_t k = 0; k < parsed; ++k) {
       if (!detail::parse_double(tokens[k], v[k]))
         detail::throw_io_line(file, ln, detail::bad_number(tokens[k]));
     }
     const Vec3 p(v[0], v[1], v[2]);
     if (!finite(p)) detail::throw_io_line(file, ln, "non-finite coordinate");
     cloud.points.push_back(p);
-    if (per_line == 6) {
-      Vec3 n(v[3], v[4], v[5]);
-      const std::string problem = normalize_normal(n);
-      if (!problem.empty()) detail::throw_io_line(file, ln, problem);
-      cloud.normals.push_back(n);
+    if (per_line == 6 && !tally.options.ignore_normals) {
+      cloud.normals.push_back(tally.take(Vec3(v[3], v[4], v[5]), "line " + std::to_string(ln),
+                                         [&](const std::string& problem) { detail::throw_io_line(file, ln, problem); }));
     }
   }
   if (have_count && declared != cloud.size()) {
@@ -84,6 +132,7 @@ PointCloud read_xyz(std::string_view data, const fs::path& file) {
         "the file declares " + std::to_string(declared) + " points but has " + std::to_string(cloud.size()));
   }
   if (std::string why = coordinate_range_problem(cloud.points); !why.empty()) detail::throw_io(file, why);
+  had_normals = per_line == 6;
   return cloud;
 }
 
@@ -100,23 +149,30 @@ void check_points_extension(const fs::path& path, const std::string& ext) {
   }
 }
 
-PointCloud parse_points(std::string_view data, const fs::path& path, const std::string& ext) {
+PointCloud parse_points(std::string_view data, const fs::path& path, const std::string& ext,
+                        const PointReadOptions& read_options, PointReadReport* report) {
   if (data.empty()) detail::throw_io(path, "file is empty");
   PointCloud cloud;
+  NormalTally tally{read_options, 0, 0, 0, {}};
+  bool had_normals = false;
   if (is_text_points(ext)) {
-    cloud = read_xyz(data, path);
+    cloud = read_xyz(data, path, tally, had_normals);
   } else {
     detail::ParseOptions options;
     options.normals = ext == ".ply";
     detail::RawMesh raw = detail::parse_mesh_file(data, path, ext, options);
+    had_normals = !raw.normals.empty();
+    if (read_options.ignore_normals) raw.normals.clear();
     for (size_t i = 0; i < raw.normals.size(); ++i) {
-      const std::string problem = normalize_normal(raw.normals[i]);
-      if (!problem.empty()) detail::throw_io(path, "vertex " + std::to_string(i) + ": " + problem);
+      const std::string where = "vertex " + std::to_string(i);
+      raw.normals[i] = tally.take(raw.normals[i], where,
+                                  [&](const std::string& problem) { detail::throw_io(path, where + ": " + problem); });
     }
     cloud.points = std::move(raw.points);
     cloud.normals = std::move(raw.normals);
   }
   if (cloud.empty()) detail::throw_io(path, "the file contains no points");
+  tally.finish(cloud, had_normals, report);
   return cloud;
 }
 
@@ -126,13 +182,29 @@ PointCloud read_points(const fs::path& path) {
   const std::string ext = detail::lower_extension(path);
   check_points_extension(path, ext);
   const detail::FileContent content(path);
-  return parse_points(content.view(), path, ext);
+  return parse_points(content.view(), path, ext, {}, nullptr);
+}
+
+PointCloud read_points(const fs::path& path, const PointReadOptions& options, PointReadReport* report) {
+  if (report) *report = {};
+  const std::string ext = detail::lower_extension(path);
+  check_points_extension(path, ext);
+  const detail::FileContent content(path);
+  return parse_points(content.view(), path, ext, options, report);
 }
 
 PointCloud read_points_from_buffer(std::string_view data, const fs::path& name) {
   const std::string ext = detail::lower_extension(name);
   check_points_extension(name, ext);
-  return parse_points(data, name, ext);
+  return parse_points(data, name, ext, {}, nullptr);
+}
+
+PointCloud read_points_from_buffer(std::string_view data, const fs::path& name, const PointReadOptions& options,
+                                   PointReadReport* report) {
+  if (report) *report = {};
+  const std::string ext = detail::lower_extension(name);
+  check_points_extension(name, ext);
+  return parse_points(data, name, ext, options, report);
 }
 
 void write_points(const PointCloud& cloud, const fs::path& path) {

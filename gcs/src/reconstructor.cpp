@@ -47,6 +47,20 @@ using edgefront::PointIndex;
 using edgefront::Vec3;
 using edgefront::VertexHandle;
 
+std::string to_string(Phase phase) {
+  switch (phase) {
+    case Phase::noise_estimate:
+      return "noise estimate";
+    case Phase::normal_fitting:
+      return "normal fitting";
+    case Phase::growth:
+      return "growth";
+    case Phase::post_processing:
+      return "post-processing";
+  }
+  return "unknown phase";
+}
+
 std::string to_string(StopReason reason) {
   switch (reason) {
     case StopReason::target_reached:
@@ -158,6 +172,65 @@ size_t drop_repeated_points(edgefront::PointCloud& c) {
   return dropped;
 }
 
+// A normal that is not a usable direction: non-finite or zero (edgefront::read_points with
+// tolerate_invalid_normals stores dropped normals as NaN).
+bool missing_normal(const Vec3& n) {
+  return !(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2])) || !(n.sqrnorm() > 0);
+}
+
+// Replaces the missing normals of `c` (missing_normal) by the normal of the plane through the
+// point's 16 nearest points, oriented like the sum of the 8 nearest given normals, and normalizes
+// the given ones that are not unit. Returns how many were filled; clears the normals when none is
+// given (then returns 0 and sets `unusable`). Deterministic.
+size_t fill_missing_normals(edgefront::PointCloud& c, bool& unusable) {
+  unusable = false;
+  if (c.normals.empty()) return 0;
+  std::vector<Vec3> given_points, given_normals;
+  std::vector<size_t> missing;
+  for (size_t i = 0; i < c.size(); ++i) {
+    if (missing_normal(c.normals[i])) {
+      missing.push_back(i);
+    } else {
+      given_points.push_back(c.points[i]);
+      given_normals.push_back(c.normals[i]);
+    }
+  }
+  if (missing.empty()) return 0;
+  if (given_points.empty()) {
+    c.normals.clear();
+    unusable = true;
+    return 0;
+  }
+  const PointIndex all(c.points);
+  const PointIndex given(std::move(given_points));
+  std::vector<PointIndex::Neighbor> knn;
+  for (const size_t i : missing) {
+    const Vec3& p = c.points[i];
+    all.k_nearest(p, 16, knn);
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const PointIndex::Neighbor& nb : knn) centre += Eigen::Vector3d(c.points[nb.index][0], c.points[nb.index][1], c.points[nb.index][2]);
+    centre /= static_cast<double>(knn.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const PointIndex::Neighbor& nb : knn) {
+      const Eigen::Vector3d q = Eigen::Vector3d(c.points[nb.index][0], c.points[nb.index][1], c.points[nb.index][2]) - centre;
+      cov += q * q.transpose();
+    }
+    given.k_nearest(p, 8, knn);
+    Vec3 side(0, 0, 0);
+    for (const PointIndex::Neighbor& nb : knn) side += given_normals[nb.index];
+    Vec3 n = side;  // degenerate neighbourhood (fewer than 3 points, a line): the neighbours' mean
+    if (cov.trace() > 0) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+      const Eigen::Vector3d e = eig.eigenvectors().col(0);
+      if (eig.eigenvalues()[1] > 0) n = Vec3(e[0], e[1], e[2]);
+    }
+    if ((n | side) < 0) n = -n;
+    if (!(n.sqrnorm() > 0)) n = given_normals[knn.front().index];
+    c.normals[i] = n.normalized();
+  }
+  return missing.size();
+}
+
 // The options' ranges; the target against the number of points is checked in init, after the
 // repeated points are dropped.
 void check_options(const ReconstructOptions& o) {
@@ -212,6 +285,8 @@ struct Reconstructor::Impl {
   double bbox_diagonal = 0;
   double noise_ratio = 0;  // estimated noise / spacing of the input (ReconstructOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;
+  size_t normals_filled = 0;     // missing input normals fitted (fill_missing_normals)
+  bool normals_unusable = false;  // the cloud had normals, none usable
   double sample_spacing = 0;
   // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
   // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
@@ -273,8 +348,19 @@ struct Reconstructor::Impl {
 
 
   // ---------------------------------------------------------------- setup
-  void init(edgefront::PointCloud points, const ReconstructOptions& options) {
+  void init(edgefront::PointCloud points, const ReconstructOptions& options, const ProgressCallback& progress) {
     opt = options;
+    const auto t_init = Clock::now();
+    // The set-up phases report their start and end (Progress::phase); cancelling is not possible.
+    auto report = [&](Phase phase, double fraction) {
+      if (!progress) return;
+      Progress p;
+      p.phase = phase;
+      p.phase_fraction = fraction;
+      p.target_vertices = opt.target_vertices;
+      p.seconds = seconds_since(t_init);
+      (void)progress(p);
+    };
     if (points.size() < 4)
       throw InvalidInput("gcs: at least 4 points are needed (got " + std::to_string(points.size()) + ")");
     for (size_t i = 0; i < points.size(); ++i) {
@@ -309,10 +395,18 @@ struct Reconstructor::Impl {
     }
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
+    if (!cloud.normals.empty() && std::any_of(cloud.normals.begin(), cloud.normals.end(), missing_normal)) {
+      report(Phase::normal_fitting, 0);
+      normals_filled = fill_missing_normals(cloud, normals_unusable);
+      if (!normals_unusable) report(Phase::normal_fitting, 1);
+    }
     if (std::isfinite(opt.smooth_noise_ratio) && cloud.size() >= 8) {
+      report(Phase::noise_estimate, 0);
       const NoiseEstimate noise = estimate_noise(cloud, {.threads = opt.threads});
       noise_ratio = noise.ratio();
+      report(Phase::noise_estimate, 0.5);
       if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud, {.threads = opt.threads}) > 0;
+      report(Phase::noise_estimate, 1);
     }
     // Collinear: the second principal extent vanishes.
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -360,10 +454,16 @@ struct Reconstructor::Impl {
 
     oriented = opt.orient_winners && cloud.has_normals();
     if (opt.orient_winners && !cloud.has_normals()) {
-      for (size_t i = 0; i < cloud.size(); ++i) point_normal(i);
+      report(Phase::normal_fitting, 0);
+      constexpr size_t kSteps = 20;  // progress reports while fitting
+      for (size_t s = 0; s < kSteps; ++s) {
+        for (size_t i = s * cloud.size() / kSteps; i < (s + 1) * cloud.size() / kSteps; ++i) point_normal(i);
+        report(Phase::normal_fitting, 0.8 * static_cast<double>(s + 1) / kSteps);
+      }
       oriented_fitted = fitted_normal;
       oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8,
                                         opt.quadric_normals ? &fitted_residual : nullptr, opt.quadric_normals);
+      report(Phase::normal_fitting, 1);
     }
     if (oriented) {
       encloses = detail::normal_flux(cloud.points, cloud.has_normals() ? cloud.normals : oriented_fitted) > kEnclosingFlux;
@@ -1329,22 +1429,31 @@ struct Reconstructor::Impl {
     return ctx.mean_edge_length;
   }
 
-  ReconstructResult make_result(double seconds) {
+  // `step(fraction)` is called before each post-processing step and at the end (may be empty).
+  ReconstructResult make_result(double seconds, const std::function<void(double)>& step = {}) {
     ReconstructResult r;
     r.noise_ratio = noise_ratio;
     r.cloud_smoothed = cloud_smoothed;
+    r.normals_filled = normals_filled;
+    r.normals_unusable = normals_unusable;
     r.mesh = mesh;
     r.mesh.garbage_collection();
+    auto report = [&](double fraction) {
+      if (step) step(fraction);
+    };
     // Post-processing of the copy only (the loop's own mesh stays as it is).
     const double ell = mean_edge_length();
+    report(0);
     if (opt.project_to_samples) {
       detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * ell);
     }
+    report(0.1);
     if (opt.delaunay_flips) {
       const auto t_flips = Clock::now();
       detail::delaunay_flips(r.mesh, kFlipMinDihedralCos, kFlipMaxPasses);
       r.seconds_fit += seconds_since(t_flips);
     }
+    report(0.2);
     if (opt.fit_surface) {
       const auto t_fit = Clock::now();
       detail::SurfaceFitParams fp;
@@ -1362,6 +1471,7 @@ struct Reconstructor::Impl {
       detail::fit_to_samples(r.mesh, cloud.points, !oriented ? none : cloud.has_normals() ? cloud.normals : oriented_fitted, fp);
       r.seconds_fit += seconds_since(t_fit);
     }
+    report(0.6);
     if (opt.stacked_layer_rounds > 0 && r.mesh.n_faces() > 0) {
       const auto t_layers = Clock::now();
       twist::StackedLayerOptions so;
@@ -1373,6 +1483,7 @@ struct Reconstructor::Impl {
       if (r.stacked_faces_removed > 0) r.mesh.garbage_collection();
       r.seconds_fit += seconds_since(t_layers);
     }
+    report(0.7);
     if (opt.resolve_self_intersections && r.mesh.n_faces() > 0) {
       const auto t_untangle = Clock::now();
       detail::UntangleParams up;
@@ -1390,6 +1501,7 @@ struct Reconstructor::Impl {
     }
     for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
     r.mesh.update_face_normals();
+    report(1);
     r.stop_reason = finished_reason;
     r.basic_steps = steps;
     r.splits = splits;
@@ -1408,7 +1520,18 @@ struct Reconstructor::Impl {
 
   ReconstructResult run(const ProgressCallback& progress) {
     const auto t0 = Clock::now();
-    if (finished) return make_result(0.0);
+    auto post = [&](double fraction) {
+      if (!progress) return;
+      Progress p;
+      p.phase = Phase::post_processing;
+      p.phase_fraction = fraction;
+      p.vertices = live;
+      p.target_vertices = opt.target_vertices;
+      p.basic_steps = steps;
+      p.seconds = seconds_since(t0);
+      (void)progress(p);
+    };
+    if (finished) return make_result(0.0, post);
     const std::uint64_t step_limit =
         opt.max_steps_per_vertex == 0 ? std::numeric_limits<std::uint64_t>::max()
                                       : opt.max_steps_per_vertex * static_cast<std::uint64_t>(opt.target_vertices);
@@ -1416,6 +1539,8 @@ struct Reconstructor::Impl {
     auto report = [&]() {
       if (!progress) return true;
       Progress p;
+      p.phase = Phase::growth;
+      p.phase_fraction = opt.target_vertices ? std::min(1.0, static_cast<double>(live) / static_cast<double>(opt.target_vertices)) : 1.0;
       p.vertices = live;
       p.target_vertices = opt.target_vertices;
       p.basic_steps = steps;
@@ -1461,7 +1586,8 @@ struct Reconstructor::Impl {
       finished_reason = reason;
       report();
     }
-    ReconstructResult r = make_result(seconds_since(t0));
+    // After a cancel the callback is not called again (the post-processing still runs, unreported).
+    ReconstructResult r = make_result(seconds_since(t0), reason == StopReason::cancelled ? std::function<void(double)>() : post);
     r.stop_reason = reason;
     return r;
   }
@@ -1537,9 +1663,10 @@ struct Reconstructor::Impl {
   }
 };
 
-Reconstructor::Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options)
+Reconstructor::Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options,
+                             const ProgressCallback& progress)
     : impl_(std::make_unique<Impl>()) {
-  impl_->init(std::move(points), options);
+  impl_->init(std::move(points), options, progress);
 }
 Reconstructor::~Reconstructor() = default;
 
@@ -1562,8 +1689,15 @@ void Reconstructor::run_basic_steps(std::uint64_t n) {
 
 ReconstructResult reconstruct(edgefront::PointCloud points, const ReconstructOptions& options,
                               const ProgressCallback& progress) {
-  Reconstructor r(std::move(points), options);
+  Reconstructor r(std::move(points), options, progress);
   return r.run(progress);
+}
+
+size_t max_target_vertices(const edgefront::PointCloud& points) {
+  edgefront::PointCloud copy;
+  copy.points = points.points;
+  drop_repeated_points(copy);
+  return std::min<size_t>(copy.size(), 50'000'000);
 }
 
 }  // namespace gcs

@@ -7,7 +7,9 @@
 ///   edgefront::write_points(cloud, "scan.ply");
 /// \endcode
 
+#include <cstddef>
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "edgefront/point_cloud.h"
@@ -34,10 +36,51 @@ namespace edgefront {
 ///        every error read_mesh reports for PLY/OFF/OBJ files.
 PointCloud read_points(const std::filesystem::path& path);
 
+/// How read_points treats the normals of a file (the overloads with options).
+struct PointReadOptions {
+  /// false (default): a normal that cannot be normalized (zero-length, NaN or infinite
+  /// components, a length that underflows or overflows) is an error, as in read_points(path).
+  /// true: such a normal is *dropped*: replaced by (NaN, NaN, NaN) and counted in
+  /// PointReadReport::invalid_normals, the other normals are kept (normalized); when no normal of
+  /// the file is valid (e.g. all zero), the cloud gets no normals at all (`normals` empty).
+  /// A normal token that is not a number at all is still an error (a malformed file).
+  bool tolerate_invalid_normals = false;
+  /// true: the file's normals are not read or checked at all (the cloud has none); the columns of
+  /// a 6-number text file must still be there (the count per line is checked) but are not parsed.
+  bool ignore_normals = false;
+};
+
+/// What read_points with options dropped.
+struct PointReadReport {
+  std::size_t points = 0;           ///< points read
+  std::size_t invalid_normals = 0;  ///< normals dropped (tolerate_invalid_normals)
+  std::size_t zero_normals = 0;     ///< of them: exactly (0, 0, 0)
+  /// The file had normals but none was valid: the cloud has none (tolerate_invalid_normals).
+  bool all_normals_invalid = false;
+  /// The file had normals and they were not read (ignore_normals).
+  bool normals_ignored = false;
+  /// One line per fact above worth telling a user, e.g. "3 of 20000 normals are invalid
+  /// (3 zero-length) and were dropped (first: line 12: zero-length normal)"; empty when the
+  /// file was read as it is.
+  std::string warning;
+};
+
+/// read_points with PointReadOptions; `report` (may be null) receives what was dropped.
+/// Dropped normals are (NaN, NaN, NaN) in the returned cloud, so a consumer must treat a
+/// non-finite normal as "no normal for this point" (gcs::Reconstructor does: it fits one).
+/// 	hrow IoError as read_points, except for the normals tolerated or ignored by `options`.
+PointCloud read_points(const std::filesystem::path& path, const PointReadOptions& options,
+                       PointReadReport* report = nullptr);
+
 /// Like read_points, for file content already in memory; `name` only picks the format by its
 /// extension and names the data in messages.
 /// \throw IoError as read_points.
 PointCloud read_points_from_buffer(std::string_view data, const std::filesystem::path& name);
+
+/// read_points_from_buffer with PointReadOptions (see read_points with options).
+/// \throw IoError as read_points_from_buffer, except for the normals tolerated or ignored.
+PointCloud read_points_from_buffer(std::string_view data, const std::filesystem::path& name,
+                                   const PointReadOptions& options, PointReadReport* report = nullptr);
 
 /// Writes `cloud` as `.xyz` (also `.txt`, `.pts`: `x y z [nx ny nz]` per line, shortest
 /// round-trip decimals) or `.ply` (binary little endian, `double` properties), atomically.

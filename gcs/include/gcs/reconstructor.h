@@ -264,15 +264,33 @@ enum class StopReason {
 /// "target reached", "cancelled", "step limit", or what shrunk_by_operations means.
 std::string to_string(StopReason reason);
 
-/// Passed to the progress callback.
-struct Progress {
-  std::size_t vertices = 0;         ///< live vertices now
-  std::size_t target_vertices = 0;  ///< the target
-  std::uint64_t basic_steps = 0;    ///< basic steps so far
-  double seconds = 0;               ///< wall time since run() started
+/// The phases of a reconstruction, in order. The first two run in the Reconstructor's
+/// constructor, the last two in run().
+enum class Phase {
+  noise_estimate,   ///< estimating the cloud's noise and, when it is noisy, smoothing it
+  normal_fitting,   ///< fitting normals: to every point of a cloud without normals (and orienting
+                    ///< them), or to the points whose input normals are missing (non-finite or zero)
+  growth,           ///< the growing-cell-structures loop (vertices counts up to the target)
+  post_processing   ///< projection, Delaunay flips, surface fit, stacked layers, crossings
 };
 
-/// Returns false to cancel: the run stops at once and returns the valid mesh reached so far.
+/// "noise estimate", "normal fitting", "growth", "post-processing".
+std::string to_string(Phase phase);
+
+/// Passed to the progress callback.
+struct Progress {
+  Phase phase = Phase::growth;      ///< what the reconstructor is doing now
+  /// Share of the current phase done, in [0, 1] (growth: vertices / target_vertices; the other
+  /// phases: 0 when they start, 1 when they end, steps in between where the phase has steps).
+  double phase_fraction = 0;
+  std::size_t vertices = 0;         ///< live vertices now (0 before growth)
+  std::size_t target_vertices = 0;  ///< the target
+  std::uint64_t basic_steps = 0;    ///< basic steps so far
+  double seconds = 0;               ///< wall time since the phase's call (constructor or run()) started
+};
+
+/// Returns false to cancel the growth: the run stops at once and returns the valid mesh reached so
+/// far. The return value is ignored in the other phases (they are not interruptible).
 using ProgressCallback = std::function<bool(const Progress&)>;
 
 /// What one registered operation did over a run.
@@ -316,18 +334,32 @@ struct ReconstructResult {
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
   double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (ReconstructOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;     ///< the loop ran on the smoothed cloud
+  /// Input normals that were missing (non-finite, or zero: e.g. dropped by edgefront::read_points
+  /// with tolerate_invalid_normals) and were replaced by a normal fitted to the point's neighbours
+  /// and oriented like the nearest given normals; 0 for a cloud without normals.
+  std::size_t normals_filled = 0;
+  /// The cloud had normals but none was usable: it was reconstructed as a cloud without normals.
+  bool normals_unusable = false;
 };
 
 /// A reconstruction in progress: holds the mesh, the loop's state and the registered operations.
 /// Not copyable; not thread-safe.
 class Reconstructor {
  public:
-  /// Checks the input and builds the start mesh.
+  /// Checks the input, estimates its noise (smoothing a noisy cloud), fits the normals that are
+  /// missing and builds the start mesh. Input normals that are not finite or are zero count as
+  /// missing: each gets a plane fitted to its point's 16 nearest points, oriented like the sum of
+  /// the 8 nearest given normals (ReconstructResult::normals_filled); when no normal is usable the
+  /// cloud is taken as one without normals (ReconstructResult::normals_unusable).
+  /// \param progress called at the start and end of the noise estimate and of the normal fitting
+  ///        (Progress::phase; may be empty; its return value is ignored here).
   /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates,
   ///        coordinates outside edgefront/coordinate_range.h's range, points
   ///        that all coincide or are collinear (no surface to reconstruct), and options out of
-  ///        their documented ranges (target below 4 or above the number of distinct points, ...).
-  explicit Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options = {});
+  ///        their documented ranges (target below 4 or above the number of distinct points, ...:
+  ///        see max_target_vertices).
+  explicit Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options = {},
+                         const ProgressCallback& progress = {});
   ~Reconstructor();
   Reconstructor(const Reconstructor&) = delete;
   Reconstructor& operator=(const Reconstructor&) = delete;
@@ -337,7 +369,9 @@ class Reconstructor {
   void add_operation(std::shared_ptr<Operation> operation);
 
   /// Runs until the target, a cancel or the step limit. The callback (may be empty) is called
-  /// every `progress_interval` splits; it may call validate() and inspect mesh(). Calling run()
+  /// every `progress_interval` splits (Phase::growth), and at the start and after each step of
+  /// the post-processing (Phase::post_processing; not after a cancel); in the growth it may call
+  /// validate() and inspect mesh(). Calling run()
   /// again after a cancel continues from where it stopped; after the target it returns at once.
   /// The returned mesh is a garbage-collected copy in input coordinates.
   /// \throw whatever an operation throws (the reconstructor is then unusable).
@@ -367,7 +401,12 @@ class Reconstructor {
   std::unique_ptr<Impl> impl_;
 };
 
-/// One call: `Reconstructor(points, options).run(progress)`.
+/// The largest target_vertices the reconstructor accepts for `points`: the number of distinct
+/// points (points repeating an earlier one exactly are not counted), at most 50,000,000. A
+/// caller without a target of its own can take min(5000, max_target_vertices(points)).
+std::size_t max_target_vertices(const edgefront::PointCloud& points);
+
+/// One call: `Reconstructor(points, options, progress).run(progress)`.
 ReconstructResult reconstruct(edgefront::PointCloud points, const ReconstructOptions& options = {},
                               const ProgressCallback& progress = {});
 
