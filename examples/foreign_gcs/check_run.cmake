@@ -1,10 +1,10 @@
 # ctest foreign_gcs.*: runs foreign-gcs on a small closed vault shell (ef-shapes, t/R 0.2, 3000
-# oriented points, 400 vertices) and judges the output with gcs-eval: it reads back, has no face
+# oriented points, VERTICES vertices) and judges the output with gcs-eval: it reads back, has no face
 # dropped when read (every face wound consistently with its neighbours), is edge- and vertex-
 # manifold, closed in one piece where expected; the orientation consistency against the points'
-# normals is printed and, with the repair, must reach MIN_RAW. With the repair the run is repeated
-# and must give the same bytes.
-# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED [MIN_RAW]
+# normals is printed and must reach MIN_RAW when given. With RERUN the run is repeated and must give
+# the same bytes.
+# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED VERTICES [MIN_RAW] [MIN_FACES (default VERTICES)] [RERUN]
 cmake_minimum_required(VERSION 3.20)
 set(cloud ${WORK}/${NAME}.xyz)
 set(mesh ${WORK}/${NAME}.off)
@@ -14,7 +14,7 @@ execute_process(COMMAND ${EF_SHAPES} ${SHAPE} --points 3000 --thickness 0.2 --se
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "ef-shapes failed (${rc}): ${err}")
 endif()
-set(args ${cloud} -o ${mesh} --vertices 400 --seed 1)
+set(args ${cloud} -o ${mesh} --vertices ${VERTICES} --seed 1)
 if(NOT TWIST)
   list(APPEND args --no-twist)
 endif()
@@ -34,7 +34,10 @@ string(JSON raw GET "${json}" orientation_consistency raw)
 string(JSON comp GET "${json}" orientation_consistency per_component)
 message(STATUS "${NAME}: ${vertices} vertices, ${faces} faces, ${components} components, ${border_loops} border loops, closed ${closed}; orientation consistency raw ${raw}, per component ${comp}")
 set(problems "")
-if(faces LESS 600)
+if(NOT DEFINED MIN_FACES)
+  set(MIN_FACES ${VERTICES})
+endif()
+if(faces LESS MIN_FACES)
   list(APPEND problems "only ${faces} faces")
 endif()
 if(NOT edge_manifold OR NOT vertex_manifold)
@@ -52,7 +55,7 @@ endif()
 if(DEFINED MIN_RAW AND raw LESS MIN_RAW)
   list(APPEND problems "orientation consistency ${raw} below ${MIN_RAW}")
 endif()
-if(TWIST)
+if(RERUN)
   file(SHA256 ${mesh} first)
   execute_process(COMMAND ${FOREIGN_GCS} ${args} RESULT_VARIABLE rc ERROR_QUIET)
   file(SHA256 ${mesh} second)

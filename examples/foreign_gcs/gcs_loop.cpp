@@ -143,7 +143,7 @@ class Loop {
   LoopStats run(std::vector<Point>& out_v, std::vector<Tri>& out_f) {
     const auto t0 = std::chrono::steady_clock::now();
     init();
-    const size_t cap = 50 * o_.target_vertices * o_.lambda;
+    const size_t cap = 8 * o_.target_vertices * o_.lambda;  // a closed run needs about 2 x target x lambda
     while (m_.live_vertices() < o_.target_vertices) {
       if (stats_.basic_steps >= cap) {
         stats_.step_limit = true;
@@ -215,6 +215,7 @@ class Loop {
     so.repair.peel_flaps = 3;
     so.repair.peel_from_cuts = true;
     so.repair.drop_turned_patches = 4;
+    so.max_retwists = o_.max_retwists;
     session_ = std::make_unique<twist::RepairSession>(V, F, so);
     replay(session_->initial_record());  // empty for the octahedron
     m_.dirty.clear();
@@ -277,17 +278,30 @@ class Loop {
   }
 
   // -- Vertex split ---------------------------------------------------------------------------
+  /// The most active vertex that can be split is split (a border vertex whose fan has no interior
+  /// edge cannot: its counter is reset and the next one is taken).
   void split_most_active() {
+    for (int attempt = 0; attempt < 16; ++attempt)
+      if (split_once()) return;
+  }
+
+  bool split_once() {
     int v = -1;
     for (size_t i = 0; i < m_.vertex_slots(); ++i)
       if (m_.alive[i] && !m_.vfaces[i].empty() && (v < 0 || tau_[i] > tau_[static_cast<size_t>(v)])) v = static_cast<int>(i);
-    if (v < 0) return;
+    if (v < 0) return true;
     bool closed = false;
-    if (!m_.ring(v, ring_w_, closed)) return;  // not a single fan (never expected): skip this split
+    if (!m_.ring(v, ring_w_, closed) || (!closed && ring_w_.size() < 3)) {
+      tau_[static_cast<size_t>(v)] = 0;  // not a single fan (never expected), or no interior edge
+      return false;
+    }
     const size_t k = ring_w_.size();
-    size_t j = 0;  // the longest edge (v, ring[j])
+    // At a border vertex (an open fan ring[0] .. ring[k-1]), only its interior edges (ring[1] ..
+    // ring[k-2]) are split: a border vertex wins the samples beyond the border, and splitting its
+    // border edges would only lengthen the border. A fan of one face has none: no split this time.
+    size_t j = closed ? 0 : 1;  // the longest edge (v, ring[j])
     double longest = -1;
-    for (size_t i = 0; i < k; ++i) {
+    for (size_t i = j; i < (closed ? k : k - 1); ++i) {
       const double d = dist2(m_.pos[static_cast<size_t>(v)], m_.pos[static_cast<size_t>(ring_w_[i])]);
       if (d > longest) {
         longest = d;
@@ -316,8 +330,9 @@ class Loop {
       m_.add_face({v, vn, b});
       grid_.insert(vn, mid);
       ++stats_.splits;
+      return true;
     } else {
-      // At a border (or a vertex of valence 3): split the longest edge itself.
+      // At a border (an interior edge) or at a vertex of valence 3: split the longest edge itself.
       const int vn = add_vertex(mid, half);
       for (const auto& [p, q] : {std::pair<int, int>{v, u}, std::pair<int, int>{u, v}}) {
         int f = -1, x = -1;
@@ -333,6 +348,7 @@ class Loop {
       grid_.insert(vn, mid);
       ++stats_.edge_splits;
     }
+    return true;
   }
 
   /// The live face holding v -> a -> b in this cyclic order, -1 for none.

@@ -28,6 +28,7 @@ struct LoopOptions {
   double half_life = 6.0;         ///< signal counters halve every half_life * |V| basic steps
   double mu = 20.0;               ///< a vertex that has not won for mu * |V| steps is collapsed
   size_t min_repair_vertices = 200;  ///< no repair while the mesh is smaller (a coarse blob has no layers)
+  size_t max_retwists = 2;        ///< twist::SessionOptions::max_retwists (a place repaired more often is cut out)
   size_t probes_per_batch = 16;   ///< "far along the surface?" queries per batch (0: none)
   bool verbose = false;           ///< one line per batch on stderr
 };

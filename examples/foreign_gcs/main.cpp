@@ -28,13 +28,15 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--probes K] [--verbose]\n"
+    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--verbose]\n"
     "  POINTS         text file, one point per line: x y z [nx ny nz]\n"
     "  -o MESH        output mesh, .off or .ply (ASCII)\n"
     "  --vertices N   stop at N live vertices (6 to 10000000, default 2000)\n"
     "  --seed S       random seed (0 to 2^63-1, default 1)\n"
     "  --no-twist     no twist repair (the session still mirrors the mesh for the probes)\n"
     "  --batch SPLITS vertex splits between two repair calls (1 to 100000, default 10; 100 basic steps each)\n"
+    "  --repair-from N no incremental repair while the mesh has fewer than N vertices (default 200)\n"
+    "  --max-retwists R a place the repair turned more often than R times is cut out (default 2)\n"
     "  --probes K     'far along the surface?' MDF probes per batch (0 to 10000, default 16)\n"
     "  --verbose      one line per batch on stderr\n";
 
@@ -153,6 +155,10 @@ int main(int argc, char** argv) {
         o.twist = false;
       } else if (a == "--batch") {
         o.batch_splits = parse_count(a, value(), 1, 100000);
+      } else if (a == "--repair-from") {
+        o.min_repair_vertices = parse_count(a, value(), 0, 10000000);
+      } else if (a == "--max-retwists") {
+        o.max_retwists = parse_count(a, value(), 0, 1000000);
       } else if (a == "--probes") {
         o.probes_per_batch = parse_count(a, value(), 0, 10000);
       } else if (a == "--verbose") {
