@@ -2,9 +2,9 @@
 # scripts/bench-foreign.sh: the foreign GCS host (examples/foreign_gcs) on closed vault shells,
 # without and with EdgeFront's twist repair (issue 23's measurement).
 #
-#   scripts/bench-foreign.sh [--seeds N] [--vertices V] [--points P] [--thickness T] [--build DIR] [--out DIR]
+#   scripts/bench-foreign.sh [--first S] [--seeds N] [--vertices V] [--points P] [--thickness T] [--build DIR] [--out DIR]
 #
-# Defaults: seeds 1-10, 3000 vertices, 20000 oriented points, t/R 0.2 (R = 1). Per seed: a cloud
+# Defaults: seeds 1-10 (--first S --seeds N: seeds S .. S+N-1), 3000 vertices, 20000 oriented points, t/R 0.2 (R = 1). Per seed: a cloud
 # from ef-shapes (seed S), foreign-gcs with --no-twist and with the repair (seed S), each result
 # judged by gcs-eval against a denser sample of the same shape (200000 points, seed 1000 + S):
 # orientation consistency "raw" (share of the area whose normal agrees with the nearest
@@ -13,9 +13,10 @@
 # Prints a Markdown table (one row per run) and a summary; the meshes stay in --out.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-SEEDS=10 VERTICES=3000 POINTS=20000 THICKNESS=0.2 BUILD=$ROOT/build OUT=${TMPDIR:-/tmp}/bench-foreign
+FIRST=1 SEEDS=10 VERTICES=3000 POINTS=20000 THICKNESS=0.2 BUILD=$ROOT/build OUT=${TMPDIR:-/tmp}/bench-foreign
 while (($#)); do
   case $1 in
+    --first) FIRST=$2; shift 2 ;;
     --seeds) SEEDS=$2; shift 2 ;;
     --vertices) VERTICES=$2; shift 2 ;;
     --points) POINTS=$2; shift 2 ;;
@@ -38,7 +39,7 @@ echo "# foreign-gcs on vault-shell t/R $THICKNESS, $VERTICES vertices, $POINTS p
 echo
 echo "| seed | repair | raw | per component | components | border loops | vertices | faces | far probes | wall s | session s |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
-for ((s = 1; s <= SEEDS; ++s)); do
+for ((s = FIRST; s < FIRST + SEEDS; ++s)); do
   cloud=$OUT/cloud-$s.xyz gt=$OUT/gt-$s.xyz
   [[ -s $cloud ]] || "$SHAPES" vault-shell --points "$POINTS" --thickness "$THICKNESS" --seed "$s" -o "$cloud" 2>/dev/null
   [[ -s $gt ]] || "$SHAPES" vault-shell --points 200000 --thickness "$THICKNESS" --seed $((1000 + s)) -o "$gt" 2>/dev/null
