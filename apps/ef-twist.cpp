@@ -14,6 +14,7 @@
 /// disagree meet; --detector: the detector's regions instead). Then orients the result globally,
 /// prints the report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -53,6 +54,11 @@ int main(int argc, char** argv) {
                  " flipped from a radius of about 2 x this many edges)")
       ->capture_default_str()
       ->check(edgefront::apps::real_range(0.0, 100.0));
+  size_t turned = 0;
+  app.add_option("--turned", turned,
+                 "with --points: straighten, collapse or (at a border) remove turned-over patches of up to this many faces that"
+                 " lie over another layer (0 ... 64, default 0 = off)")
+      ->check(edgefront::apps::integer_range(0, 64));
   app.add_flag("--detector", detector, "with --points: repair the detector's regions instead of labelling every face by the points");
   edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
 
@@ -72,6 +78,7 @@ int main(int argc, char** argv) {
     options.detect.reference = reference.get();
     options.max_repairs = max_repairs;
     options.cut_cost = cut_cost;
+    options.drop_turned_patches = turned;
     options.label_by_reference = !detector;
     const size_t faces_before = read.mesh.n_faces();
     auto area_of = [](const edgefront::Mesh& mesh) {
@@ -137,7 +144,8 @@ int main(int argc, char** argv) {
     std::cout << "faces flipped:      " << r.faces_flipped << " by repairs, " << r.faces_flipped_globally << " by the global orientation ("
               << r.components_flipped << " components)\n";
     const double area_after = area_of(read.mesh);
-    std::cout << "faces removed:      " << r.faces_removed << " (" << 100.0 * (area_before - area_after) / area_before
+    const double removed_share = (area_before - area_after) / area_before;  // rounding noise of a flip below 1e-9
+    std::cout << "faces removed:      " << r.faces_removed << " (" << (std::abs(removed_share) < 1e-9 ? 0.0 : 100.0 * removed_share)
               << "% of the area)\n";
     std::cout << "components:         " << pieces_before << " -> " << edgefront::compute_stats(read.mesh).components << "\n";
     if (r.seam_pieces_flipped > 0) {

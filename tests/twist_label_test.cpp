@@ -252,6 +252,33 @@ TEST(TwistLabel, ATurnedOverDiskOnAThickPlateNeedsTheReference) {
   EXPECT_GE(twist::truth_consistency(s.mesh, s), 0.99);
 }
 
+TEST(TwistLabel, ScatteredRejectionsDoNotShredTheSurface) {
+  // A correct sphere whose reference rejects every third face: no region is worth its cut, so
+  // nothing is flipped and the sphere stays whole (the detector path needs its border-ratio guard
+  // for this; the labelling prices the cuts).
+  const Mesh sphere = edgefront::shapes::icosphere(3);
+  edgefront::PointCloud cloud;
+  for (FaceHandle f : sphere.faces()) {
+    const Vec3 c = sphere.calc_face_centroid(f);
+    cloud.points.push_back(c);
+    cloud.normals.push_back(f.idx() % 3 == 0 ? -c.normalized() : c.normalized());
+  }
+  const twist::ReferenceNormals ref(cloud);
+  twist::RepairOptions o;
+  o.detect.reference = &ref;
+  o.detect.thin_wall = 0;  // every rejection counts as a vote
+  Mesh m = sphere;
+  const twist::RepairReport r = twist::repair(m, o);
+  EXPECT_EQ(r.repairs, 0u);
+  EXPECT_EQ(r.cut_edges, 0u);
+  EXPECT_EQ(m.n_faces(), sphere.n_faces());
+  EXPECT_EQ(components(m), 1u);
+  o.cut_cost = 0;  // free cuts: every rejected face would be flipped, but alone each is a tiny piece
+  const twist::ReferenceLabelling free_cuts = twist::label_by_reference(sphere, o);
+  EXPECT_EQ(free_cuts.regions.size(), 0u);
+  EXPECT_GT(free_cuts.regions_too_small, 100u);
+}
+
 TEST(TwistLabel, OptionsAreChecked) {
   twist::TwistedShape s = twist::flipped_disk_plate();
   twist::RepairOptions o;

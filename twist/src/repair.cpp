@@ -1097,6 +1097,13 @@ RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
     ++report.seam_edges;
   }
   report.non_orientable = report.seam_edges > 0;
+  // No piece the cuts separated is removed (min_cut_piece_share does not apply: the labelling
+  // never makes a piece under min_component_faces); border flaps only when asked.
+  if (o.peel_flaps > 0) {
+    const size_t peeled = peel_flaps(mesh, o, dups);
+    report.flap_faces_removed += peeled;
+    report.faces_removed += peeled;
+  }
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
   drop_turned_patches(mesh, o, report);
   if (o.garbage_collect) mesh.garbage_collection();

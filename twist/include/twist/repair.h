@@ -38,7 +38,8 @@ struct RepairOptions {
   /// which stay local), a component that the cuts separated (it holds a vertex of a cut) and that
   /// has fewer than max(min_component_faces, this share x the largest component's faces) faces is
   /// removed: a sliver or fragment too small to stand as a part of the surface, often lying over
-  /// another piece with the same orientation. Components the input had stay. In [0, 1]; 0 = only
+  /// another piece with the same orientation. Components the input had stay. Not applied when
+  /// labelling by a reference (`label_by_reference`: it removes nothing). In [0, 1]; 0 = only
   /// `min_component_faces` at each cut.
   double min_cut_piece_share = 0.02;
   /// At the end of a full repair: rounds of removing border flaps, faces with a vertex on the
