@@ -204,7 +204,11 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
     size_t flipped = 0;
     Mesh m = flip_patches(sphere, 4, 40 + 60 * seed, seed, &flipped);
     ASSERT_LT(twist::orientation_consistency(m, ref), 0.97) << seed;
-    const twist::RepairReport r = twist::repair(m);
+    twist::RepairOptions o;
+    o.flip_seam_pieces = true;
+    Mesh off = m;
+    EXPECT_EQ(twist::repair(off).seam_faces_flipped, 0u) << "off by default";
+    const twist::RepairReport r = twist::repair(m, o);
     EXPECT_DOUBLE_EQ(twist::orientation_consistency(m, ref), 1.0) << seed;
     EXPECT_EQ(r.seam_faces_flipped, flipped) << seed;
     EXPECT_GE(r.seam_pieces_flipped, 1u) << seed;
@@ -228,7 +232,9 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
     m = std::move(r);
   }
   ASSERT_LT(twist::orientation_consistency(m, ref), 0.5);
-  const twist::RepairReport r = twist::repair(m);
+  twist::RepairOptions o;
+  o.flip_seam_pieces = true;
+  const twist::RepairReport r = twist::repair(m, o);
   EXPECT_DOUBLE_EQ(twist::orientation_consistency(m, ref), 1.0);
   EXPECT_EQ(r.seam_faces_flipped, flipped);
   EXPECT_GE(r.components_flipped, 1u) << "the group is closed: outward normals";

@@ -6,6 +6,7 @@
 #include <deque>
 #include <functional>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -986,6 +987,7 @@ void flip_seam_pieces(Mesh& mesh, DupList& dups, RepairReport& report) {
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   auto piece = [&](HalfedgeHandle h) { return labels.vertex_component[static_cast<size_t>(mesh.from_vertex_handle(h).idx())]; };
   std::map<std::pair<int, int>, DupList> seams;  // (piece, piece) -> coincident vertex pairs
+  std::map<std::pair<int, int>, std::pair<double, size_t>> turn;  // (piece, piece) -> (sum of n.n' across the seam, edges)
   for (const auto& entry : by_key) {
     const std::vector<HalfedgeHandle>& hs = entry.second;
     for (size_t i = 0; i < hs.size(); ++i)
@@ -995,7 +997,18 @@ void flip_seam_pieces(Mesh& mesh, DupList& dups, RepairReport& report) {
         DupList& pairs = seams[{std::min(a, b), std::max(a, b)}];
         pairs.emplace_back(mesh.from_vertex_handle(hs[j]), mesh.from_vertex_handle(hs[i]));
         pairs.emplace_back(mesh.to_vertex_handle(hs[j]), mesh.to_vertex_handle(hs[i]));
+        const FaceHandle fa = mesh.opposite_face_handle(hs[i]), fb = mesh.opposite_face_handle(hs[j]);
+        auto& t = turn[{std::min(a, b), std::max(a, b)}];
+        t.first += OpenMesh::dot(detail::unit_normal(detail::face_points(mesh, fa)), detail::unit_normal(detail::face_points(mesh, fb)));
+        ++t.second;
       }
+  }
+  // Only seams across which the surface runs on smoothly but turned over (the faces on the two
+  // sides face opposite ways: n.n' < -0.5 on average) are flipped; a seam across which they face
+  // the same way, or fold, is what a twist repair's cut leaves (the layers cross there) and stays.
+  for (auto it = seams.begin(); it != seams.end();) {
+    const auto& t = turn[it->first];
+    it = t.first < -0.5 * static_cast<double>(t.second) ? std::next(it) : seams.erase(it);
   }
   if (seams.empty()) return;
   std::vector<std::vector<int>> adjacent(labels.count);

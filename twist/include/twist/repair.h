@@ -124,8 +124,12 @@ struct RepairOptions {
   /// half-edge mesh holds as a separate piece in its hole) are flipped whole, the smaller class
   /// of each group of pieces so joined, so the seams become compatible; the global orientation
   /// then treats each group as one surface. Needs no reference. A seam within one piece (a Moebius
-  /// band) is left and reported (`non_orientable`).
-  bool flip_seam_pieces = true;
+  /// band) is left and reported (`non_orientable`). Only seams across which the faces face
+  /// opposite ways (n.n' < -0.5 on average) count. Off by default: the cut of a twist repair
+  /// leaves the same signature (the flipped side meets the rest along a reversed seam), so on a
+  /// mesh that was repaired before this would undo the repair; turn it on for meshes with patches
+  /// wound the other way (with a reference the labelling flips such pieces anyway).
+  bool flip_seam_pieces = false;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
