@@ -5,6 +5,17 @@
 ///   ef-distance MESH (--source V[,V...] | --loop V,V,V... | --point F:b0,b1,b2 ...)
 ///               [--side left|right] [--max-distance D] [--method mdf|windows|fast|dijkstra]
 ///               [-o FILE.txt | -o FILE.ply] [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
+///   ef-distance MESH (--sources V[,V...] | --sources-file F) [--targets V[,V...] | --targets-file F]
+///               [--max-distance D] [--method ...] [--threads N] [-q] [-o FILE.csv | -o FILE.txt]
+///
+/// Batch mode (--sources, --sources-file: one field per source, edgefront/batch_distance.h), on
+/// --threads threads (default: all cores; the numbers are the same for any count). Output, CSV
+/// (comma-separated, one header line, numbers as below, "inf" where not reached): without targets
+/// a header "vertex,S1,S2,..." (the source indices) and one line per vertex "v,d(S1,v),d(S2,v),...";
+/// with targets a header "source,T1,T2,..." and one line per source "S,d(S,T1),d(S,T2),...". A
+/// sources or targets file holds vertex indices separated by blanks, commas or line breaks; '#'
+/// starts a comment to the end of its line. A progress bar goes to stderr when it is a terminal
+/// (not with -q).
 ///
 /// Output: one distance per line in input vertex order, then the copies of pinched vertices the
 /// reader appended (each with its original's distance) ("inf" where not reached: another
@@ -32,13 +43,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
@@ -47,6 +62,7 @@
 #include "app_parse.h"
 #include "app_render.h"
 #include "app_util.h"
+#include "edgefront/batch_distance.h"
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
@@ -123,6 +139,34 @@ void append_number(std::string& text, double x) {
   text.append(buf, ptr);
 }
 
+/// Vertex indices from a file: separated by blanks, commas or line breaks, '#' to the end of a
+/// line is a comment. \throws IoError when the file cannot be read, InvalidInput / AppUsageError
+/// naming the file, line and token for a bad index, InvalidInput for a file without any index.
+std::vector<VertexHandle> read_vertex_file(const std::string& path, size_t n_vertices, const std::string& option) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw edgefront::IoError(option + ": '" + path + "' is not a readable regular file");
+  }
+  std::ifstream in(path);
+  if (!in) throw edgefront::IoError(option + ": cannot open '" + path + "'");
+  std::vector<VertexHandle> out;
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    for (char& c : line) {
+      if (c == ',' || c == '\t' || c == '\r') c = ' ';
+    }
+    std::istringstream tokens(line);
+    std::string token;
+    while (tokens >> token) {
+      out.push_back(edgefront::apps::parse_vertex(token, n_vertices, option + " '" + path + "' line " + std::to_string(number)));
+    }
+  }
+  if (in.bad()) throw edgefront::IoError(option + ": reading '" + path + "' failed");
+  if (out.empty()) throw edgefront::InvalidInput(option + ": '" + path + "' holds no vertex index");
+  return out;
+}
+
 std::string stop_name(edgefront::DistanceStop stop) {
   switch (stop) {
     case edgefront::DistanceStop::NotStarted: return "not started";
@@ -169,13 +213,122 @@ int main(int argc, char** argv) {
                  "3-4x slower; vertices and points only), fast (one update per neighbour: about 2x a Dijkstra, "
                  "less accurate than mdf; vertices and points only) or dijkstra (over edges)")
       ->check(CLI::IsMember({"mdf", "windows", "fast", "dijkstra"}));
-  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply")
-      ->check(edgefront::apps::output_file({".txt", ".ply"}));
+  app.add_option("-o,--output", output, "write the distances to FILE.txt, or a PLY with distance and colors to FILE.ply; "
+                                        "batch: the CSV table to FILE.csv or FILE.txt")
+      ->check(edgefront::apps::output_file({".txt", ".ply", ".csv"}));
   edgefront::apps::PngOutput png(app);
+  std::string sources_text, sources_file, targets_text, targets_file;
+  unsigned threads = 0;
+  bool quiet = false;
+  CLI::Option* sources_opt =
+      app.add_option("--sources", sources_text, "batch: one distance field per source vertex, V[,V...] (CSV output)")
+          ->check(edgefront::apps::index_list());
+  CLI::Option* sources_file_opt =
+      app.add_option("--sources-file", sources_file, "batch: the source vertices from a file (indices separated by "
+                                                     "blanks, commas or lines; '#' comments)");
+  CLI::Option* targets_opt =
+      app.add_option("--targets", targets_text, "batch: only the distances to these vertices, V[,V...]: a sources x "
+                                                "targets matrix")
+          ->check(edgefront::apps::index_list());
+  CLI::Option* targets_file_opt =
+      app.add_option("--targets-file", targets_file, "batch: the target vertices from a file (as --sources-file)");
+  for (CLI::Option* batch_opt : {sources_opt, sources_file_opt}) {
+    batch_opt->excludes(source_opt)->excludes(loop_opt)->excludes(point_opt);
+  }
+  sources_opt->excludes(sources_file_opt);
+  targets_opt->excludes(targets_file_opt);
+  edgefront::apps::add_threads_option(app, threads);
+  app.add_flag("-q,--quiet", quiet, "batch: no progress bar");
+  app.footer("Batch output (--sources, --sources-file): CSV with one header line. Without targets: "
+             "\"vertex,S1,S2,...\" then one line per vertex \"v,d(S1,v),d(S2,v),...\"; with targets: "
+             "\"source,T1,T2,...\" then one line per source \"S,d(S,T1),...\". \"inf\" where not reached; numbers "
+             "read back to the same double. The numbers do not depend on --threads.");
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
+    const bool batch = sources_opt->count() > 0 || sources_file_opt->count() > 0;
+    if (!batch && (targets_opt->count() > 0 || targets_file_opt->count() > 0)) {
+      throw edgefront::apps::AppUsageError("--targets and --targets-file need --sources or --sources-file");
+    }
+    if (batch) {
+      const std::string ext = output.empty() ? std::string() : lower_extension(output);
+      if (ext == ".ply") throw edgefront::apps::AppUsageError("batch mode (--sources) writes CSV: use -o FILE.csv or FILE.txt");
+      if (png.requested()) throw edgefront::apps::AppUsageError("--png draws one field: not with --sources");
+      if (side_opt->count() > 0) throw edgefront::apps::AppUsageError("--side applies only to --loop");
+      const edgefront::MeshReadResult read = edgefront::read_mesh(input);
+      for (const std::string& w : read.report.warnings) std::cerr << kAppName << ": warning: " << w << "\n";
+      const edgefront::Mesh& mesh = read.mesh;
+      const size_t n = mesh.n_vertices();
+      const std::vector<VertexHandle> sources = sources_file.empty()
+                                                    ? parse_vertex_list(sources_text, n, "--sources")
+                                                    : read_vertex_file(sources_file, n, "--sources-file");
+      std::vector<VertexHandle> targets;
+      if (!targets_text.empty()) targets = parse_vertex_list(targets_text, n, "--targets");
+      if (!targets_file.empty()) targets = read_vertex_file(targets_file, n, "--targets-file");
+      const bool matrix = !targets.empty();
+      edgefront::DistanceOptions options;
+      options.max_distance = max_distance;
+      options.directions = false;
+      options.method = edgefront::parse_distance_method(method);
+      const bool bar = !quiet && isatty(fileno(stderr));
+      edgefront::BatchOptions bo;
+      bo.threads = threads;
+      if (bar) {
+        bo.progress = [](size_t done, size_t total) {
+          constexpr size_t kWidth = 40;
+          const size_t filled = total ? done * kWidth / total : kWidth;
+          std::fprintf(stderr, "\r[%s%s] %zu/%zu sources", std::string(filled, '#').c_str(),
+                       std::string(kWidth - filled, ' ').c_str(), done, total);
+          std::fflush(stderr);
+          return true;
+        };
+      }
+      const auto t0 = std::chrono::steady_clock::now();
+      const edgefront::DistanceMatrix m = matrix ? edgefront::geodesic_distances(mesh, sources, targets, options, bo)
+                                                 : edgefront::geodesic_distances(mesh, sources, options, bo);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (bar) std::fprintf(stderr, "\n");
+      EF_CHECK(m.status == edgefront::BatchStatus::Complete, "the batch did not complete");
+      std::string text;
+      text.reserve((m.rows + 1) * (m.columns + 1) * 12);
+      text.append(matrix ? "source" : "vertex");
+      for (const VertexHandle v : matrix ? targets : sources) text.append(",").append(std::to_string(v.idx()));
+      text.push_back('\n');
+      if (matrix) {
+        for (size_t i = 0; i < m.rows; ++i) {
+          text.append(std::to_string(sources[i].idx()));
+          for (size_t j = 0; j < m.columns; ++j) {
+            text.push_back(',');
+            append_number(text, m(i, j));
+          }
+          text.push_back('\n');
+        }
+      } else {
+        for (size_t v = 0; v < m.columns; ++v) {
+          text.append(std::to_string(v));
+          for (size_t i = 0; i < m.rows; ++i) {
+            text.push_back(',');
+            append_number(text, m(i, v));
+          }
+          text.push_back('\n');
+        }
+      }
+      edgefront::apps::write_text(output, text);
+      std::ostringstream s;
+      s << kAppName << ": " << method << ", " << m.rows << " sources x " << m.columns << (matrix ? " targets" : " vertices")
+        << ", " << m.threads << " thread(s), " << std::fixed << std::setprecision(3) << seconds * 1e3 << " ms, peak working memory "
+        << m.peak_working_memory_bytes << " bytes (all threads) + result " << m.values.size() * sizeof(double)
+        << " bytes + table " << m.table_bytes << " bytes\n";
+      std::cerr << s.str();
+      return 0;
+    }
+    if (!output.empty() && lower_extension(output) == ".csv") {
+      throw edgefront::apps::AppUsageError("-o FILE.csv is the batch table: use --sources (or -o FILE.txt)");
+    }
+    if (app.get_option("--threads")->count() > 0) {
+      throw edgefront::apps::AppUsageError("--threads applies to the batch mode (--sources, --sources-file)");
+    }
     if (source_text.empty() && loop_text.empty() && point_texts.empty()) {
-      throw edgefront::apps::AppUsageError("one of --source, --loop or --point is required");
+      throw edgefront::apps::AppUsageError("one of --source, --sources, --sources-file, --loop or --point is required");
     }
     if (!loop_text.empty() && (method == "windows" || method == "fast")) {
       throw edgefront::apps::AppUsageError("--method " + method + " takes --source or --point, not --loop");

@@ -20,7 +20,7 @@
 #include "app_util.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

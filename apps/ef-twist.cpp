@@ -1,7 +1,7 @@
 /// ef-twist: find and repair twisted (inconsistently oriented) regions of a mesh.
 ///
-///   ef-twist MESH [--points CLOUD [--cut-cost C] [--detector]] [--radius R] [--max-repairs N] -o FIXED
-///            [--png FILE.png ...]
+///   ef-twist MESH [--points CLOUD [--cut-cost C] [--detector]] [--radius R] [--max-repairs N] [--threads N]
+///            -o FIXED [--png FILE.png ...]
 ///
 /// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input). Without --points
 /// the twisted regions found are red and their sealed borders purple; with --points the faces the
@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
                  " lie over another layer (0 ... 64, default 0 = off)")
       ->check(edgefront::apps::integer_range(0, 64));
   app.add_flag("--detector", detector, "with --points: repair the detector's regions instead of labelling every face by the points");
+  unsigned threads = 0;
+  edgefront::apps::add_threads_option(app, threads);
   edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
 
   return edgefront::apps::run_app(app, argc, argv, [&] {
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
     options.cut_cost = cut_cost;
     options.drop_turned_patches = turned;
     options.label_by_reference = !detector;
+    options.detect.threads = threads;
     const size_t faces_before = read.mesh.n_faces();
     auto area_of = [](const edgefront::Mesh& mesh) {
       double a = 0;

@@ -1,6 +1,6 @@
 /// gcs-eval: judge a reconstructed mesh against a ground truth (gcs/evaluation.h).
 ///
-///   gcs-eval MESH GT [--samples N] [--seed S] [--json] [--no-self-intersections] [--point-to-sample]
+///   gcs-eval MESH GT [--samples N] [--seed S] [--json] [--no-self-intersections] [--point-to-sample] [--threads N]
 ///
 /// GT is a point set (.xyz/.txt/.pts, or .ply/.off/.obj without faces; with or without normals)
 /// or a mesh (.off/.obj/.ply/.stl with faces): a mesh file is taken as a mesh when it has faces.
@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
       ->default_val(options.samples)
       ->check(edgefront::apps::integer_range(1, 100000000));
   edgefront::apps::add_seed_option(app, "--seed", options.seed, "sampling seed");
+  edgefront::apps::add_threads_option(app, options.threads);
   app.add_flag("--json", json, "print one JSON object instead of the table");
   app.add_flag("--no-self-intersections", no_self, "skip the self-intersection count");
   app.add_flag("--point-to-sample", point_to_sample,

@@ -4,7 +4,7 @@
 ///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
 ///                   [--no-delaunay-flips] [--keep-crossings]
-///                   [--quiet]
+///                   [--quiet] [--threads N]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
 ///
@@ -103,6 +103,7 @@ int main(int argc, char** argv) {
                "do not resolve self-intersecting face pairs of the result (by default the crossing faces' vertices "
                "are smoothed, and faces still crossing are cut out and their small holes filled; thin shells)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
+  edgefront::apps::add_threads_option(app, options.threads);
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
   std::size_t snapshot_every = 0;

@@ -27,7 +27,7 @@
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "twist/repair_session.h"
 
 namespace {

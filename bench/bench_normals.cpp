@@ -35,7 +35,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud_io.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/cloud_noise.h"
 #include "gcs/cloud_normals.h"
 #include "bench_timing.h"

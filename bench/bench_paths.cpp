@@ -48,7 +48,7 @@
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 // After mesh.h: OpenMesh's subdivider headers rely on what the mesh headers include.
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>

@@ -82,7 +82,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"

@@ -25,7 +25,7 @@
 
 #include "bench_timing.h"
 #include "edgefront/mesh_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 
 namespace {

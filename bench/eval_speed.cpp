@@ -19,7 +19,7 @@
 #include <string>
 
 #include "bench_timing.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 
 int main(int argc, char** argv) {

@@ -57,7 +57,7 @@
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 // ---- heap accounting: every allocation of the process through operator new --------------------
 

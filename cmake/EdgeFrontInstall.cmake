@@ -30,7 +30,7 @@ include(CMakePackageConfigHelpers)
 set(EDGEFRONT_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/EdgeFront"
     CACHE STRING "Where EdgeFrontConfig.cmake is installed, relative to the prefix")
 
-foreach(lib IN ITEMS edgefront render twist gcs)
+foreach(lib IN ITEMS edgefront render twist shapes gcs)
   install(TARGETS ${lib}
     EXPORT ${lib}Targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -43,7 +43,7 @@ foreach(lib IN ITEMS edgefront render twist gcs)
       DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
       FILES_MATCHING PATTERN "*.h")
   endif()
-  # Order matters: EdgeFrontConfig.cmake includes these files edgefront, render, twist, gcs, so that each
+  # Order matters: EdgeFrontConfig.cmake includes these files edgefront, render, twist, shapes, gcs, so that each
   # finds the targets it refers to.
   install(EXPORT ${lib}Targets
     NAMESPACE ${lib}::

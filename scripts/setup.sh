@@ -6,6 +6,7 @@
 #   scripts/setup.sh                       deps + Release build in build/
 #   scripts/setup.sh --with-cgal           also install libcgal-dev (only the cgal_* benchmarks use it)
 #   scripts/setup.sh --with-fuzz           also install clang and libFuzzer (only fuzz/ uses them)
+#   scripts/setup.sh --with-peers          also install python3-open3d (only bench/python compares with it)
 #   scripts/setup.sh --deps-only           install the packages, do not build
 #   scripts/setup.sh -DEDGEFRONT_WERROR=ON extra -D options are passed to the cmake configure step
 #   scripts/setup.sh --target gcs-reconstruct   build only this target (and what it needs)
@@ -18,18 +19,24 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 BUILD_DIR=${EDGEFRONT_BUILD_DIR:-build}
 
-# Libraries, tests and apps. libpng-dev: PNG pictures (render/).
+# Libraries, tests and apps. libpng-dev: PNG pictures (render/). doxygen: the API reference
+# (scripts/docs.sh, CI phase docs). pybind11-dev python3-dev python3-numpy: the Python package
+# (python/); python3-pytest: its tests; python3-dask python3-distributed: the Dask examples and
+# their test.
 PACKAGES=(build-essential cmake libopenmesh-dev libnanoflann-dev libeigen3-dev
-          libgtest-dev libgmock-dev libcli11-dev libpng-dev)
+          libgtest-dev libgmock-dev libcli11-dev libpng-dev doxygen
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed)
 CGAL_PACKAGES=(libcgal-dev)
 FUZZ_PACKAGES=(clang libfuzzer-14-dev)
+PEER_PACKAGES=(python3-open3d)
 
 say() { printf 'setup: %s\n' "$*"; }
 die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
-usage() { sed -n '2,14s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }
+usage() { sed -n '2,15s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; }
 
 with_cgal=0
 with_fuzz=0
+with_peers=0
 deps_only=0
 cmake_args=()
 targets=()
@@ -37,6 +44,7 @@ while (($#)); do
   case $1 in
     --with-cgal) with_cgal=1 ;;
     --with-fuzz) with_fuzz=1 ;;
+    --with-peers) with_peers=1 ;;
     --deps-only) deps_only=1 ;;
     -D?*) cmake_args+=("$1") ;;
     --target)
@@ -53,6 +61,7 @@ done
 wanted=("${PACKAGES[@]}")
 ((with_cgal)) && wanted+=("${CGAL_PACKAGES[@]}")
 ((with_fuzz)) && wanted+=("${FUZZ_PACKAGES[@]}")
+((with_peers)) && wanted+=("${PEER_PACKAGES[@]}")
 
 is_installed() { dpkg -s "$1" 2>/dev/null | grep -q '^Status: install ok installed$'; }
 

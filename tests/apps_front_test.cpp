@@ -31,7 +31,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "edgefront/vertex_front.h"
 #include "render/color.h"
 

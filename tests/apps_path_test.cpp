@@ -14,7 +14,7 @@
 #include "edgefront/connection_path.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

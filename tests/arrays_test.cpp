@@ -20,7 +20,7 @@
 #include "edgefront/geodesic_ring_table.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_edge_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "edgefront/vertex_twins.h"
 
 namespace {

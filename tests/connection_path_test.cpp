@@ -11,7 +11,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "front_test_util.h"
 
 namespace {

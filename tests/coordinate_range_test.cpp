@@ -13,7 +13,7 @@
 #include "edgefront/error.h"
 #include "edgefront/front_source.h"
 #include "edgefront/minimal_distance_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 

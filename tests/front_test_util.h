@@ -14,7 +14,7 @@
 
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace eftest {
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include "../gcs/src/detail/border_topology.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 
 namespace {

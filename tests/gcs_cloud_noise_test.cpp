@@ -17,7 +17,7 @@
 #include "app_test_util.h"
 #include "edgefront/error.h"
 #include "edgefront/point_cloud_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/cloud_noise.h"
 #include "gcs/reconstructor.h"
 

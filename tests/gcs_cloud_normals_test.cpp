@@ -12,7 +12,7 @@
 #include "../gcs/src/detail/double_layer.h"
 #include "edgefront/error.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/cloud_normals.h"
 
 namespace {

@@ -12,7 +12,7 @@
 #include "../gcs/src/detail/sample_projection.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 

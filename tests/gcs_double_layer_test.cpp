@@ -14,7 +14,7 @@
 #include "../gcs/src/detail/double_layer.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 

@@ -24,7 +24,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 
 namespace {

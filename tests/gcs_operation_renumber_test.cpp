@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "../gcs/src/detail/spatial_order.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/operation.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 
 namespace {

@@ -15,7 +15,7 @@
 #include "edgefront/error.h"
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/evaluation.h"
 #include "gcs/reconstructor.h"
 

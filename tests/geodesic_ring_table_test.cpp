@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "front_test_util.h"
 
 namespace {

@@ -23,7 +23,7 @@
 #include "edgefront/geodesic_ring_table.h"
 #include "edgefront/mesh_io.h"
 #include "edgefront/minimal_distance_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "front_test_util.h"
 
 namespace {

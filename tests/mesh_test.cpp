@@ -13,7 +13,7 @@
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "twist/detect.h"
 #include "twist/repair.h"
 

@@ -10,7 +10,7 @@
 
 #include "../gcs/src/detail/neighbor_cache.h"
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

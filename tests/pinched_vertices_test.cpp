@@ -18,7 +18,7 @@
 #include "edgefront/geodesic_ring_table.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "edgefront/vertex_front.h"
 #include "edgefront/vertex_twins.h"
 

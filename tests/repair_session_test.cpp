@@ -11,7 +11,7 @@
 #include <string>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "edgefront/vertex_twins.h"
 #include "edit_test_util.h"
 

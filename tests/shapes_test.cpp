@@ -1,4 +1,4 @@
-// Tests of edgefront/shapes.h: topology and orientation of every mesh, points on the analytic
+// Tests of shapes/shapes.h: topology and orientation of every mesh, points on the analytic
 // surface with the analytic normals, area uniformity, determinism, option checking, the neck's
 // minimum pathway and the Möbius strip. The analytic surfaces are restated here independently
 // of the library (as implicit functions or parametric inversions).
@@ -29,7 +29,7 @@
 #include "edgefront/mesh_io.h"
 #include "edgefront/point_cloud.h"
 #include "edgefront/point_cloud_io.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "../gcs/src/detail/spatial_order.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 
 namespace {

@@ -13,7 +13,7 @@
 #include "edgefront/point_cloud_io.h"
 #include "render/image.h"
 #include "twist/repair.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

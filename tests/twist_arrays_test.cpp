@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "twist/detect.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

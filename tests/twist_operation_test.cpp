@@ -11,10 +11,10 @@
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

@@ -15,11 +15,11 @@
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_cloud.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "twist/orient_soup.h"
 #include "twist/reference_normals.h"
 #include "twist/repair.h"
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 namespace {
 

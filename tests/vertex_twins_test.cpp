@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace {
 

@@ -154,6 +154,14 @@ inline CLI::Option* add_seed_option(CLI::App& app, const std::string& name, std:
       ->capture_default_str();
 }
 
+/// `--threads N`: the threads an app's parallel work uses, 0 ... 4096; 0 (the default) = all
+/// cores. Results do not depend on it (edgefront/parallel.h).
+inline CLI::Option* add_threads_option(CLI::App& app, unsigned& threads) {
+  return app.add_option("--threads", threads, "threads to use, 0 ... 4096 (default 0: all cores); the results are the "
+                                              "same for any count")
+      ->check(integer_range(0, 4096));
+}
+
 /// An output file: its extension (lower case, with the dot) one of `extensions`, its directory
 /// existing, and the path not a directory or another non-regular file.
 inline CLI::Validator output_file(std::vector<std::string> extensions) {

@@ -31,9 +31,6 @@ struct PointIndex::Impl {
   std::vector<Vec3> points;
   Adaptor adaptor{nullptr};
   std::unique_ptr<Tree> tree;
-  // Scratch for k_nearest (a query object is used from one thread at a time).
-  mutable std::vector<size_t> idx;
-  mutable std::vector<double> d2;
 };
 
 PointIndex::PointIndex(std::vector<Vec3> points) : impl_(std::make_unique<Impl>()) {
@@ -62,11 +59,14 @@ void PointIndex::k_nearest(const Vec3& p, size_t k, std::vector<Neighbor>& out) 
   out.clear();
   k = std::min(k, impl_->points.size());
   if (k == 0) return;
-  impl_->idx.resize(k);
-  impl_->d2.resize(k);
-  const size_t got = impl_->tree->knnSearch(&p[0], k, impl_->idx.data(), impl_->d2.data());
+  // Scratch per thread: const queries may run from several threads at once (edgefront/parallel.h).
+  thread_local std::vector<size_t> idx;
+  thread_local std::vector<double> d2;
+  idx.resize(k);
+  d2.resize(k);
+  const size_t got = impl_->tree->knnSearch(&p[0], k, idx.data(), d2.data());
   out.reserve(got);
-  for (size_t i = 0; i < got; ++i) out.push_back({impl_->idx[i], impl_->d2[i]});
+  for (size_t i = 0; i < got; ++i) out.push_back({idx[i], d2[i]});
 }
 
 void PointIndex::radius_search(const Vec3& p, double radius, std::vector<size_t>& out) const {

@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "edgefront/error.h"
+#include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
 #include "detail/local_quadric.h"
 
@@ -73,35 +74,56 @@ std::vector<std::size_t> strided(std::size_t n, std::size_t count) {
 }
 
 // Median distance from the listed points to their nearest other point.
-double median_gap(const PointCloud& cloud, const PointIndex& index, const std::vector<std::size_t>& points) {
-  std::vector<double> gaps;
-  gaps.reserve(points.size());
-  std::vector<PointIndex::Neighbor> near;
-  for (std::size_t i : points) {
-    index.k_nearest(cloud.points[i], kMinNeighbours, near);
-    for (const PointIndex::Neighbor& h : near) {
-      if (h.distance2 > 0) {
-        gaps.push_back(std::sqrt(h.distance2));
-        break;
+// (On `threads` threads, each over a contiguous chunk of `points`; the gaps are joined in chunk
+// order, so the median is the same for any thread count.)
+double median_gap(const PointCloud& cloud, const PointIndex& index, const std::vector<std::size_t>& points,
+                  unsigned threads) {
+  std::vector<std::vector<double>> chunk_gaps(edgefront::threads_for(points.size(), threads));
+  edgefront::parallel_for(points.size(), threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
+    std::vector<double>& gaps = chunk_gaps[chunk];
+    gaps.reserve(end - begin);
+    std::vector<PointIndex::Neighbor> near;
+    for (std::size_t s = begin; s < end; ++s) {
+      index.k_nearest(cloud.points[points[s]], kMinNeighbours, near);
+      for (const PointIndex::Neighbor& h : near) {
+        if (h.distance2 > 0) {
+          gaps.push_back(std::sqrt(h.distance2));
+          break;
+        }
       }
     }
-  }
+  });
+  std::vector<double> gaps;
+  gaps.reserve(points.size());
+  for (const std::vector<double>& g : chunk_gaps) gaps.insert(gaps.end(), g.begin(), g.end());
   return median(gaps);
 }
 
 // The estimate over the listed points of `cloud`: the quadric fits' residuals at k and at 2k
 // neighbours, the surface's own misfit taken out (see NoiseEstimate::noise).
-NoiseEstimate estimate_at(const PointCloud& cloud, const std::vector<std::size_t>& points, std::size_t neighbours) {
+// (Parallel over contiguous chunks of `points`, the residuals joined in chunk order.)
+NoiseEstimate estimate_at(const PointCloud& cloud, const std::vector<std::size_t>& points, std::size_t neighbours,
+                          unsigned threads) {
   QuadricFitter fitter(cloud);
+  const unsigned chunks = edgefront::threads_for(points.size(), threads);
+  std::vector<std::vector<double>> chunk_narrow(chunks), chunk_wide(chunks);
+  edgefront::parallel_for(points.size(), threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
+    QuadricFitter local(cloud, fitter.index());
+    LocalQuadric q, q2;
+    for (std::size_t s = begin; s < end; ++s) {
+      const std::size_t i = points[s];
+      if (local.fit(i, neighbours, q) && local.fit(i, 2 * neighbours, q2)) {
+        chunk_narrow[chunk].push_back(q.residual);
+        chunk_wide[chunk].push_back(q2.residual);
+      }
+    }
+  });
   std::vector<double> narrow, wide;
   narrow.reserve(points.size());
   wide.reserve(points.size());
-  LocalQuadric q, q2;
-  for (std::size_t i : points) {
-    if (fitter.fit(i, neighbours, q) && fitter.fit(i, 2 * neighbours, q2)) {
-      narrow.push_back(q.residual);
-      wide.push_back(q2.residual);
-    }
+  for (unsigned c = 0; c < chunks; ++c) {
+    narrow.insert(narrow.end(), chunk_narrow[c].begin(), chunk_narrow[c].end());
+    wide.insert(wide.end(), chunk_wide[c].begin(), chunk_wide[c].end());
   }
   NoiseEstimate e;
   e.points_used = narrow.size();
@@ -109,7 +131,7 @@ NoiseEstimate estimate_at(const PointCloud& cloud, const std::vector<std::size_t
   e.wide_residual = median(wide);
   e.noise = std::sqrt(std::max(0.0, (kMisfitGrowth * e.residual * e.residual - e.wide_residual * e.wide_residual) /
                                         (kMisfitGrowth - 1)));
-  e.spacing = median_gap(cloud, fitter.index(), points);
+  e.spacing = median_gap(cloud, fitter.index(), points, threads);
   return e;
 }
 
@@ -169,12 +191,12 @@ NoiseEstimate estimate_noise(const PointCloud& cloud, const NoiseOptions& option
   if (options.max_points < 1) throw InvalidInput("estimate_noise: max_points must be >= 1");
   check_cloud(cloud, "estimate_noise");
   if (cloud.size() <= kPatchesAbove * options.max_points)
-    return estimate_at(cloud, strided(cloud.size(), options.max_points), options.neighbours);
+    return estimate_at(cloud, strided(cloud.size(), options.max_points), options.neighbours, options.threads);
   std::vector<std::size_t> inner;
   const PointCloud sub = patches(cloud, options.max_points, inner);
   std::vector<std::size_t> points;
   for (std::size_t s : strided(inner.size(), options.max_points)) points.push_back(inner[s]);
-  return estimate_at(sub, points, options.neighbours);
+  return estimate_at(sub, points, options.neighbours, options.threads);
 }
 
 std::size_t smooth_noise(PointCloud& cloud, const SmoothNoiseOptions& options) {
@@ -186,7 +208,7 @@ std::size_t smooth_noise(PointCloud& cloud, const SmoothNoiseOptions& options) {
   // takes its k nearest among those (a point's k nearest lie within them unless the cell is
   // much denser than the median).
   std::vector<std::vector<std::size_t>> cells;
-  const double cell = 4 * median_gap(cloud, fitter.index(), strided(cloud.size(), 20000));
+  const double cell = 4 * median_gap(cloud, fitter.index(), strided(cloud.size(), 20000), options.threads);
   if (cell > 0) {
     struct KeyHash {
       std::size_t operator()(const std::array<std::int64_t, 3>& k) const {
@@ -207,31 +229,40 @@ std::size_t smooth_noise(PointCloud& cloud, const SmoothNoiseOptions& options) {
     for (std::size_t i = 0; i < cloud.size(); ++i) cells.push_back({i});
   }
   const std::size_t query = std::min(cloud.size(), 2 * options.neighbours + 16);
-  std::vector<PointIndex::Neighbor> candidates;
   std::vector<Vec3> moved = cloud.points;
-  std::size_t count = 0;
-  LocalQuadric q;
-  for (const std::vector<std::size_t>& members : cells) {
-    Vec3 middle(0, 0, 0);
-    for (std::size_t i : members) middle += cloud.points[i];
-    middle /= static_cast<double>(members.size());
-    const std::size_t centre = *std::min_element(members.begin(), members.end(), [&](std::size_t a, std::size_t b) {
-      const double da = (cloud.points[a] - middle).sqrnorm(), db = (cloud.points[b] - middle).sqrnorm();
-      return da != db ? da < db : a < b;
-    });
-    fitter.index().k_nearest(cloud.points[centre], query, candidates);
-    for (std::size_t i : members) {
-      if (!fitter.fit_from(i, options.neighbours, candidates, q)) continue;
-      const Eigen::Vector3d p = eig(cloud.points[i]);
-      const Eigen::Vector3d d = p - q.origin;
-      const double lift = q.height(d.dot(q.u), d.dot(q.v)) - d.dot(q.n);
-      if (lift == 0) continue;
-      const Eigen::Vector3d to = p + lift * q.n;
-      moved[i] = Vec3(to[0], to[1], to[2]);
-      ++count;
+  // Parallel over contiguous chunks of cells: a point is moved by its own cell's work only, which
+  // reads the original cloud, so the result is the same for any thread count.
+  std::vector<std::size_t> chunk_count(edgefront::threads_for(cells.size(), options.threads), 0);
+  edgefront::parallel_for(cells.size(), options.threads, [&](std::size_t first, std::size_t last, unsigned chunk) {
+    QuadricFitter local(cloud, fitter.index());
+    std::vector<PointIndex::Neighbor> candidates;
+    std::size_t& count = chunk_count[chunk];
+    LocalQuadric q;
+    for (std::size_t c = first; c < last; ++c) {
+      const std::vector<std::size_t>& members = cells[c];
+      Vec3 middle(0, 0, 0);
+      for (std::size_t i : members) middle += cloud.points[i];
+      middle /= static_cast<double>(members.size());
+      const std::size_t centre = *std::min_element(members.begin(), members.end(), [&](std::size_t a, std::size_t b) {
+        const double da = (cloud.points[a] - middle).sqrnorm(), db = (cloud.points[b] - middle).sqrnorm();
+        return da != db ? da < db : a < b;
+      });
+      local.index().k_nearest(cloud.points[centre], query, candidates);
+      for (std::size_t i : members) {
+        if (!local.fit_from(i, options.neighbours, candidates, q)) continue;
+        const Eigen::Vector3d p = eig(cloud.points[i]);
+        const Eigen::Vector3d d = p - q.origin;
+        const double lift = q.height(d.dot(q.u), d.dot(q.v)) - d.dot(q.n);
+        if (lift == 0) continue;
+        const Eigen::Vector3d to = p + lift * q.n;
+        moved[i] = Vec3(to[0], to[1], to[2]);
+        ++count;
+      }
     }
-  }
+  });
   cloud.points = std::move(moved);
+  std::size_t count = 0;
+  for (const std::size_t k : chunk_count) count += k;
   return count;
 }
 

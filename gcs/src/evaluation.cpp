@@ -18,6 +18,7 @@
 #include "detail/triangle_closest.h"
 #include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
+#include "edgefront/parallel.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
 
@@ -550,20 +551,33 @@ bool faces_intersect(const Triangle& t1, const Triangle& t2) {
 
 // Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
 // in leaf order).
-std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr) {
+// On `threads` threads (contiguous chunks of the leaf order, the pairs joined in chunk order: the
+// same list for any count).
+std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr,
+                                        unsigned threads = 1) {
   const std::vector<Triangle>& tris = bvh.triangles();
-  std::size_t count = 0;
+  const std::size_t n = static_cast<std::size_t>(bvh.size());
+  const unsigned chunks = edgefront::threads_for(n, threads);
+  std::vector<std::size_t> chunk_count(chunks, 0);
+  std::vector<std::vector<std::pair<int, int>>> chunk_pairs(chunks);
   // Each pair once: triangle k (leaf order) against the overlapping ones after it.
-  for (int k = 0; k < bvh.size(); ++k) {
-    const Triangle& a = tris[static_cast<std::size_t>(bvh.in_order(k))];
-    if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
-    bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
-      const Triangle& b = tris[static_cast<std::size_t>(j)];
-      if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
-        ++count;
-        if (pairs) pairs->emplace_back(bvh.in_order(k), j);
-      }
-    });
+  edgefront::parallel_for(n, threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
+    for (int k = static_cast<int>(begin); k < static_cast<int>(end); ++k) {
+      const Triangle& a = tris[static_cast<std::size_t>(bvh.in_order(k))];
+      if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
+      bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
+        const Triangle& b = tris[static_cast<std::size_t>(j)];
+        if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
+          ++chunk_count[chunk];
+          if (pairs) chunk_pairs[chunk].emplace_back(bvh.in_order(k), j);
+        }
+      });
+    }
+  });
+  std::size_t count = 0;
+  for (unsigned c = 0; c < chunks; ++c) {
+    count += chunk_count[c];
+    if (pairs) pairs->insert(pairs->end(), chunk_pairs[c].begin(), chunk_pairs[c].end());
   }
   return count;
 }
@@ -624,7 +638,7 @@ std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Mesh& mesh) 
 namespace {
 
 // Validity of `mesh`; `bvh` (over the mesh's live faces) is reused when given.
-MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* bvh) {
+MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* bvh, unsigned threads = 1) {
   const edgefront::MeshStats st = edgefront::compute_stats(mesh);
   MeshValidity m;
   m.vertices = st.vertices;
@@ -678,9 +692,9 @@ MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* b
   }
   if (count_self) {
     if (bvh) {
-      m.self_intersecting_pairs = count_self_intersections_of(*bvh);
+      m.self_intersecting_pairs = count_self_intersections_of(*bvh, nullptr, threads);
     } else {
-      m.self_intersecting_pairs = own.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(own)));
+      m.self_intersecting_pairs = own.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(own)), nullptr, threads);
     }
   }
   return m;
@@ -720,9 +734,11 @@ OrientationConsistency orientation_consistency(const Mesh& mesh, const PointClou
   const Samples s = sample_triangles(tris, options.samples, options.seed, "the result mesh");
   const PointIndex index(oriented_gt.points);
   std::vector<Vec3> gt_normal(s.points.size());
-  for (std::size_t i = 0; i < s.points.size(); ++i) {
-    gt_normal[i] = oriented_gt.normals[index.nearest(s.points[i]).index].normalized();
-  }
+  edgefront::parallel_for(s.points.size(), options.threads, [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t i = begin; i < end; ++i) {
+      gt_normal[i] = oriented_gt.normals[index.nearest(s.points[i]).index].normalized();
+    }
+  });
   return orientation_of(mesh, face_of, s, gt_normal);
 }
 
@@ -775,27 +791,31 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
   const Samples rs = sample_triangles(result_tris, options.samples, options.seed, "the result mesh");
   std::vector<double> d_result(rs.points.size());
   std::vector<Vec3> n_gt_at(rs.points.size());
-  for (std::size_t i = 0; i < rs.points.size(); ++i) {
-    if (gt_bvh) {
-      const TriangleBvh::Hit h = gt_bvh->nearest(rs.points[i]);
-      d_result[i] = std::sqrt(h.dist2);
-      n_gt_at[i] = gt_bvh->triangles()[static_cast<std::size_t>(h.tri)].unit_normal();
-    } else {
-      const PointIndex::Neighbor nb = gt_index->nearest(rs.points[i]);
-      d_result[i] = std::sqrt(nb.distance2);
-      if (!gt_point_normals.empty()) n_gt_at[i] = gt_point_normals[nb.index];
+  // The nearest-point queries run on options.threads threads, each sample writing its own slot.
+  edgefront::parallel_for(rs.points.size(), options.threads, [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (gt_bvh) {
+        const TriangleBvh::Hit h = gt_bvh->nearest(rs.points[i]);
+        d_result[i] = std::sqrt(h.dist2);
+        n_gt_at[i] = gt_bvh->triangles()[static_cast<std::size_t>(h.tri)].unit_normal();
+      } else {
+        const PointIndex::Neighbor nb = gt_index->nearest(rs.points[i]);
+        d_result[i] = std::sqrt(nb.distance2);
+        if (!gt_point_normals.empty()) n_gt_at[i] = gt_point_normals[nb.index];
+      }
     }
-  }
+  });
   // Ground truth -> result.
   std::vector<double> d_gt(gt_points.size());
   const TriangleBvh result_bvh(std::move(result_tris));  // also for the self-intersections
-  if (options.exact_surface_distance) {
-    for (std::size_t i = 0; i < gt_points.size(); ++i)
-      d_gt[i] = std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
-  } else {
-    const PointIndex result_index(rs.points);
-    for (std::size_t i = 0; i < gt_points.size(); ++i) d_gt[i] = std::sqrt(result_index.nearest(gt_points[i]).distance2);
-  }
+  std::unique_ptr<PointIndex> result_index;
+  if (!options.exact_surface_distance) result_index = std::make_unique<PointIndex>(rs.points);
+  edgefront::parallel_for(gt_points.size(), options.threads, [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t i = begin; i < end; ++i) {
+      d_gt[i] = result_index ? std::sqrt(result_index->nearest(gt_points[i]).distance2)
+                             : std::sqrt(result_bvh.nearest(gt_points[i]).dist2);
+    }
+  });
 
   for (const double t : options.fscore_thresholds) {
     FScore f;
@@ -816,7 +836,7 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
     e.orientation = orientation_of(result, face_of, rs, n_gt_at);
     e.normal_consistency = e.orientation->unsigned_consistency;
   }
-  e.validity = validity_of(result, options.self_intersections, &result_bvh);
+  e.validity = validity_of(result, options.self_intersections, &result_bvh, options.threads);
   return e;
 }
 

@@ -23,6 +23,9 @@ QuadricFitter::QuadricFitter(const edgefront::PointCloud& cloud)
       own_index_(std::make_unique<PointIndex>(cloud.points)),
       index_(own_index_.get()) {}
 
+QuadricFitter::QuadricFitter(const edgefront::PointCloud& cloud, const PointIndex& index)
+    : points_(cloud.points), normals_(cloud.has_normals() ? &cloud.normals : nullptr), index_(&index) {}
+
 QuadricFitter::QuadricFitter(const std::vector<Vec3>& points, const PointIndex& index)
     : points_(points), normals_(nullptr), index_(&index) {}
 

@@ -195,6 +195,15 @@ constexpr double kEnclosingFlux = 0.2;
 // Holes whose fan fill is refused are retried with rings trimmed only when their border is at most
 // this many mean edge lengths long (ReconstructOptions::border_trim_rings).
 constexpr double kTrimHoleEdges = 10.0;
+// Border loops of at most this many vertices are small holes, closed by a fan around their centroid
+// (a loop one vertex longer is a slit, zipped by fill_slit_holes up to fill_slits_max_vertices).
+constexpr std::size_t kSmallHoleVertices = 8;
+// A hole's fan or a slit's strip must agree with the faces it borders: mean cosine of their normals.
+constexpr double kFillNormalAgreement = 0.5;
+// The Delaunay flips before the fit flip only edges between nearly coplanar faces (cosine of the
+// dihedral angle at least this: about 26 degrees), in at most this many passes over the edges.
+constexpr double kFlipMinDihedralCos = 0.9;
+constexpr int kFlipMaxPasses = 10;
 
 struct Reconstructor::Impl {
   ReconstructOptions opt;
@@ -301,9 +310,9 @@ struct Reconstructor::Impl {
     cloud = std::move(points);
     for (Vec3& p : cloud.points) p -= offset;
     if (std::isfinite(opt.smooth_noise_ratio) && cloud.size() >= 8) {
-      const NoiseEstimate noise = estimate_noise(cloud);
+      const NoiseEstimate noise = estimate_noise(cloud, {.threads = opt.threads});
       noise_ratio = noise.ratio();
-      if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud) > 0;
+      if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud, {.threads = opt.threads}) > 0;
     }
     // Collinear: the second principal extent vanishes.
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -506,7 +515,7 @@ struct Reconstructor::Impl {
   const Vec3& point_normal(size_t i) {
     if (cloud.has_normals()) return cloud.normals[i];
     if (opt.quadric_normals) {
-      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {}, &fitted_residual);
+      if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {.threads = opt.threads}, &fitted_residual);
       return fitted_normal[i];
     }
     if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
@@ -1252,9 +1261,10 @@ struct Reconstructor::Impl {
       }
     }
     if (opt.create_borders) {
-      tally(holes_filled, detail::fill_small_holes(mesh, dist, 8, bridge, 0.5, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
-      if (opt.fill_slits_max_vertices > 8)
-        tally(holes_filled, detail::fill_slit_holes(mesh, dist, 9, opt.fill_slits_max_vertices, bridge, 0.5,
+      tally(holes_filled, detail::fill_small_holes(mesh, dist, kSmallHoleVertices, bridge, kFillNormalAgreement, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
+      if (opt.fill_slits_max_vertices > kSmallHoleVertices)
+        tally(holes_filled, detail::fill_slit_holes(mesh, dist, kSmallHoleVertices + 1, opt.fill_slits_max_vertices,
+                                                       bridge, kFillNormalAgreement,
                                                        trim_rings));
     }
     if (changed) resync();
@@ -1332,7 +1342,7 @@ struct Reconstructor::Impl {
     }
     if (opt.delaunay_flips) {
       const auto t_flips = Clock::now();
-      detail::delaunay_flips(r.mesh, 0.9, 10);
+      detail::delaunay_flips(r.mesh, kFlipMinDihedralCos, kFlipMaxPasses);
       r.seconds_fit += seconds_since(t_flips);
     }
     if (opt.fit_surface) {

@@ -15,7 +15,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/point_index.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "gcs/reconstructor.h"
 #include "gcs/twist_operation.h"
 #include "render/render.h"

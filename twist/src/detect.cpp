@@ -16,6 +16,7 @@
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
+#include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
 
 namespace twist {
@@ -488,6 +489,7 @@ class Detector {
       if (detail::triangles_intersect(points(f), points(g))) {
         si_partner_.emplace(f.idx(), g.idx());
         si_partner_.emplace(g.idx(), f.idx());
+        if (si_log) si_log->emplace_back(f.idx(), g.idx());
       }
     }
   }
@@ -498,6 +500,32 @@ class Detector {
     std::vector<FaceHandle> out;
     out.swap(behind_);
     return out;
+  }
+
+  /// Parallel whole-mesh detection (`detect_pass`): when set, `scan_intersections` also appends
+  /// every pair it finds, (f, g) in the order found.
+  std::vector<std::pair<int, int>>* si_log = nullptr;
+
+  /// Takes the pairs the detectors of all chunks found, in chunk order, as if this detector had
+  /// scanned every face in face order (the first partner found for a face is kept), and marks
+  /// every face of `faces` scanned.
+  void adopt_scans(const std::vector<std::vector<std::pair<int, int>>>& logs, const std::vector<FaceHandle>& faces) {
+    si_partner_.clear();
+    for (const auto& log : logs) {
+      for (const auto& pair : log) {
+        si_partner_.emplace(pair.first, pair.second);
+        si_partner_.emplace(pair.second, pair.first);
+      }
+    }
+    for (FaceHandle f : faces) scanned_.emplace(f.idx(), 1);
+  }
+  /// Takes the faces another detector tested, and those it found ambiguous, with its statistics.
+  void adopt_tests(const Detector& other) {
+    tested_.insert(other.tested_.begin(), other.tested_.end());
+    ambiguous_.insert(other.ambiguous_.begin(), other.ambiguous_.end());
+    stats.faces_tested += other.stats.faces_tested;
+    stats.distance_queries += other.stats.distance_queries;
+    stats.vertices_settled += other.stats.vertices_settled;
   }
 
   /// Whether `test` looks for self-intersections (`DetectOptions::self_intersections`, and in
@@ -637,7 +665,52 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
     order.push_back(f);
     return true;
   };
-  if (!options.restrict_to) {
+  // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
+  constexpr std::size_t kFacesPerThread = 1000;
+  const unsigned threads =
+      options.restrict_to ? 1u
+                          : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),
+                                                                        std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
+  if (!options.restrict_to && threads > 1) {
+    // Whole mesh on several threads: contiguous ranges of faces, a detector each (this one takes
+    // the first). The scan and the tests of a face do not depend on other faces' (the caches are
+    // per face), so chunk by chunk gives what one detector gives face by face: the pairs are
+    // merged in face order before the tests, the flagged faces are joined in chunk order.
+    const std::vector<FaceHandle> faces(mesh.faces().begin(), mesh.faces().end());
+    const unsigned chunks = edgefront::threads_for(faces.size(), threads);
+    std::vector<std::unique_ptr<Detector>> workers(chunks);
+    std::vector<std::vector<std::pair<int, int>>> logs(chunks);
+    std::vector<std::vector<std::pair<FaceHandle, Evidence>>> found(chunks);
+    auto detector = [&](unsigned c) -> Detector& {
+      if (c == 0) return det;
+      if (!workers[c]) workers[c] = std::make_unique<Detector>(mesh, options, quick);
+      return *workers[c];
+    };
+    if (options.self_intersections) {
+      edgefront::parallel_for(faces.size(), chunks, [&](std::size_t begin, std::size_t end, unsigned c) {
+        Detector& d = detector(c);
+        d.si_log = &logs[c];
+        for (std::size_t i = begin; i < end; ++i) d.scan_intersections(faces[i]);
+        d.si_log = nullptr;
+      });
+    }
+    edgefront::parallel_for(faces.size(), chunks, [&](std::size_t begin, std::size_t end, unsigned c) {
+      Detector& d = detector(c);
+      if (options.self_intersections) d.adopt_scans(logs, faces);
+      for (std::size_t i = begin; i < end; ++i) {
+        Evidence ev;
+        if (d.test(faces[i], ev)) found[c].emplace_back(faces[i], ev);
+      }
+    });
+    for (unsigned c = 0; c < chunks; ++c) {
+      if (c > 0) det.adopt_tests(detector(c));
+      for (const auto& [f, ev] : found[c]) {
+        flagged.emplace(f.idx(), ev);
+        order.push_back(f);
+      }
+    }
+    for (FaceHandle f : faces) tested.emplace(f.idx(), 1);
+  } else if (!options.restrict_to) {
     if (options.self_intersections) {
       for (FaceHandle f : mesh.faces()) det.scan_intersections(f);
     }

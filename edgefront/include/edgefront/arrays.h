@@ -59,22 +59,38 @@ namespace edgefront {
 /// Only n x 3 is accepted; the shape is kept so that a wrong one gets a clear message.
 class VertexArrayView {
  public:
+  /// An empty view (no rows); the entry points refuse it as a wrong shape.
   VertexArrayView() = default;
+  ///@{
+  /// `rows` x `cols` values at `data`, row-major (only `cols` = 3 is accepted by the checks).
   VertexArrayView(const double* data, size_t rows, size_t cols = 3) : d_(data), size_(rows * cols), cols_(cols) {}
   VertexArrayView(const float* data, size_t rows, size_t cols = 3) : f_(data), size_(rows * cols), cols_(cols) {}
+  ///@}
+  ///@{
   /// A flat array (x0 y0 z0 x1 ...); a size that is not a multiple of `cols` is a wrong shape.
   VertexArrayView(std::span<const double> flat, size_t cols = 3) : d_(flat.data()), size_(flat.size()), cols_(cols) {}
   VertexArrayView(std::span<const float> flat, size_t cols = 3) : f_(flat.data()), size_(flat.size()), cols_(cols) {}
+  ///@}
+  ///@{
+  /// A flat vector (x0 y0 z0 x1 ...), 3 values per row; it must outlive the view's use.
   VertexArrayView(const std::vector<double>& flat) : VertexArrayView(std::span<const double>(flat)) {}
   VertexArrayView(const std::vector<float>& flat) : VertexArrayView(std::span<const float>(flat)) {}
+  ///@}
+  ///@{
+  /// One `{x, y, z}` per row.
   VertexArrayView(std::span<const std::array<double, 3>> rows)
       : d_(rows.empty() ? nullptr : rows.data()->data()), size_(3 * rows.size()) {}
   VertexArrayView(const std::vector<std::array<double, 3>>& rows)
       : VertexArrayView(std::span<const std::array<double, 3>>(rows)) {}
+  ///@}
 
+  /// Number of rows (`size() / cols()`; 0 when `cols()` is 0).
   size_t rows() const { return cols_ ? size_ / cols_ : 0; }
+  /// Values per row (3 for a valid view).
   size_t cols() const { return cols_; }
+  /// Number of values.
   size_t size() const { return size_; }
+  /// True when the data are `float` (else `double`).
   bool is_float() const { return f_ != nullptr; }
   /// Throws InvalidInput naming `what` unless the view is a non-empty n x 3 array.
   void check_shape(const char* what) const;
@@ -83,6 +99,7 @@ class VertexArrayView {
   void check_values(const char* what) const;
   /// Row i, column k (unchecked).
   double at(size_t i, size_t k) const { return d_ ? d_[i * cols_ + k] : static_cast<double>(f_[i * cols_ + k]); }
+  /// Row i as a point (unchecked; needs 3 columns).
   Vec3 point(size_t i) const { return Vec3(at(i, 0), at(i, 1), at(i, 2)); }
 
  private:
@@ -96,20 +113,37 @@ class VertexArrayView {
 /// row, row-major, `int32` or `int64`. Only m x 3 is accepted.
 class FaceArrayView {
  public:
+  /// An empty view (no rows); the entry points refuse it as a wrong shape.
   FaceArrayView() = default;
+  ///@{
+  /// `rows` x `cols` vertex indices at `data`, row-major (only `cols` = 3 is accepted).
   FaceArrayView(const std::int32_t* data, size_t rows, size_t cols = 3) : i32_(data), size_(rows * cols), cols_(cols) {}
   FaceArrayView(const std::int64_t* data, size_t rows, size_t cols = 3) : i64_(data), size_(rows * cols), cols_(cols) {}
+  ///@}
+  ///@{
+  /// A flat array (a0 b0 c0 a1 ...); a size that is not a multiple of `cols` is a wrong shape.
   FaceArrayView(std::span<const std::int32_t> flat, size_t cols = 3) : i32_(flat.data()), size_(flat.size()), cols_(cols) {}
   FaceArrayView(std::span<const std::int64_t> flat, size_t cols = 3) : i64_(flat.data()), size_(flat.size()), cols_(cols) {}
+  ///@}
+  ///@{
+  /// A flat vector (a0 b0 c0 a1 ...), 3 indices per row; it must outlive the view's use.
   FaceArrayView(const std::vector<std::int32_t>& flat) : FaceArrayView(std::span<const std::int32_t>(flat)) {}
   FaceArrayView(const std::vector<std::int64_t>& flat) : FaceArrayView(std::span<const std::int64_t>(flat)) {}
+  ///@}
+  ///@{
+  /// One `{a, b, c}` per row.
   FaceArrayView(std::span<const std::array<int, 3>> rows)
       : i32_(rows.empty() ? nullptr : rows.data()->data()), size_(3 * rows.size()) {}
   FaceArrayView(const std::vector<std::array<int, 3>>& rows) : FaceArrayView(std::span<const std::array<int, 3>>(rows)) {}
+  ///@}
 
+  /// Number of rows (`size() / cols()`; 0 when `cols()` is 0).
   size_t rows() const { return cols_ ? size_ / cols_ : 0; }
+  /// Indices per row (3 for a valid view).
   size_t cols() const { return cols_; }
+  /// Number of indices.
   size_t size() const { return size_; }
+  /// True when the indices are `int64` (else `int32`).
   bool is_int64() const { return i64_ != nullptr; }
   /// Throws InvalidInput naming `what` unless the view is a non-empty m x 3 array.
   void check_shape(const char* what) const;
@@ -129,7 +163,9 @@ class FaceArrayView {
 struct MeshArrays {
   std::vector<double> vertices;  ///< n x 3, row-major
   std::vector<int> faces;        ///< m x 3, row-major
+  /// Number of vertices (rows of `vertices`).
   size_t n_vertices() const { return vertices.size() / 3; }
+  /// Number of faces (rows of `faces`).
   size_t n_faces() const { return faces.size() / 3; }
 };
 
@@ -146,16 +182,17 @@ enum class FaceDropReason {
   EdgeSameDirection, ///< an earlier face uses the edge in the same direction (wound against it, or repeated)
 };
 
+/// A face row the conversion dropped, and why.
 struct DroppedFace {
   size_t row = 0;                ///< the input row
-  FaceDropReason reason = FaceDropReason::EdgeHasTwoFaces;
+  FaceDropReason reason = FaceDropReason::EdgeHasTwoFaces;  ///< why it was dropped
   std::array<int, 2> edge{-1, -1};  ///< the input vertices of the edge it conflicted on, in the face's direction
 };
 
 /// What the conversion changed.
 struct ConversionReport {
-  size_t input_vertices = 0;
-  size_t input_faces = 0;
+  size_t input_vertices = 0;  ///< rows of the vertex array
+  size_t input_faces = 0;     ///< rows of the face array
   std::vector<DroppedFace> dropped_faces;  ///< in row order
   size_t pinched_vertices = 0;             ///< input vertices split into several (one per fan)
   size_t vertex_copies = 0;                ///< copies appended for them
@@ -174,7 +211,7 @@ struct ArrayMesh {
   std::vector<int> face_of_row;
   /// Per mesh face: the input row.
   std::vector<int> face_row;
-  ConversionReport report;
+  ConversionReport report;  ///< what the conversion dropped and split
 };
 
 /// Builds a mesh from arrays (see the file comment).
@@ -239,7 +276,7 @@ struct ArrayDistanceOptions {
 struct DistanceArrays {
   std::vector<double> distance;   ///< per input vertex; +infinity where not reached
   std::vector<double> direction;  ///< n x 3 when asked for (zero at sources and unreached vertices), else empty
-  DistanceStop stop = DistanceStop::NotStarted;
+  DistanceStop stop = DistanceStop::NotStarted;  ///< why the query stopped
 };
 
 /// The vertices a bounded query settled, in the order they settled (non-decreasing distance):
@@ -247,20 +284,20 @@ struct DistanceArrays {
 struct SparseDistances {
   std::vector<int> vertex;        ///< input vertices (a pinched vertex once)
   std::vector<double> distance;   ///< their distances
-  DistanceStop stop = DistanceStop::NotStarted;
+  DistanceStop stop = DistanceStop::NotStarted;  ///< why the query stopped
 };
 
 /// A connection path in the host's indices (see `ConnectionPath`).
 struct PathArrays {
-  PathStatus status = PathStatus::NoPath;
+  PathStatus status = PathStatus::NoPath;  ///< Found, or NoPath (different components)
   std::vector<int> vertices;  ///< input vertices from `from` to `to`, each joined to the next by an edge
   double length = 0;          ///< `ConnectionPath::length`
   /// The geodesic polyline when asked for (`ConnectionPathOptions::polyline`): k x 3 positions,
   /// and per point the mesh edge it lies on as k x 2 input vertices (`edge[2i]` at t = 0,
   /// `edge[2i + 1]` at t = 1) with its parameter `t`; a point at a vertex names that vertex twice.
   std::vector<double> points;
-  std::vector<int> edge;
-  std::vector<double> t;
+  std::vector<int> edge;  ///< k x 2 input vertices per polyline point (see `points`)
+  std::vector<double> t;  ///< per polyline point, its parameter in [0, 1] along `edge`
 };
 
 /// A reusable solver for many queries on one mesh given as arrays: keeps the converted mesh, the
@@ -274,12 +311,16 @@ class GeodesicSolver {
   /// Takes a mesh already converted.
   explicit GeodesicSolver(ArrayMesh converted);
   ~GeodesicSolver();
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   GeodesicSolver(GeodesicSolver&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   GeodesicSolver& operator=(GeodesicSolver&&) noexcept;
 
+  /// The converted mesh and its index maps (see the file comment).
   const ArrayMesh& converted() const;
-  /// Input vertices and faces (rows of the arrays given).
+  /// Input vertices (rows of the vertex array given).
   size_t n_vertices() const;
+  /// Input faces (rows of the face array given).
   size_t n_faces() const;
 
   /// Distance field from input vertices (distance 0). \throws InvalidInput for an empty source,

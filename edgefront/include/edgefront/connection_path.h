@@ -39,6 +39,7 @@ enum class PathMethod {
 
 /// Options of a connection path query.
 struct ConnectionPathOptions {
+  /// The front that finds the path (default: the Minimal Distance Front, a geodesic path).
   PathMethod method = PathMethod::MinimalDistance;
   /// Also compute the geodesic polyline across faces (see `ConnectionPath::polyline`). With the
   /// undirected MDF, the corridor of the shortest edge path (directed search) is straightened too
@@ -74,9 +75,9 @@ struct ConnectionPathOptions {
   /// with a band radius of this fraction of the polyline's length; 0 turns it off. Finite, >= 0.
   /// Its band's vertices count in `processed`.
   double polyline_band = 0.3;
-  /// Polyline: Steiner points per edge in the band step's search (0..64). 8 puts every one of the
-  /// 3000 benchmark pairs on CGAL's models within 0.5% of the exact distance (3 left 2 pairs on
-  /// ChineseDragon at 0.56-0.58%) at about twice the band step's cost; lower it for speed.
+  /// Polyline: Steiner points per edge in the band step's search (0..64). More points, a more
+  /// accurate polyline at a higher cost (the band step's cost about doubles from 3 to 8); lower it
+  /// for speed. Accuracy and time per setting: bench/results/paths.md.
   int polyline_steiner = 8;
 };
 
@@ -89,15 +90,15 @@ enum class PathStatus {
 /// A point of a polyline on the surface: on the mesh edge of `halfedge` at parameter `t` from its
 /// from-vertex (0) to its to-vertex (1). Points at mesh vertices have `vertex` set (and `t` 0 or 1).
 struct PathPoint {
-  HalfedgeHandle halfedge;
-  double t = 0.0;
-  Vec3 position = Vec3(0, 0, 0);
+  HalfedgeHandle halfedge;        ///< the mesh edge the point lies on, as one of its halfedges
+  double t = 0.0;                 ///< parameter along `halfedge`, in [0, 1] (0: its from-vertex)
+  Vec3 position = Vec3(0, 0, 0);  ///< the point in space (the mesh's length unit)
   VertexHandle vertex;  ///< valid when the point is a mesh vertex
 };
 
 /// The answer of a query.
 struct ConnectionPath {
-  PathStatus status = PathStatus::NoPath;
+  PathStatus status = PathStatus::NoPath;  ///< Found, or NoPath (different components)
   /// The vertices from `from` to `to`, each joined to the next by a mesh edge or its twin (a pinched
   /// vertex, see above) (empty without a path; one vertex when from == to).
   std::vector<VertexHandle> vertices;
@@ -114,7 +115,7 @@ struct ConnectionPath {
   /// where the path wraps around one), consecutive points share a face or are twins (the path
   /// passes a pinched vertex).
   std::vector<PathPoint> polyline;
-  double polyline_length = 0.0;
+  double polyline_length = 0.0;  ///< length of `polyline` (the mesh's length unit); 0 without one
   bool polyline_converged = false;  ///< the straightening ended because nothing shortened any more
   /// Elements processed: vertices enclosed/settled by all fronts of all recursion levels (or
   /// vertices settled by the directed search).
@@ -124,9 +125,10 @@ struct ConnectionPath {
   /// Largest working memory during the query (bytes, capacity): the fronts of one search plus the
   /// per-vertex values kept for the processed area (`region_memory_bytes`).
   size_t peak_working_memory_bytes = 0;
-  /// Largest front of one search (front elements: halfedges for MEF/MDF, vertices for the VF) and
-  /// the largest working memory of one front (bytes). These follow the front.
+  /// Largest front of one search (front elements: halfedges for MEF/MDF, vertices for the VF).
+  /// It follows the front.
   size_t peak_front_size = 0;
+  /// Largest working memory of one front (bytes, capacity). It follows the front.
   size_t peak_front_memory_bytes = 0;
   /// Largest memory of the per-vertex values kept for the processed area, in bytes (the MDF's
   /// settled distances of both fronts (meeting test and tracing), the level fronts' values with
@@ -139,13 +141,20 @@ struct ConnectionPath {
 /// must not change while it is used.
 class ConnectionPathFinder {
  public:
+  /// A finder over `mesh` (borrowed: it must outlive the finder and not change while it is used).
   explicit ConnectionPathFinder(const Mesh& mesh);
   explicit ConnectionPathFinder(const Mesh&& mesh) = delete;  ///< the finder reads the mesh: no temporaries
   ~ConnectionPathFinder();
+  /// Takes over the moved-from object's buffers; that object may then only be destroyed or assigned to.
   ConnectionPathFinder(ConnectionPathFinder&&) noexcept;
+  /// Takes over the moved-from object's buffers; that object may then only be destroyed or assigned to.
   ConnectionPathFinder& operator=(ConnectionPathFinder&&) noexcept;
 
   /// One path. from == to gives a one-vertex path of length 0; adjacent vertices (or twins) the edge.
+  /// \param from, to live vertices of the finder's mesh.
+  /// \param options the method and what to compute besides the vertex chain.
+  /// \return the path, or `PathStatus::NoPath` (empty `vertices`) when `from` and `to` lie in
+  ///         different components.
   /// \throws InvalidInput for an invalid or deleted vertex or bad options (naming it).
   /// \throws TopologyError when a front meets a non-manifold vertex.
   ConnectionPath find(VertexHandle from, VertexHandle to, const ConnectionPathOptions& options = {});
@@ -167,7 +176,7 @@ class ConnectionPathFinder {
   std::unique_ptr<Impl> impl_;
 };
 
-/// One connection path (see `ConnectionPathFinder::find`).
+/// One connection path: `ConnectionPathFinder(mesh).find(from, to, options)` (see there).
 ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle to,
                                const ConnectionPathOptions& options = {});
 
@@ -177,7 +186,13 @@ ConnectionPath connection_path(const Mesh& mesh, VertexHandle from, VertexHandle
 /// the funnel algorithm; wherever the straightened path wraps around a vertex with the corridor on
 /// the wrong side (the other side is shorter), the corridor is moved to that side and the path
 /// straightened again, until no change shortens it or `max_flips` changes were made.
-/// Returns the points (see `ConnectionPath::polyline`); `converged` tells why it stopped.
+/// \param mesh the mesh of the chain.
+/// \param chain vertices from one end to the other, at least one.
+/// \param max_flips at most this many corridor changes tried (<= 0: none, only the first
+///        straightening).
+/// \param converged when not null, set to true when the straightening stopped because nothing
+///        shortened any more, false when it stopped at `max_flips`.
+/// \return the points (see `ConnectionPath::polyline`), from the first vertex of `chain` to its last.
 /// \throws InvalidInput when the chain is empty, has an invalid vertex or two consecutive
 ///         vertices that are neither joined by an edge nor twins.
 std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<VertexHandle>& chain,
@@ -198,7 +213,7 @@ std::vector<PathPoint> band_polyline(const Mesh& mesh, const std::vector<PathPoi
                                      int steiner_points = 8, int max_flips = 10000, bool* converged = nullptr,
                                      size_t* band_vertices = nullptr);
 
-/// Sum of the distances between consecutive points.
+/// Sum of the Euclidean distances between consecutive points' positions (0 for fewer than two).
 double polyline_length(const std::vector<PathPoint>& points);
 
 }  // namespace edgefront

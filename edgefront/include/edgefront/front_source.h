@@ -20,13 +20,17 @@ namespace edgefront {
 ///
 /// Build one with the named constructors; `validate_source` checks it against a mesh.
 struct FrontSource {
-  std::vector<VertexHandle> vertices;
-  std::vector<HalfedgeHandle> loop;
+  std::vector<VertexHandle> vertices;  ///< source vertices (empty for a loop source)
+  std::vector<HalfedgeHandle> loop;    ///< the closed halfedge loop, in order (empty for vertex sources)
 
+  /// A single source vertex `v`.
   static FrontSource vertex(VertexHandle v) { return FrontSource{{v}, {}}; }
+  /// Several source vertices (distinct, live), all at level 0 / distance 0.
   static FrontSource from_vertices(std::vector<VertexHandle> vs) { return FrontSource{std::move(vs), {}}; }
+  /// A loop source from halfedges in order (each ending where the next begins; closed).
   static FrontSource from_halfedges(std::vector<HalfedgeHandle> hs) { return FrontSource{{}, std::move(hs)}; }
 
+  /// True for a loop source (`loop` not empty).
   bool is_loop() const { return !loop.empty(); }
 };
 

@@ -18,9 +18,8 @@
 ///
 /// The table stores the vertices in a locality order, not the mesh's: sorted along a Hilbert curve
 /// through their positions (ties by mesh index), so that the rings and per-vertex records a query
-/// touches around its front lie close in memory: on the 416K-vertex armadillo a query and a
-/// Dijkstra on the table both take about a third less time than in the mesh's own order
-/// (bench/results/geodesic-speed.md, session 12).
+/// touches around its front lie close in memory (the effect on query time:
+/// bench/results/geodesic-speed.md).
 /// `index(v)` is the table index of mesh vertex v, `vertex(i)` the mesh vertex at table index i;
 /// `ring`, `edges` and `corners` take table indices, and `Edge::v` is a table index (`Edge::vertex`
 /// the mesh's). Queries take and return mesh indices as always.
@@ -46,11 +45,13 @@
 
 namespace edgefront {
 
+/// Per-mesh ring layout for fast distance queries (see the file comment). Immutable after
+/// construction; several threads may query one table at once.
 class GeodesicRingTable {
  public:
   /// One edge x -> v: the neighbour and the edge length (what a walk over edges reads).
   struct Edge {
-    double len = 0;
+    double len = 0;   ///< the edge length |v - x| (the mesh's length unit)
     int v = -1;       ///< the neighbour's table index
     int vertex = -1;  ///< the neighbour's mesh index (in the padding: no extra memory)
   };
@@ -58,7 +59,10 @@ class GeodesicRingTable {
   /// (the same sense of rotation at every vertex of an oriented mesh).
   struct Corner {
     Vec3 e;                       ///< the edge vector x -> v
-    double cos_after = 1, sin_after = 0;  ///< of the corner angle between this edge and the next one
+    ///@{
+    /// Cosine and sine of the corner angle between this edge and the next one.
+    double cos_after = 1, sin_after = 0;
+    ///@}
     double angle_after = 0;       ///< that corner angle (0 when there is no face after this edge)
     bool face_after = false;      ///< a face lies between this edge and the next one in the walk
   };
@@ -66,7 +70,10 @@ class GeodesicRingTable {
   struct Ring {
     Vec3 point;                   ///< the vertex's position
     double total = 0;             ///< the angle sum (sum of corner angles)
-    double cos_total = 1, sin_total = 0;  ///< of `total`, as the product of the corners' rotations
+    ///@{
+    /// Cosine and sine of `total`, as the product of the corners' rotations.
+    double cos_total = 1, sin_total = 0;
+    ///@}
     std::uint32_t begin = 0;      ///< the ring's first entry in the per-edge arrays
     std::uint32_t size = 0;       ///< the number of neighbours
     std::uint32_t first = 0;      ///< where the ring angle is 0: 0 on a closed ring, the edge after the border gap otherwise
@@ -79,8 +86,11 @@ class GeodesicRingTable {
   /// InternalError when a vertex's ring does not close (corrupt connectivity).
   explicit GeodesicRingTable(const Mesh& mesh);
 
+  /// Vertices of the mesh the table was built from (deleted ones included).
   size_t n_vertices() const { return rings_.size(); }
+  /// Faces of that mesh (`mesh.n_faces()` at build time).
   size_t n_faces() const { return n_faces_; }
+  /// Halfedges of that mesh (`mesh.n_halfedges()` at build time).
   size_t n_halfedges() const { return n_halfedges_; }
   /// The table index of mesh vertex v (0 <= v.idx() < n_vertices(), unchecked).
   int index(VertexHandle v) const { return index_[static_cast<size_t>(v.idx())]; }
@@ -91,6 +101,7 @@ class GeodesicRingTable {
   /// Its edges in walk order (`ring(i).size` of them) and their corners; two arrays, so that a
   /// walk over edges reads 16 bytes per edge.
   std::span<const Edge> edges(int i) const { return span_of(edges_, i); }
+  /// The corners of the vertex at table index i, parallel to `edges(i)`.
   std::span<const Corner> corners(int i) const { return span_of(corners_, i); }
   /// Bytes held by the table.
   size_t memory_bytes() const {

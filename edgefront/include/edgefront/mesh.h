@@ -11,21 +11,28 @@ namespace edgefront {
 /// edges, halfedges and faces (needed for deletion and garbage collection), face normals, and
 /// explicit previous-halfedge links (O(1) `prev_halfedge_handle`).
 struct MeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status);
-  EdgeAttributes(OpenMesh::Attributes::Status);
+  using Point = OpenMesh::Vec3d;   ///< vertex positions: three doubles, in the input's length unit
+  using Normal = OpenMesh::Vec3d;  ///< face (and vertex) normals: three doubles, unit length when computed
+  VertexAttributes(OpenMesh::Attributes::Status);  ///< deletion status per vertex
+  EdgeAttributes(OpenMesh::Attributes::Status);    ///< deletion status per edge
+  /// Deletion status and an explicit previous-halfedge link per halfedge.
   HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+  /// Deletion status and a normal per face.
   FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
 };
 
 /// The triangle mesh used everywhere in EdgeFront.
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 
+/// A point or vector in 3D: three doubles (`[0]`, `[1]`, `[2]`), in the input's length unit.
 using Vec3 = OpenMesh::Vec3d;
+/// A vertex of a `Mesh`: its index (`idx()`, 0-based) or invalid (-1, `is_valid()` false).
 using VertexHandle = OpenMesh::VertexHandle;
+/// A directed edge of a `Mesh` (index or invalid); the two halves of edge e are 2e and 2e+1.
 using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+/// An undirected edge of a `Mesh` (index or invalid).
 using EdgeHandle = OpenMesh::EdgeHandle;
+/// A triangle of a `Mesh` (index or invalid).
 using FaceHandle = OpenMesh::FaceHandle;
 
 /// True when `mesh` has the attributes `MeshTraits` promise: status on vertices, edges, halfedges
@@ -36,6 +43,9 @@ using FaceHandle = OpenMesh::FaceHandle;
 bool has_attributes(const Mesh& mesh);
 /// Adds the attributes `has_attributes` checks (no element deleted) and computes the face normals.
 void restore_attributes(Mesh& mesh);
+/// Checks `has_attributes(mesh)`.
+/// \param mesh the mesh to check.
+/// \param what names the caller in the message (e.g. "distance").
 /// \throws InvalidInput naming `what` when `has_attributes(mesh)` is false, with the fix.
 void require_attributes(const Mesh& mesh, const char* what);
 

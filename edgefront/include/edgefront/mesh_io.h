@@ -24,6 +24,7 @@
 
 namespace edgefront {
 
+/// Options of read_mesh and read_mesh_from_buffer.
 struct MeshReadOptions {
   /// Faces a half-edge mesh cannot hold (a third face on an edge, a face using an edge in the same
   /// direction as an earlier face: wound against it, or a second copy of an oriented face) are
@@ -50,9 +51,10 @@ struct MeshReadReport {
       warnings;  ///< human-readable, e.g. "12 polygons were triangulated into 30 triangles"
 };
 
+/// What read_mesh returns: the mesh and the report of what was found and changed.
 struct MeshReadResult {
-  Mesh mesh;
-  MeshReadReport report;
+  Mesh mesh;              ///< the mesh, face normals computed
+  MeshReadReport report;  ///< counts and warnings of the read
 };
 
 /// Reads a mesh; the format comes from the extension (case-insensitive):
@@ -89,6 +91,9 @@ struct MeshReadResult {
 ///        negative, faces with fewer than 3 indices, bad PLY headers, element counts that cannot
 ///        fit in the file, content that is not a mesh in the expected format, and (with
 ///        `drop_nonmanifold_faces == false`) faces a half-edge mesh cannot hold.
+/// \param path the file; its extension picks the format.
+/// \param options what to do with faces a half-edge mesh cannot hold.
+/// \return the mesh and the report of everything that was changed on the way in.
 MeshReadResult read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
 /// Like read_mesh, for file content already in memory (network buffers, embedded resources,
@@ -102,6 +107,7 @@ MeshReadResult read_mesh_from_buffer(std::string_view data, const std::filesyste
 /// \throw IoError as read_mesh.
 Mesh load_mesh(const std::filesystem::path& path);
 
+/// Options of write_mesh.
 struct MeshWriteOptions {
   /// PLY only: binary_little_endian when true (default), ascii when false.
   bool binary = true;
@@ -122,6 +128,9 @@ struct MeshWriteOptions {
 /// has deleted vertices the rest are renumbered in index order. Coordinates are written exactly
 /// (shortest round-trip decimal text, or `double` in binary PLY; STL stores `float`). The file is
 /// written atomically (see write_file_atomically).
+/// \param mesh the mesh to write (not changed).
+/// \param path the file to create or replace; its extension picks the format.
+/// \param options PLY/OFF extras (binary or ascii PLY, per-vertex scalars and colors).
 /// \throw InvalidInput for an unsupported extension, option arrays whose size is not
 ///        `mesh.n_vertices()`, bad scalar property names, options the format cannot store
 ///        (scalars outside PLY, colors in OBJ or STL), or non-finite vertex coordinates.

@@ -17,6 +17,8 @@ namespace edgefront {
 /// compute_stats and by read_mesh's report.
 inline constexpr double kDegenerateAreaFactor = 1e-12;
 
+/// Counts and measures of the live elements of a mesh (compute_stats). Lengths are in the mesh's
+/// length unit.
 struct MeshStats {
   size_t vertices = 0;              ///< live (non-deleted) vertices, isolated ones included
   size_t faces = 0;                 ///< live faces
@@ -29,10 +31,11 @@ struct MeshStats {
   size_t duplicate_faces = 0;       ///< faces with the vertex set of a face with a lower index
   long euler_characteristic = 0;    ///< V - E + F over live elements
 
+  /// The counts of one connected component.
   struct Component {
-    size_t vertices = 0;
-    size_t faces = 0;
-    size_t border_loops = 0;
+    size_t vertices = 0;      ///< live vertices of the component
+    size_t faces = 0;         ///< live faces of the component
+    size_t border_loops = 0;  ///< cycles of boundary halfedges of the component
     long euler = 0;    ///< V - E + F of the component
     double genus = 0;  ///< (2 - euler - border_loops) / 2; meaningful for orientable manifold surfaces
                        ///< (a half-integer hints at a non-orientable or non-manifold one, and an
@@ -42,17 +45,18 @@ struct MeshStats {
   std::vector<Component> per_component;
 
   Vec3 bbox_min = Vec3(0, 0, 0);  ///< of the live vertices; zero for an empty mesh
-  Vec3 bbox_max = Vec3(0, 0, 0);
-  double bbox_diagonal = 0;
-  double mean_edge_length = 0;  ///< over live edges; 0 without edges
-  double min_edge_length = 0;
-  double max_edge_length = 0;
+  Vec3 bbox_max = Vec3(0, 0, 0);  ///< of the live vertices; zero for an empty mesh
+  double bbox_diagonal = 0;       ///< |bbox_max - bbox_min|; 0 for an empty mesh or a single point
+  double mean_edge_length = 0;    ///< over live edges; 0 without edges
+  double min_edge_length = 0;     ///< shortest live edge; 0 without edges
+  double max_edge_length = 0;     ///< longest live edge; 0 without edges
   /// valence_histogram[k] = number of live vertices with k incident edges (size: max valence + 1;
   /// empty for a mesh without vertices).
   std::vector<size_t> valence_histogram;
 };
 
 /// Statistics of the live (non-deleted) elements of `mesh`. Linear time.
+/// \return counts, measures (in the mesh's length unit) and per-component figures.
 /// \throw InternalError if the halfedge structure is inconsistent (a boundary cycle that does
 ///        not close).
 MeshStats compute_stats(const Mesh& mesh);

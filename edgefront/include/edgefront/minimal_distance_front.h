@@ -24,10 +24,10 @@
 /// `DistanceMethod::Windows` keeps windows per edge instead (MMP/ICH carried in the same front
 /// order): below 5e-4% mean error on the scanned models, about 3-4x the time of the default.
 ///
-/// Accuracy (bench/results/geodesic-*.md): exact (1e-14) on planar meshes under any
-/// triangulation, on open cylinders and cones (1e-13%); on CGAL's six scanned models the mean
-/// relative error is 0.1-0.33%, the 99th percentile 0.52-3.8% (homer; ChineseDragon 1.74%),
-/// Dijkstra 4.3-7.3%, CGAL's heat method 1.2-3% (geodesic-accuracy.md, session 12).
+/// Accuracy: exact (to round-off) on regular planar triangulations and on open cylinders and
+/// cones; on irregular planar triangulations with obtuse triangles a few vertices come out up to
+/// about 2% long (`Windows` is exact there); on CGAL's scanned models a mean relative error of a few tenths of a percent, well
+/// below Dijkstra's and CGAL's heat method's (figures per model: bench/results/geodesic-accuracy.md).
 ///
 /// Memory: the loops, the front-vertex table and the priority queue hold O(front) elements; the
 /// result arrays (`DistanceField`) are the only per-mesh allocation, and the stepwise class can be
@@ -61,7 +61,9 @@ namespace edgefront {
 /// A point on the surface: a face and barycentric coordinates (non-negative, summing to 1) with
 /// respect to the face's vertices in OpenMesh's `fv_range` order.
 struct SurfacePoint {
-  FaceHandle face;
+  FaceHandle face;  ///< a live face of the mesh
+  /// Barycentric coordinates with respect to the face's vertices in `fv_range` order: each >= 0,
+  /// finite, summing to 1 within 1e-9 (default: the centroid).
   std::array<double, 3> bary = {1.0 / 3, 1.0 / 3, 1.0 / 3};
 };
 
@@ -117,8 +119,8 @@ struct DistanceOptions {
   /// settled vertex x and neighbour c. x's ring is laid out by its corner angles (polar
   /// coordinates) when it settles, or read from a prebuilt `GeodesicRingTable`
   /// (geodesic_ring_table.h) passed to `geodesic_distance(mesh, table, ...)`: the same fields bit
-  /// for bit, about 60% less time per query once the table is built (the build costs about 1.5
-  /// Dijkstras: worth it from the second query on a mesh). x keeps its distance to its virtual
+  /// for bit, in less time per query once the table is built (the build costs about as much as
+  /// one or two Dijkstras: worth it from the second query on a mesh). x keeps its distance to its virtual
   /// source and the source's ring angle. c takes the distance from the virtual source found, in a
   /// face x-c-y whose corner y is settled too, where the circles of x's and y's source distances
   /// meet (when the line to c crosses x-y); otherwise
@@ -127,21 +129,18 @@ struct DistanceOptions {
   /// at p (p becomes c's pseudo source); otherwise d + edge length (x a pseudo source: saddles,
   /// borders). Values are clamped between the straight (3D) distance from the source and the
   /// Dijkstra bound, and vertices settle in non-decreasing order: Euclidean <= d <= Dijkstra. Exact
-  /// on planar convex regions, open cylinders and cones (vertex or point sources); on CGAL's six
-  /// scanned models the mean error is 0.13-0.57% (heat method 1.2-3%, Dijkstra 4.3-7.3%, the
-  /// default mode 0.1-0.33%), the 99th percentile 0.45-7%, the asymmetry 0.13-0.57%. Time on the
-  /// 416K-vertex armadillo: per call about 2x `dijkstra_distance` (a binary heap over OpenMesh's
-  /// halfedges; the default mode: 5-6x); on a table (vertices in a locality order) about 0.8x
-  /// `dijkstra_distance` and 2.4x `dijkstra_distance(mesh, table, ...)`, which the order speeds up
-  /// as much (bench/results/geodesic-speed.md). Not provided: the edge front (`peak_front` is 0),
-  /// the stepwise `MinimalDistanceFront` (its `reset` refuses the method), loop sources (they run
-  /// `Mdf`). A vertex nearer the source than all its neighbours gets
-  /// its first settled neighbour's distance.
+  /// on planar convex regions, open cylinders and cones (vertex or point sources); on scanned
+  /// models less accurate than the default mode and far more than Dijkstra, in a small multiple
+  /// of `dijkstra_distance`'s time, less than the default's (accuracy:
+  /// bench/results/geodesic-accuracy.md; time: bench/results/geodesic-speed.md). Not provided:
+  /// the edge front (`peak_front` is 0), the stepwise `MinimalDistanceFront` (its `reset` refuses
+  /// the method), loop sources (they run `Mdf`). A vertex nearer the source than all its
+  /// neighbours gets its first settled neighbour's distance.
   DistanceMethod method = DistanceMethod::Mdf;
   /// Keep the Minimal Edge Front under the distances: `front_size`, `peak_front` and `validate`
   /// follow it, and its loops count in the working memory. The distances do not need it. Off, the
-  /// front is not expanded: about 10% less time for a full field (bench/results/geodesic-speed.md,
-  /// session 8), the same distances, directions, order and stop; `peak_front` is then 0 for vertex
+  /// front is not expanded: somewhat less time for a full field (bench/results/geodesic-speed.md),
+  /// the same distances, directions, order and stop; `peak_front` is then 0 for vertex
   /// and point sources, and the working memory counts the distance records and the queue.
   /// Non-manifold vertices (not split into twins) are still refused (when they settle instead of
   /// when they are reached).
@@ -151,7 +150,7 @@ struct DistanceOptions {
 
 /// Why a distance computation stopped.
 enum class DistanceStop {
-  NotStarted,
+  NotStarted,      ///< no query has run yet
   Exhausted,       ///< every vertex of the source's component (ahead of a loop source) settled
   MaxDistance,     ///< the next vertex would lie beyond `max_distance`
   TargetReached,   ///< `target` settled
@@ -168,7 +167,7 @@ struct DistanceField {
   std::vector<Vec3> direction;
   /// Vertices in the order they settled (non-decreasing distance up to round-off).
   std::vector<VertexHandle> order;
-  DistanceStop stop = DistanceStop::NotStarted;
+  DistanceStop stop = DistanceStop::NotStarted;  ///< why the computation stopped
   size_t peak_front = 0;                ///< largest number of front halfedges
   size_t peak_working_memory_bytes = 0; ///< largest working set (loops, tables, queue)
 };
@@ -177,10 +176,14 @@ struct DistanceField {
 /// small queries: `reset` keeps buffers and touches only what it visits).
 class MinimalDistanceFront {
  public:
+  /// A front over `mesh` (borrowed: it must outlive the front and not change during a query).
+  /// Call `reset` to start a query.
   explicit MinimalDistanceFront(const Mesh& mesh);
   explicit MinimalDistanceFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~MinimalDistanceFront();
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   MinimalDistanceFront(MinimalDistanceFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   MinimalDistanceFront& operator=(MinimalDistanceFront&&) noexcept;
 
   /// Starts from vertices (distance 0) or a closed edge path (distance to the path, on its ahead
@@ -194,6 +197,7 @@ class MinimalDistanceFront {
   bool step();
   /// Runs until a stop condition; returns why.
   DistanceStop run();
+  /// Why the current query stopped (`NotStarted` while it runs or before the first `reset`).
   DistanceStop stop_reason() const;
 
   /// Called when a vertex settles, with its distance and unit direction toward the source.
@@ -201,10 +205,15 @@ class MinimalDistanceFront {
 
   /// Distance of a vertex that is on the front or settled and still remembered, if known.
   std::optional<double> distance(VertexHandle v) const;
+  /// Halfedges currently in the edge front (see `DistanceOptions::track_front`).
   size_t front_size() const;
+  /// Largest `front_size()` seen since `reset`.
   size_t peak_front_size() const;
+  /// Bytes held by the working containers now (capacity, not size).
   size_t working_memory_bytes() const;
+  /// Largest `working_memory_bytes()` seen since `reset`.
   size_t peak_working_memory_bytes() const;
+  /// Vertices settled since `reset`.
   size_t settled_count() const;
 
   /// Structural check of the underlying edge front plus the distance invariants (finite,

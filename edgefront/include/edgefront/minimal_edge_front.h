@@ -45,6 +45,7 @@ namespace edgefront {
 
 /// Something that happened during an expansion, reported to `MinimalEdgeFront::set_event_callback`.
 struct FrontEvent {
+  /// What happened.
   enum class Kind {
     Collision,     ///< a new arc touched the front at `vertex`; loops re-paired there
     Split,         ///< a collision split one loop into two (reported with loop tracking on)
@@ -54,15 +55,15 @@ struct FrontEvent {
     Pinch,         ///< `vertex`, a twin of a vertex that joined the front (a pinched vertex, see
                    ///< above), joined with it as a seed: it starts a loop of its own around its fan
   };
-  Kind kind = Kind::Collision;
-  VertexHandle vertex;
+  Kind kind = Kind::Collision;  ///< what happened
+  VertexHandle vertex;          ///< where it happened (see `Kind`)
   int level = 0;  ///< the level being built when it happened
 };
 
 /// One closed loop of the front, in order. `vertices[i]` is the end of `halfedges[i]`.
 struct FrontLoop {
-  std::vector<HalfedgeHandle> halfedges;
-  std::vector<VertexHandle> vertices;
+  std::vector<HalfedgeHandle> halfedges;  ///< the loop's halfedges, each ending where the next begins
+  std::vector<VertexHandle> vertices;     ///< `vertices[i]` = to-vertex of `halfedges[i]`
   bool inert = false;    ///< every halfedge lies on the mesh border: the loop rests there
   bool barrier = false;  ///< the back side of a loop source, never expanded (see `FrontSource`)
 };
@@ -75,7 +76,7 @@ struct MinimalEdgeFrontOptions {
   /// Keep an O(mesh) record of enclosed vertices so that `validate()` can also check that every
   /// front halfedge has unprocessed surface ahead and that no vertex is enclosed twice. For tests.
   bool debug_tracking = false;
-  /// When non-zero, the vertices of each level are expanded in a pseudo-random order drawn from
+  /// When non-zero (any value), the vertices of each level are expanded in a pseudo-random order drawn from
   /// this seed instead of the order they joined in. Levels do not depend on it; tests use it to
   /// show that.
   uint64_t order_seed = 0;
@@ -92,10 +93,14 @@ enum class FrontStop {
 /// buffers. The mesh must outlive the front and must not change during a query.
 class MinimalEdgeFront {
  public:
+  /// A front over `mesh`, which is borrowed (it must outlive the front). Call `reset` to start a
+  /// query (it checks the source and the mesh's attributes).
   explicit MinimalEdgeFront(const Mesh& mesh, MinimalEdgeFrontOptions options = {});
   explicit MinimalEdgeFront(const Mesh&& mesh, MinimalEdgeFrontOptions options = {}) = delete;  ///< no temporaries
   ~MinimalEdgeFront();
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   MinimalEdgeFront(MinimalEdgeFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   MinimalEdgeFront& operator=(MinimalEdgeFront&&) noexcept;
 
   /// Starts a new query from `source`. The sources join at level 0.
@@ -120,6 +125,7 @@ class MinimalEdgeFront {
   int level() const;
   /// True when the current level has been completed (no level is half-done).
   bool at_level_boundary() const;
+  /// True when nothing is left to expand (the front annihilated or rests on borders).
   bool exhausted() const;
 
   /// The loops of the front, in order (O(front)).
@@ -135,9 +141,11 @@ class MinimalEdgeFront {
   /// Largest `working_memory_bytes()` seen since `reset` (sampled at each level boundary and at
   /// each step).
   size_t peak_working_memory_bytes() const;
-  /// Number of single edge expansions, minimizations and collisions since `reset`.
+  /// Number of single edge expansions since `reset`.
   size_t expansions() const;
+  /// Number of minimizations (a path u->v->w redirected through a triangle ahead) since `reset`.
   size_t minimizations() const;
+  /// Number of collisions (`FrontEvent::Kind::Collision`) since `reset`.
   size_t collisions() const;
 
   /// The level at which `v` joined the front, if `v` is on the front now.
@@ -148,6 +156,8 @@ class MinimalEdgeFront {
   /// Called once for every vertex when it becomes enclosed, with the level at which it joined
   /// the front. A vertex resting on the border with no surface ahead counts as enclosed.
   void set_enclosed_callback(std::function<void(VertexHandle, int)> cb);
+  /// Called for every `FrontEvent` as it happens (`Split`/`Merge` only with `track_loops`).
+  /// An empty function removes the callback.
   void set_event_callback(std::function<void(const FrontEvent&)> cb);
 
   /// Checks every structural property of the front and throws `InternalError` naming the first

@@ -30,10 +30,14 @@ namespace edgefront {
 /// so the barrier is kept as a set of loop vertices that are never re-entered.
 class VertexFront {
  public:
+  /// A front over `mesh`, which is borrowed: it must outlive the front and must not change
+  /// during a query. Call `reset` to start a query.
   explicit VertexFront(const Mesh& mesh);
   explicit VertexFront(const Mesh&& mesh) = delete;  ///< the front reads the mesh: no temporaries
   ~VertexFront();
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   VertexFront(VertexFront&&) noexcept;
+  /// Takes over the moved-from object's state; that object may then only be destroyed or assigned to.
   VertexFront& operator=(VertexFront&&) noexcept;
 
   /// \throws InvalidInput for a bad source.
@@ -45,12 +49,17 @@ class VertexFront {
   /// Runs `levels` more levels, or to exhaustion when negative. Returns completed levels.
   int run(int levels = -1);
 
+  /// Number of completed levels since `reset` (0 before the first level completes).
   int level() const;
+  /// True when nothing is left to process.
   bool exhausted() const;
   /// Vertices in the current front (not yet processed) and in the next level.
   size_t front_size() const;
+  /// Largest `front_size()` seen since `reset`.
   size_t peak_front_size() const;
+  /// Bytes held by the working containers now (capacity, not size).
   size_t working_memory_bytes() const;
+  /// Largest `working_memory_bytes()` seen since `reset`.
   size_t peak_working_memory_bytes() const;
 
   /// The join level of `v` if the VF still holds it (previous level, current front or next level).

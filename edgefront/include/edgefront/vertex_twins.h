@@ -55,6 +55,7 @@ std::vector<VertexHandle> split_pinched_vertices(Mesh& mesh);
 /// make; it reads the mesh as it is when made (make a new one after adding vertices).
 class TwinRing {
  public:
+  /// Reads the twin property of `mesh` (borrowed: it must outlive the ring and keep its vertices).
   explicit TwinRing(const Mesh& mesh);
   explicit TwinRing(const Mesh&& mesh) = delete;  ///< the ring reads the mesh: no temporaries
   /// True when the mesh holds twin links (else `next` is the identity); `link_twins` is the only

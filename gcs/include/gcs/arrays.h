@@ -15,9 +15,9 @@ namespace gcs {
 /// A reconstruction as arrays.
 struct ArrayReconstruction {
   edgefront::MeshArrays mesh;  ///< vertices n x 3, faces m x 3 (the result's `mesh`, as arrays)
-  StopReason stop_reason = StopReason::target_reached;
-  std::size_t basic_steps = 0;
-  std::size_t batches = 0;
+  StopReason stop_reason = StopReason::target_reached;  ///< why the reconstruction stopped
+  std::size_t basic_steps = 0;  ///< basic steps run (the result's `basic_steps`)
+  std::size_t batches = 0;      ///< split batches run (the result's `batches`)
 };
 
 /// `reconstruct` on points given as arrays; `normals` is empty (no normals) or one unit normal per

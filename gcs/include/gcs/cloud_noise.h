@@ -24,11 +24,10 @@
 /// normal differs from the point's by more than 60 degrees are left out: the other wall of a thin
 /// shell is not noise.
 ///
-/// Cost (2-core VM, one thread): the estimate looks at 5,000 points at most (0.06 s for 5K points,
-/// 0.16-0.18 s for 1M points, most of it passes over the points to find its patches; measured
-/// before the second fit);
-/// smoothing costs about 20 us per point (1M points: about 20 s), most of it in k-d tree queries,
-/// which the points of a small cell share. Memory: the cloud once more, and a k-d tree over it.
+/// Cost (one thread): the estimate looks at 5,000 points at most (a fraction of a second even for
+/// 1M points, most of it passes over the points to find its patches); smoothing costs tens of
+/// microseconds per point, most of it in k-d tree queries, which the points of a small cell share
+/// (figures: bench/results/gcs-noise.md). Memory: the cloud once more, and a k-d tree over it.
 
 #include <cstddef>
 
@@ -65,6 +64,9 @@ struct NoiseOptions {
   /// than 4 times as many is looked at in 16 patches (cubes around evenly strided points, holding
   /// about this many points in all), so that no k-d tree over the whole cloud is built.
   std::size_t max_points = 5000;
+  /// Threads for the fits, >= 0; 0 (the default) = all cores. The estimate is the same for any
+  /// count.
+  unsigned threads = 0;
 };
 
 /// Estimates the noise of `cloud`. \throws edgefront::InvalidInput for fewer than 8 points, a
@@ -74,10 +76,12 @@ NoiseEstimate estimate_noise(const edgefront::PointCloud& cloud, const NoiseOpti
 /// Options of `smooth_noise`.
 struct SmoothNoiseOptions {
   /// Neighbours of a point the quadric is fitted to, in [8, 256]. More average the noise better and
-  /// round off detail more. Measured on noisy synthetic shapes with smooth bumps, a torus and a
-  /// creased pointed vault (noise 0.06-0.7 point spacings): 64 came closest to the true surface,
-  /// then 40, then 20 (bench/results/gcs-noise.md).
+  /// round off detail more. On noisy synthetic shapes (smooth bumps, a torus, a creased pointed
+  /// vault; noise 0.06-0.7 point spacings) 64 comes closer to the true surface than 40 or 20
+  /// (bench/results/gcs-noise.md).
   std::size_t neighbours = 64;
+  /// Threads, >= 0; 0 (the default) = all cores. The points are the same bytes for any count.
+  unsigned threads = 0;
 };
 
 /// Moves every point of `cloud` along the quadric's normal onto the quadric fitted to its neighbours

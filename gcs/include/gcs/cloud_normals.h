@@ -22,12 +22,12 @@
 /// ratio (a point near a crease takes the normal of a neighbourhood on its own side of it); the
 /// normal is NaN when even that one exceeds `max_residual`.
 ///
-/// Measured against the truth (bench/bench_normals, bench/results/gcs.md session 13 gcsnormals):
-/// on CGAL's models' vertex sets 86-100% of the normals within 30 degrees of the mesh's vertex
-/// normal and 0-7% NaN (the former plane fit with a flatness test: 9-96% and 4-91%); 12
-/// neighbours and 0.15 were the best of 12/16/20 and 0.1/0.15/0.2/0.3.
+/// Against the truth (bench/bench_normals; figures in bench/results/gcs.md): on CGAL's models'
+/// vertex sets almost all normals lie within 30 degrees of the mesh's vertex normals and few are
+/// NaN, far better than a plane fit with a flatness test. The defaults (12 neighbours, 0.15) are
+/// the best of a sweep over 12/16/20 neighbours and 0.1/0.15/0.2/0.3.
 ///
-/// Cost: one k-d tree query and two small solves per point (about 5 us on the 2-core VM).
+/// Cost: one k-d tree query and two small solves per point (microseconds).
 
 #include <cstddef>
 #include <vector>
@@ -49,6 +49,9 @@ struct NormalFitOptions {
   /// Take the quadric's normal at the point; false: the fitted plane's (the smallest principal
   /// axis of the neighbours).
   bool quadric_normal = true;
+  /// Threads for the fits, >= 0; 0 (the default) = all cores. The normals are the same bytes for
+  /// any count.
+  unsigned threads = 0;
 };
 
 /// Unit normals of `points` (unsigned: either sign), NaN (all three coordinates) where undefined.

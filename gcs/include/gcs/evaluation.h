@@ -56,7 +56,7 @@ namespace gcs {
 struct EvaluationOptions {
   /// Area-uniform samples per mesh surface (the result, and a mesh ground truth), in [1, 10^8].
   std::size_t samples = 100000;
-  /// Seed of the sampling (same seed, same figures).
+  /// Seed of the sampling (same seed, same figures); any value.
   std::uint64_t seed = 1;
   /// F-score thresholds as fractions of the ground truth's bounding-box diagonal; each finite
   /// and > 0. Default 0.5% and 1%.
@@ -68,6 +68,9 @@ struct EvaluationOptions {
   /// as in many published evaluations (and the kitten figures of anchors.md). The point-to-point
   /// variant adds the sampling gap (about 0.5 / sqrt(samples / area)) to every distance to a mesh.
   bool exact_surface_distance = true;
+  /// Threads for the nearest-point queries and the self-intersection count, >= 0; 0 (the
+  /// default) = all cores. The figures are the same for any count.
+  unsigned threads = 0;
 };
 
 /// What a reconstruction is compared with: an oriented or unoriented point set, or a mesh.
@@ -79,6 +82,7 @@ class GroundTruth {
   /// A triangle mesh: sampled like the result; its face normals give the orientation.
   static GroundTruth from_mesh(edgefront::Mesh mesh);
 
+  /// True when the ground truth is a mesh (else a point set).
   bool is_mesh() const { return std::holds_alternative<edgefront::Mesh>(data_); }
   /// True for a mesh and for a point set with normals.
   bool has_normals() const;
@@ -97,11 +101,12 @@ struct OneSidedDistance {
   std::size_t count = 0;  ///< samples or points measured
   double mean = 0;        ///< mean nearest distance (absolute length units)
   double rms = 0;         ///< root mean square
-  double median = 0;
+  double median = 0;      ///< median nearest distance
   double p95 = 0;  ///< 95th percentile (nearest rank: the ceil(0.95 n)-th smallest)
   double max = 0;  ///< one-sided Hausdorff distance (over the samples)
 };
 
+/// Precision, recall and F-score at one distance threshold.
 struct FScore {
   double threshold_fraction = 0;  ///< of the ground truth's bbox diagonal
   double threshold = 0;           ///< absolute
@@ -112,7 +117,7 @@ struct FScore {
 
 /// Orientation of one connected component of the result against the ground truth.
 struct ComponentOrientation {
-  std::size_t faces = 0;
+  std::size_t faces = 0;    ///< live faces of the component
   std::size_t samples = 0;  ///< result samples on the component
   double area_share = 0;    ///< share of the result's area (estimated by samples)
   double agreeing = 0;      ///< share of the component's samples with n·n_gt > 0 (as it is)
@@ -132,7 +137,10 @@ struct OrientationConsistency {
 
 /// Validity of the result mesh (live elements only).
 struct MeshValidity {
+  ///@{
+  /// Live vertices, edges and faces.
   std::size_t vertices = 0, edges = 0, faces = 0;
+  ///@}
   /// OpenMesh's halfedge structure cannot hold an edge with more than two faces (read_mesh drops
   /// such faces and says so in its report), so this is always 0 for an edgefront::Mesh; kept so
   /// the report states it.
@@ -142,19 +150,19 @@ struct MeshValidity {
   /// edgefront::MeshReadReport::faces_dropped_nonmanifold): faces of the file that would have
   /// made an edge or vertex non-manifold and were dropped, so the file was not manifold.
   std::size_t faces_dropped_when_read = 0;
-  bool edge_manifold = true;
-  bool vertex_manifold = true;
+  bool edge_manifold = true;    ///< no edge with more than two faces (always true for an edgefront::Mesh, see above)
+  bool vertex_manifold = true;  ///< no non-manifold vertex
   std::size_t components = 0;  ///< connected components (isolated vertices included)
-  std::size_t border_loops = 0;
+  std::size_t border_loops = 0;   ///< cycles of boundary halfedges
   bool closed = false;  ///< no border loops
-  long euler_characteristic = 0;
+  long euler_characteristic = 0;  ///< V - E + F over live elements
   /// Sum of the components' genus (each (2 - chi - borders) / 2); a half-integer hints at a
   /// non-manifold or non-orientable part.
   double genus = 0;
   std::vector<double> component_genus;  ///< per component, as edgefront::MeshStats
-  std::size_t isolated_vertices = 0;
+  std::size_t isolated_vertices = 0;  ///< live vertices without an incident edge
   std::size_t degenerate_faces = 0;  ///< see edgefront::kDegenerateAreaFactor
-  std::size_t duplicate_faces = 0;
+  std::size_t duplicate_faces = 0;   ///< faces with the vertex set of a face with a lower index
   /// Face pairs that intersect beyond a shared vertex or edge (nullopt when not computed).
   std::optional<std::size_t> self_intersecting_pairs;
   std::vector<std::size_t> valence_histogram;  ///< [k] = vertices with k incident edges
@@ -167,7 +175,7 @@ struct MeshValidity {
 
 /// Everything `evaluate` measures.
 struct Evaluation {
-  bool ground_truth_is_mesh = false;
+  bool ground_truth_is_mesh = false;    ///< the ground truth was a mesh (else a point set)
   bool exact_surface_distance = true;   ///< as in the options
   std::size_t ground_truth_points = 0;  ///< points (point set) or samples (mesh) measured
   double gt_bbox_diagonal = 0;          ///< the scale of every "percent" below
@@ -187,7 +195,7 @@ struct Evaluation {
   /// nullopt for an unoriented point-set ground truth ("not available").
   std::optional<OrientationConsistency> orientation;
 
-  MeshValidity validity;
+  MeshValidity validity;  ///< the result mesh's validity
 };
 
 /// Judges `result` against `gt` (see the file comment for the method).

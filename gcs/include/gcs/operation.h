@@ -45,9 +45,10 @@ namespace gcs {
 /// start, for its first call). Every handle is live (valid and not deleted) at the time of the
 /// call; each appears once; both lists are sorted by index.
 struct ChangeSet {
-  std::vector<edgefront::Mesh::VertexHandle> vertices;
-  std::vector<edgefront::Mesh::FaceHandle> faces;
+  std::vector<edgefront::Mesh::VertexHandle> vertices;  ///< changed vertices, by increasing index
+  std::vector<edgefront::Mesh::FaceHandle> faces;       ///< changed faces, by increasing index
 
+  /// True when nothing changed.
   bool empty() const { return vertices.empty() && faces.empty(); }
 };
 
@@ -65,8 +66,11 @@ struct MeshRenumbering {
   edgefront::VertexHandle operator()(edgefront::VertexHandle old) const {
     return edgefront::VertexHandle(lookup(vertex, old.idx()));
   }
+  /// The same for a face.
   edgefront::FaceHandle operator()(edgefront::FaceHandle old) const { return edgefront::FaceHandle(lookup(face, old.idx())); }
+  /// The same for an edge.
   edgefront::EdgeHandle operator()(edgefront::EdgeHandle old) const { return edgefront::EdgeHandle(lookup(edge, old.idx())); }
+  /// The same for a halfedge (it follows its edge, keeping its direction).
   edgefront::HalfedgeHandle operator()(edgefront::HalfedgeHandle old) const {
     const int e = old.is_valid() ? lookup(edge, old.idx() / 2) : -1;
     return edgefront::HalfedgeHandle(e < 0 ? -1 : 2 * e + old.idx() % 2);

@@ -72,16 +72,16 @@ struct ReconstructOptions {
   /// From this many live vertices on, a batch grows in proportion to the mesh: ceil(batch_splits x
   /// live / batch_growth_vertices) splits, so that the per-batch costs (the operations' change
   /// sets, which cover most faces after a batch, and the loop's bookkeeping over all faces) stay a
-  /// fixed share of the run instead of growing with the square of the target (at 100,000 vertices:
-  /// 2,000-split batches, 115 batches above 10,000 vertices instead of 450). Smaller meshes are not
-  /// affected. 0 = batches of batch_splits always.
+  /// fixed share of the run instead of growing with the square of the target (at 100,000 vertices
+  /// and the defaults: 2,000-split batches). Smaller meshes are not affected. 0 = batches of batch_splits always.
   std::size_t batch_growth_vertices = 10000;
   /// Remove triangles no sample supports (creates borders on open surfaces).
   bool create_borders = true;
   /// A face is unsupported when its centroid is farther than this times the mean edge length from
   /// every input point; such faces are removed (only after the mesh has `topology_min_vertices`).
+  /// Finite, > 0.
   double unsupported_distance = 1.5;
-  /// Edges longer than this times the mean edge length are removed with their faces.
+  /// Edges longer than this times the mean edge length are removed with their faces. Finite, > 1.
   double long_edge_factor = 10.0;
   /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
   bool merge_borders = true;
@@ -116,12 +116,11 @@ struct ReconstructOptions {
   /// wherever the surface has one at the sampling scale; cloud_normals.h) and orient them with the
   /// reflection agreement and island links (detail::orient_normals refined). Off by default: the
   /// plane through each point's 20 nearest, NaN unless its smallest eigenvalue is < 5% of the
-  /// middle one, oriented by Hoppe's criterion. Measured (bench/results/gcs.md, session 13
-  /// gcsnormals): the normals are far better (CGAL's models' vertex sets: 86-100% within 30 degrees
-  /// of the truth, 0-7% NaN, against 9-96% and 4-91%), and kitten.xyz without normals, the nested
-  /// spheres and the synthetic vault shells without normals reconstruct better with them; but on
-  /// CGAL's models the loop's border tests (the normal gate, the film test), which the undefined
-  /// normals used to switch off, then open 3-41 border loops where the default leaves 0-3.
+  /// middle one, oriented by Hoppe's criterion. The fitted normals are far closer to the truth and
+  /// far less often undefined, and kitten.xyz without normals, the nested spheres and the
+  /// synthetic vault shells without normals reconstruct better with them; but on CGAL's models
+  /// the loop's border tests (the normal gate, the film test), which undefined normals switch off,
+  /// then open many more border loops than the default (figures: bench/results/gcs.md).
   bool quadric_normals = false;
   /// With orient_winners and input normals: the winner is the nearest vertex facing the sample's
   /// side among its 32 nearest (within four grid cells, about four mean edges, of the nearest)
@@ -134,12 +133,10 @@ struct ReconstructOptions {
   /// border vertices win the samples they face; with only 8 candidates they were often out of
   /// reach, and whole stretches of a shell stayed missing). Not with fitted normals, whose
   /// orientation can be wrong in places (the loop would never follow those samples; on a landscape
-  /// at 300 vertices that left folds). Off by default: measured on vault shells (bench/results/
-  /// gcs.md, Session 11) it covers the shells (t/R 0.05 at edge = t: coverage 0.95-1.00 -> 0.998-
-  /// 1.000, Chamfer-L1 median 0.123 -> 0.088%; data/vault-shell.xyz at 2000 vertices: border loops
-  /// median 8 -> 3, Chamfer 0.595 -> 0.540%) but does not close them (0 border loops in 1 of 65
-  /// shell runs, 2 without it), adds loops on some t/R 0.05 runs and self-intersecting pairs on
-  /// others (resolve_self_intersections now removes those: 0 in every shell run, Session 12).
+  /// at 300 vertices that left folds). Off by default: on vault shells it covers the shells better
+  /// (higher coverage, lower Chamfer distance, fewer border loops) but does not close them, and
+  /// adds border loops on some thin-shell runs and self-intersecting pairs on others (which
+  /// resolve_self_intersections removes); figures: bench/results/gcs.md.
   /// Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
   /// false: the published oriented loop's fallback (the plain nearest vertex wins among 8).
   bool skip_unfaced_samples = false;
@@ -232,6 +229,7 @@ struct ReconstructOptions {
   /// does not hug the samples yet). Clamped to at most target_vertices / 2.
   std::size_t topology_min_vertices = 150;
   /// Seed of the sample draws: the same seed, input and options give the same mesh, byte for byte.
+  /// Any value.
   std::uint64_t seed = 1;
   /// Call the progress callback every this many vertex splits (and once at the end). >= 1.
   std::size_t progress_interval = 100;
@@ -247,6 +245,10 @@ struct ReconstructOptions {
   /// cloud of at most that many points (or without normals) is used whole. Otherwise at least
   /// target_vertices.
   std::size_t max_query_points = 0;
+  /// Threads for the phases that are parallel over points (noise estimate and smoothing, the
+  /// quadric normal fits), >= 0; 0 (the default) = all cores. The loop itself is sequential; the
+  /// mesh is the same bytes for any count.
+  unsigned threads = 0;
 };
 
 /// Why run() stopped.
@@ -275,8 +277,8 @@ using ProgressCallback = std::function<bool(const Progress&)>;
 
 /// What one registered operation did over a run.
 struct OperationReport {
-  std::string name;
-  std::size_t calls = 0;
+  std::string name;              ///< the operation's `name()`
+  std::size_t calls = 0;         ///< calls of its apply(), the final call included
   std::size_t changes = 0;       ///< calls that reported mesh_changed
   double seconds = 0;            ///< total time spent in apply()
   std::string last_summary;      ///< the last non-empty summary
@@ -285,16 +287,16 @@ struct OperationReport {
 /// The result of a run.
 struct ReconstructResult {
   edgefront::Mesh mesh;  ///< garbage-collected, face normals up to date; in input coordinates
-  StopReason stop_reason = StopReason::target_reached;
-  std::uint64_t basic_steps = 0;
-  std::size_t splits = 0;
-  std::size_t collapses = 0;
+  StopReason stop_reason = StopReason::target_reached;  ///< why the run stopped
+  std::uint64_t basic_steps = 0;  ///< basic steps (sample draws with winner move and smoothing) run
+  std::size_t splits = 0;         ///< vertex splits
+  std::size_t collapses = 0;      ///< edge collapses of inactive vertices
   std::size_t faces_removed = 0;  ///< by the built-in border creation
   std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
   std::size_t slits_zipped = 0;   ///< border slits (close, opposite-running border chains) closed
   std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan, and slits
                                   ///< (up to fill_slits_max_vertices) closed by a strip
-  std::size_t batches = 0;
+  std::size_t batches = 0;        ///< split batches (each followed by the operations and the topology pass)
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
@@ -302,9 +304,11 @@ struct ReconstructResult {
   std::size_t stacked_faces_found = 0;    ///< faces with a stacked same-orientation partner before that removal
   std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (ReconstructOptions::stacked_layer_rounds)
   std::size_t stacked_pleats_flattened = 0;  ///< stacked pairs inside the surface it smoothed apart
-  /// self-intersecting face pairs before the last post-processing step (resolve_self_intersections;
-  /// 0 when it is off), and after it
+  ///@{
+  /// Self-intersecting face pairs before the last post-processing step (resolve_self_intersections;
+  /// 0 when it is off), and after it.
   std::size_t crossing_pairs_found = 0, crossing_pairs_left = 0;
+  ///@}
   std::size_t crossing_vertices_moved = 0;  ///< by its smoothing
   std::size_t crossing_faces_removed = 0;   ///< cut out by it
   std::size_t crossing_holes_filled = 0;    ///< holes it filled after the cut

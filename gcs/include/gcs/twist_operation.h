@@ -20,6 +20,7 @@
 
 namespace gcs {
 
+/// Options of the `TwistOperation` hook.
 struct TwistOperationOptions {
   /// Detection and repair settings (garbage collection is forced off). Defaults here: no limit
   /// on the border of a region (`max_border_ratio` = 0; for a cloud with normals, see
@@ -30,6 +31,10 @@ struct TwistOperationOptions {
   /// and, with reference normals, removes or collapses turned-over patches of up to 4 faces that
   /// lie over the other layer (`drop_turned_patches`).
   twist::RepairOptions repair = default_repair();
+  /// The hook's default repair settings: `twist::RepairOptions`' defaults with `max_border_ratio`
+  /// 0, `peel_flaps` 3, `peel_from_cuts` on and `drop_turned_patches` 4 (see `repair`). These
+  /// differ on purpose from `twist::repair`'s own defaults, which suit a one-shot repair of a
+  /// finished mesh.
   static twist::RepairOptions default_repair() {
     twist::RepairOptions o;
     o.max_border_ratio = 0;
@@ -41,13 +46,13 @@ struct TwistOperationOptions {
   /// `repair.max_border_ratio` for a cloud without normals. Without normals the detector's
   /// evidence is geometric only (facing layers, folded edges, self-intersections), and on a noisy
   /// cloud whose noise is about an edge length the loop's crumpled surface shows such evidence all
-  /// over: CGAL's sphere_20k at 10K vertices came out in 31 pieces with 40 holes when every such
-  /// region was cut (5,695 regions found). So without normals a region whose cut border is longer
+  /// over, and cutting every such region shreds the surface into many pieces with many holes
+  /// (CGAL's sphere_20k: bench/results/gcs.md). So without normals a region whose cut border is longer
   /// than this ratio times the square root of its face count (plus 16 edges) is left alone as
   /// scattered evidence (see `twist::RepairOptions::max_border_ratio`). 0 = no limit; finite, >= 0.
   double max_border_ratio_without_normals = 4.0;
-  std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out
-  std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers)
+  std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out; >= 0
+  std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers); >= 0
   /// Use the input normals as reference when the cloud has them (for a large cloud the loop
   /// queries through a subsample, that subsample: OperationContext::query_points).
   bool use_point_normals = true;
@@ -59,34 +64,34 @@ struct TwistOperationOptions {
   /// operations (strips must lie on the input points and agree with the faces on both sides):
   /// pieces a repair separated grow back together where their orientations now agree.
   /// Off by default: on the vault shells it leaves fewer pieces and more surface, but lower
-  /// orientation consistency (session 6, seeds 1-3: t/R 0.05 seed 2 0.9870 with it, 0.9928
-  /// without; t/R 0.02 0.938-0.977 against 0.981-0.991); on CGAL's kitten scan (5K vertices,
-  /// seeds 1-16, before main a89ca06) closed genus 1 in the same 7 runs either way, since the
-  /// detector no longer flags regions there but in a few runs (bench/results/twist-vaults.md,
-  /// Session 6).
+  /// orientation consistency; on CGAL's kitten scan it changes little, as the detector flags
+  /// regions there only in a few runs (figures: bench/results/twist-vaults.md).
   /// `gcs-reconstruct --rejoin-borders` turns it on.
   bool rejoin_borders = false;
 };
 
 /// Totals over all calls.
 struct TwistOperationStats {
-  std::size_t calls = 0;
-  std::size_t regions_found = 0;
-  std::size_t repairs = 0;
-  std::size_t regions_cut_out = 0;
-  std::size_t faces_flipped = 0;
-  std::size_t faces_removed = 0;
+  std::size_t calls = 0;            ///< `apply` calls (the final one included)
+  std::size_t regions_found = 0;    ///< twisted regions the detector returned
+  std::size_t repairs = 0;          ///< regions cut and flipped (or removed)
+  std::size_t regions_cut_out = 0;  ///< regions removed because they re-twisted (`max_retwists`)
+  std::size_t faces_flipped = 0;    ///< faces flipped by the repairs (not the global orientation)
+  std::size_t faces_removed = 0;    ///< faces removed (tiny pieces, cut-outs, flaps)
   std::size_t regions_scattered = 0;   ///< left alone: not compact (`twist::RepairOptions::max_border_ratio`)
   std::size_t components_flipped = 0;  ///< by the global orientation of the final call
-  bool non_orientable = false;
+  bool non_orientable = false;         ///< a repair met a reversed seam (see `twist::RepairReport`)
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
   std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
   std::size_t borders_rejoined = 0;    ///< border strips and loop merges added after repairs
   std::size_t turned_faces_dropped = 0;  ///< turned-over patch faces removed, collapsed or straightened by the final call
 };
 
+/// The twist repair as a GCS loop operation (see the file comment). Add one to a
+/// `Reconstructor` with `add_operation`; it keeps the repair's state across batches.
 class TwistOperation : public Operation {
  public:
+  /// A hook with these options; the reference normals and repairer are made at the first call.
   explicit TwistOperation(TwistOperationOptions options = {});
   ~TwistOperation() override;
   std::string name() const override { return "twist-repair"; }
@@ -94,6 +99,7 @@ class TwistOperation : public Operation {
   /// Always follows the loop's renumbering: the repairer translates its index-keyed state.
   bool can_follow_renumbering() const override;
   void on_renumbered(const edgefront::Mesh& mesh, const MeshRenumbering& map) override;
+  /// Totals over all calls so far.
   const TwistOperationStats& stats() const { return stats_; }
   /// What the repairs cut so far: (vertex copy, original) pairs, at the same position, along the
   /// cuts (handles of the current mesh; cleared when the final call garbage-collects). A

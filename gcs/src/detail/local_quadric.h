@@ -40,6 +40,9 @@ class QuadricFitter {
  public:
   // Over `cloud` (its normals, when it has them, select the neighbours), with its own k-d tree.
   explicit QuadricFitter(const edgefront::PointCloud& cloud);
+  // Over `cloud` with an existing k-d tree over its points (one tree shared by the fitters of
+  // several threads: edgefront/parallel.h).
+  QuadricFitter(const edgefront::PointCloud& cloud, const edgefront::PointIndex& index);
   // Over `points` with an existing k-d tree over them; no normals.
   QuadricFitter(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index);
 

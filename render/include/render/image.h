@@ -12,8 +12,8 @@ namespace edgefront::render {
 
 /// An RGB image: `width` x `height` pixels, 3 bytes per pixel, rows top to bottom.
 struct Image {
-  int width = 0;
-  int height = 0;
+  int width = 0;   ///< pixels per row, >= 0
+  int height = 0;  ///< rows, >= 0
   std::vector<std::uint8_t> rgb;  ///< size 3 * width * height
 
   Image() = default;
@@ -25,6 +25,7 @@ struct Image {
     const std::uint8_t* p = rgb.data() + 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
     return {p[0], p[1], p[2]};
   }
+  /// Sets the pixel at column `x`, row `y` to `c`. No bounds check.
   void set(int x, int y, const Rgb& c) {
     std::uint8_t* p = rgb.data() + 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
     p[0] = c[0];

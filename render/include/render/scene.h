@@ -27,50 +27,50 @@ struct ScalarField {
   std::vector<double> values = {};
   /// The values mapped to the two ends of the colormap; default: the smallest and largest finite
   /// value. Values outside are clamped to the end colors.
-  std::optional<double> min = std::nullopt;
-  std::optional<double> max = std::nullopt;
+  std::optional<double> min = std::nullopt;  ///< (unset: smallest finite value); finite
+  std::optional<double> max = std::nullopt;  ///< the value at the colormap's top end (see `min`); finite, >= min
   /// Spacing of the isolines in the field's units; 0 picks a nice step (1, 2 or 5 x 10^k) for
   /// about `isoline_count` lines over [min, max]; a negative value turns the isolines off.
   double isoline_step = 0.0;
-  int isoline_count = 12;
-  Rgb isoline_color = {25, 25, 25};
-  Rgb no_value_color = {150, 150, 150};
+  int isoline_count = 12;  ///< about this many isolines when `isoline_step` is 0; >= 1
+  Rgb isoline_color = {25, 25, 25};      ///< color of the isolines (near black)
+  Rgb no_value_color = {150, 150, 150};  ///< color of faces touching a vertex without a value (grey)
 };
 
 /// Faces drawn in one color instead of the field or base color (e.g. twisted regions).
 struct FaceHighlight {
-  std::vector<FaceHandle> faces = {};
-  Rgb color = {230, 40, 40};
+  std::vector<FaceHandle> faces = {};  ///< live faces of the scene's mesh
+  Rgb color = {230, 40, 40};           ///< their color (default red)
 };
 
 /// A polyline drawn on top of the surface with a depth test (parts hidden behind the surface are
 /// not drawn; parts lying on it are).
 struct Polyline {
-  std::vector<Vec3> points = {};
+  std::vector<Vec3> points = {};   ///< the corners, in order; finite
   bool closed = false;             ///< also join the last point to the first
-  Rgb color = {220, 30, 30};
-  double width_px = 2.0;           ///< line width in output pixels
+  Rgb color = {220, 30, 30};       ///< line color (default red)
+  double width_px = 2.0;           ///< line width in output pixels, (0, 100]
 };
 
 /// Points drawn as discs with a depth test.
 struct PointSet {
-  std::vector<Vec3> points = {};
-  Rgb color = {20, 20, 20};
-  double radius_px = 2.0;  ///< in output pixels
+  std::vector<Vec3> points = {};  ///< disc centres; finite
+  Rgb color = {20, 20, 20};       ///< disc color (default near black)
+  double radius_px = 2.0;         ///< disc radius in output pixels, (0, 100]
 };
 
 /// The scene. Everything in it counts for the camera fit (render/render.h).
 struct Scene {
   Borrowed<const Mesh> mesh = nullptr;  ///< the caller's; may be null for a scene of lines and points only
   Rgb base_color = {200, 200, 200};  ///< front faces without field or highlight
-  std::optional<ScalarField> field = std::nullopt;
+  std::optional<ScalarField> field = std::nullopt;  ///< a per-vertex field to color the mesh by (needs `mesh`)
   std::vector<FaceHighlight> highlights = {};  ///< later entries win where they overlap
-  std::vector<Polyline> lines = {};
-  std::vector<PointSet> points = {};
+  std::vector<Polyline> lines = {};   ///< polylines drawn over the surface
+  std::vector<PointSet> points = {};  ///< point sets drawn over the surface
   /// When set, the mesh's border loops (cycles of boundary halfedges) are drawn as lines of this
   /// color, after `lines`.
   std::optional<Rgb> border_color = Rgb{40, 90, 230};
-  double border_width_px = 2.0;
+  double border_width_px = 2.0;  ///< width of the border lines in output pixels; > 0 (not range-checked)
 };
 
 /// The points of a vertex path of `mesh` as a polyline.

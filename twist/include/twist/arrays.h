@@ -34,7 +34,7 @@ struct ArrayDetection {
   std::vector<int> face_region;
   std::vector<size_t> region_faces;    ///< per region: its faces
   std::vector<size_t> region_flagged;  ///< per region: its faces with evidence
-  DetectStats stats;
+  DetectStats stats;                   ///< the detector's counts (as `detect_regions` reports them)
   edgefront::ConversionReport conversion;  ///< what the conversion changed
 };
 
@@ -49,8 +49,8 @@ struct ArrayRepair {
   /// as one record on the input arrays (`vertices_before` = input vertices, `faces_before` =
   /// input faces).
   EditRecord record;
-  RepairReport report;
-  edgefront::ConversionReport conversion;
+  RepairReport report;                     ///< what the repair found and did
+  edgefront::ConversionReport conversion;  ///< what the conversion changed (also in `record`)
 };
 
 /// `repair` on the converted arrays (`RepairOptions::garbage_collect` is ignored: the record never

@@ -57,9 +57,9 @@ const char* to_string(EvidenceKind kind);
 /// One piece of evidence: `face` is flagged; `partner` is the other face involved (the layer in
 /// front, the face across the folded edge, the intersected face), invalid for `Reference`.
 struct Evidence {
-  EvidenceKind kind = EvidenceKind::Reference;
-  edgefront::FaceHandle face;
-  edgefront::FaceHandle partner;
+  EvidenceKind kind = EvidenceKind::Reference;  ///< what was found
+  edgefront::FaceHandle face;                   ///< the flagged face
+  edgefront::FaceHandle partner;                ///< the other face involved; invalid for `Reference`
 };
 
 /// A connected twisted region.
@@ -111,8 +111,11 @@ class FaceGrid {
     const size_t i = static_cast<size_t>(f.idx());
     return f.is_valid() && i < records_.size() && records_[i].key != kNoKey ? &records_[i].geometry : nullptr;
   }
+  /// The cell edge length of the last `rebuild` (0 before it), in the mesh's length unit.
   double cell() const { return cell_; }
+  /// Number of faces the grid holds.
   size_t size() const { return size_; }
+  /// Number of `rebuild` calls so far.
   size_t rebuilds() const { return rebuilds_; }
 
  private:
@@ -182,7 +185,7 @@ struct DetectOptions {
   /// lengths (`ReferenceNormals::wall_thickness` at its centroid): the mesh does not resolve
   /// such a wall (its two layers are closer than a fraction of an edge and cross each other), so
   /// which side is nearest a face, and the verdict, is noise, and repairing it shreds the wall
-  /// (vault shell t/R 0.02 at 1500 vertices, bench/results/twist-vaults.md Session 7). Agreeing
+  /// (thin vault shells: bench/results/twist-vaults.md). Agreeing
   /// verdicts are kept (they start no repair). 0 = off; in [0, 4].
   double thin_wall = 0.35;
   /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
@@ -193,7 +196,9 @@ struct DetectOptions {
   /// for only on those grown faces, not on the candidates (they mark a twist line, never a
   /// region on their own, and the scan is the costliest test). Invalid or deleted handles throw.
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
-  size_t audit_faces = 64;
+  size_t audit_faces = 64;  ///< incremental mode: evenly spaced faces tested besides `restrict_to` (0: none)
+  /// Incremental mode: where the evenly spaced audit starts (a face index, modulo the face count;
+  /// the repair advances it every call so that the audits cover the whole mesh over time).
   size_t audit_offset = 0;
   /// Incremental index of face centroids kept up to date by the caller (borrowed; may be null).
   /// With it and `restrict_to`, a detection touches only the candidates, their neighbourhoods
@@ -202,6 +207,11 @@ struct DetectOptions {
   edgefront::Borrowed<const FaceGrid> face_grid = nullptr;
   /// The mesh's mean edge length if known (> 0), else 0: computed (a pass over the edges).
   double mean_edge_length = 0;
+  /// Threads for the per-face evidence of a whole-mesh detection (no `restrict_to`), >= 0; 0 (the
+  /// default) = all cores. Each thread tests a contiguous range of faces with its own detector
+  /// (its own k-d tree over the face centroids), at most one thread per 1,000 faces; the regions
+  /// are the same for any count. Incremental detection (`restrict_to`) runs on one thread.
+  unsigned threads = 0;
 };
 
 /// Statistics of a detection run (for reports and benchmarks).
@@ -209,13 +219,13 @@ struct DetectStats {
   size_t faces_tested = 0;       ///< faces whose evidence was evaluated
   size_t distance_queries = 0;   ///< bounded Minimal Distance Front runs
   size_t vertices_settled = 0;   ///< vertices settled by those runs, in total
-  size_t flagged_faces = 0;
+  size_t flagged_faces = 0;      ///< faces the run found evidence on
 };
 
 /// Regions and statistics of one detection run.
 struct DetectResult {
-  std::vector<TwistRegion> regions;
-  DetectStats stats;
+  std::vector<TwistRegion> regions;  ///< largest first (ties: lowest face index)
+  DetectStats stats;                 ///< counts of the run
 };
 
 /// Finds the twisted regions of `mesh`, largest first (ties: lowest face index).

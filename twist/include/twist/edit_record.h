@@ -37,15 +37,15 @@ struct VertexAdded {
 
 /// A vertex the record moves.
 struct VertexMoved {
-  int vertex = -1;
-  std::array<double, 3> position{0, 0, 0};
+  int vertex = -1;                          ///< the host's vertex index
+  std::array<double, 3> position{0, 0, 0};  ///< its new position (x, y, z)
 };
 
 /// In face `face`, the corner holding vertex `from` takes vertex `to`.
 struct CornerReplaced {
-  int face = -1;
-  int from = -1;
-  int to = -1;
+  int face = -1;  ///< the host's face index (a live slot)
+  int from = -1;  ///< the vertex the corner holds before the record
+  int to = -1;    ///< the vertex it holds after (often a copy appended by `vertices_added`)
 };
 
 /// What one call did (see the file comment for the replay).
@@ -62,8 +62,11 @@ struct EditRecord {
   /// stay (the host may delete them). Nothing to replay.
   std::vector<int> vertices_removed;
 
+  /// The host's vertex index space after the replay.
   size_t vertices_after() const { return vertices_before + vertices_added.size(); }
+  /// The host's face index space after the replay (removed faces leave empty slots).
   size_t faces_after() const { return faces_before + faces_added.size(); }
+  /// True when the record changes nothing.
   bool empty() const {
     return vertices_added.empty() && vertices_moved.empty() && faces_flipped.empty() && corners_replaced.empty() &&
            faces_removed.empty() && faces_added.empty() && vertices_removed.empty();

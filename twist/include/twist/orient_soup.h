@@ -14,6 +14,7 @@
 
 namespace twist {
 
+/// What `orient_soup` built and changed.
 struct SoupOrientation {
   edgefront::Mesh mesh;            ///< oriented, manifold where the soup is
   bool non_orientable = false;     ///< some edge had to be cut: the surface cannot be oriented
@@ -23,6 +24,7 @@ struct SoupOrientation {
   size_t faces_dropped = 0;        ///< faces OpenMesh refused (edges with 3+ faces); 0 for a manifold soup
 };
 
+/// Orients a triangle soup into a half-edge mesh (see the file comment).
 /// \param points vertex positions (finite)
 /// \param triangles vertex indices into `points`, three distinct per face
 /// \throws edgefront::InvalidInput for no triangles, indices out of range, a repeated index in a

@@ -19,7 +19,9 @@ class ReferenceNormals {
   ///         normals (the message names the first bad index).
   explicit ReferenceNormals(edgefront::PointCloud cloud);
   ~ReferenceNormals();
+  /// Takes over the moved-from object's points and tree; that object may then only be destroyed or assigned to.
   ReferenceNormals(ReferenceNormals&&) noexcept;
+  /// Takes over the moved-from object's points and tree; that object may then only be destroyed or assigned to.
   ReferenceNormals& operator=(ReferenceNormals&&) noexcept;
 
   /// Index of the reference point nearest to `p` (ties: lowest index).
@@ -44,6 +46,7 @@ class ReferenceNormals {
   /// that `p` lies on or between; infinity when no candidate opposes (a wall thicker than the
   /// candidates reach). \throws edgefront::InvalidInput when `candidates` is 0.
   double wall_thickness(const edgefront::Vec3& p, size_t candidates = 16) const;
+  /// The reference points and their normals, as given.
   const edgefront::PointCloud& cloud() const;
 
  private:

@@ -28,6 +28,8 @@
 
 namespace twist {
 
+/// Options of `repair`, `orient` and `TwistRepairer` (and, through `SessionOptions`, of a
+/// `RepairSession`).
 struct RepairOptions {
   DetectOptions detect;              ///< how regions are found (reference normals go here)
   size_t max_repairs = 16;           ///< at most this many regions are repaired per call, >= 1
@@ -72,12 +74,10 @@ struct RepairOptions {
   /// rounds, kept when the face is then right, no face around the moved vertices is degenerate
   /// and fewer of them are rejected than before (at a rim corner some bevelled faces may stay
   /// rejected); else a longer one on the border is removed (a flap turned over at a rim, and the
-  /// tiny pieces that leaves) and a longer interior one is left (a hole would be worse).
-  /// (Vault shell t/R 0.05 at edge = t, seed 7: a face folded over the inner wall's foot corner
-  /// by a valence-4 vertex, which no single move straightens.)
-  /// (Removing rim slivers instead of collapsing them widens the border gap, and faces of the
-  /// same wall across it then count as pairs: vault shell t/R 0.2 seed 2, 31 pairs before, 45
-  /// removing, 26 collapsing.)
+  /// tiny pieces that leaves) and a longer interior one is left (a hole would be worse). The
+  /// smoothing of a tangle straightens a face folded by a vertex of low valence, which no single
+  /// move straightens. Rim slivers are collapsed, not removed: removing one widens the border gap,
+  /// and faces of the same wall across it then count as pairs (bench/results/twist-vaults.md).
   /// Each such face makes every face of the other layer within the radius a same-orientation
   /// pair (tens of pairs from one face of a few thousandths of the area). Bigger groups are the
   /// detector's business. In [0, 64]; 0 = off (the default; the GCS hook turns it on).
@@ -102,7 +102,7 @@ struct RepairOptions {
   /// (see `DetectOptions::restrict_to`), and the audit still samples the rest. Both 0: every
   /// changed face is tested. In [0, 180] and >= 0.
   double retest_turn_degrees = 10.0;
-  double retest_move = 0.25;
+  double retest_move = 0.25;  ///< see `retest_turn_degrees`: corner movement in mean edge lengths, >= 0
   /// `repair` with reference normals (`detect.reference`): label every face keep or flip by the
   /// reference (`label_by_reference`: a minimum cut between the faces' votes and the price of
   /// cutting), cut along the borders between the labels and flip the flip-labelled regions,
@@ -138,7 +138,7 @@ struct RepairOptions {
 struct RepairRecord {
   size_t region_faces = 0;       ///< faces of the detected region
   size_t cut_edges = 0;          ///< interior edges cut along the region's border
-  size_t vertices_duplicated = 0;
+  size_t vertices_duplicated = 0; ///< vertex copies made for the cut
   size_t flipped_faces = 0;      ///< faces of the side flipped (0 when removed)
   size_t other_side_faces = 0;   ///< faces the other front had expanded when the first was exhausted
   /// Faces expanded by both fronts together (at most twice the exhausted side: the fronts take
@@ -149,8 +149,9 @@ struct RepairRecord {
   size_t tiny_faces_removed = 0; ///< faces of pieces under min_component_faces that the cut split off the other side
 };
 
+/// What a `repair`, `orient` or `TwistRepairer` call found and did, in total.
 struct RepairReport {
-  size_t regions_found = 0;
+  size_t regions_found = 0;            ///< twisted regions the detector returned
   size_t repairs = 0;                  ///< regions cut and flipped (or removed)
   bool capped = false;                 ///< more regions than max_repairs were found
   size_t faces_flipped = 0;            ///< by the repairs (not counting the global orientation)
@@ -160,18 +161,18 @@ struct RepairReport {
   size_t turned_faces_removed = 0;      ///< faces of turned-over border patches removed (`drop_turned_patches`)
   size_t turned_faces_collapsed = 0;    ///< faces of turned-over interior patches collapsed (`drop_turned_patches`)
   size_t turned_faces_straightened = 0; ///< turned-over faces straightened by moving vertices (`drop_turned_patches`)
-  size_t vertices_duplicated = 0;
-  size_t cut_edges = 0;
+  size_t vertices_duplicated = 0;      ///< vertex copies made by the cuts, all repairs together
+  size_t cut_edges = 0;                ///< edges cut, all repairs together
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
   size_t regions_scattered = 0;        ///< regions left alone: not compact (see max_border_ratio)
   size_t seam_pieces_flipped = 0;      ///< pieces flipped whole to make reversed seams compatible (`flip_seam_pieces`)
   size_t seam_faces_flipped = 0;       ///< their faces
   size_t components_flipped = 0;       ///< by the global orientation
-  size_t faces_flipped_globally = 0;
+  size_t faces_flipped_globally = 0;   ///< faces of the components the global orientation flipped
   bool non_orientable = false;         ///< the surface meets itself with opposite orientation
   size_t seam_edges = 0;               ///< border edges along such seams (left cut open)
-  DetectStats detect_stats;
-  std::vector<RepairRecord> records;
+  DetectStats detect_stats;            ///< the detector's counts
+  std::vector<RepairRecord> records;   ///< one per repair, in the order they were made
 };
 
 /// The keep/flip labelling of `label_by_reference`.
@@ -265,15 +266,15 @@ struct StackedLayerReport {
 /// folded (n.n < 0) against its neighbours is straightened alone: one of its interior vertices moved
 /// to the centroid of its neighbours, or else its interior vertices and their interior neighbours
 /// smoothed together (up to 3 times), kept when fewer edges around fold than before and the two
-/// faces no longer overlap (the other layer is not moved: vault shell t/R 0.1 at 1500 vertices,
-/// seed 1, one face of the outer wall turned over onto the inner one). Otherwise the interior
+/// faces no longer overlap (the other layer is not moved: e.g. one face of a shell's outer wall
+/// turned over onto the inner one). Otherwise the interior
 /// vertices of the two faces and their neighbours are smoothed together (moved to the centroids
 /// of their neighbours, up to 3 times) and kept so when the two faces then no longer overlap, no
 /// face around is degenerate and no more edges around fold than before; else put back. That
 /// smoothing is not tried when a face turned against the pair lies right behind its lower face,
 /// closer than the gap between the two: the walls of a shell thinner than the mesh resolves,
-/// interleaved, not a fold of one wall (smoothing would merge the walls: vault shell t/R 0.02 at
-/// 1500 vertices, seed 2, consistency 0.9916 -> 0.9872 without this guard). Pairs in larger
+/// interleaved, not a fold of one wall (smoothing would merge the walls and lower the orientation
+/// consistency: bench/results/twist-vaults.md). Pairs in larger
 /// groups (`max_group_faces`) are left. A mesh without a border is not scanned (nothing to
 /// remove; its pleats stay). Does not garbage-collect.
 /// \throws edgefront::InvalidInput for an empty mesh, non-finite coordinates or options out of
@@ -286,8 +287,13 @@ StackedLayerReport remove_stacked_layers(edgefront::Mesh& mesh, const StackedLay
 /// times is cut out (its faces removed) instead of flipped, so the loop can re-grow it.
 class TwistRepairer {
  public:
+  /// \param options the repair's options (`repair_changed` replaces `detect.restrict_to` and
+  ///        `detect.audit_offset` per call and applies no global orientation).
+  /// \param max_retwists how often one place may twist again before it is cut out (>= 0).
   explicit TwistRepairer(RepairOptions options = {}, size_t max_retwists = 2);
 
+  /// Repairs the twists near what changed (see the class comment).
+  /// \param mesh the mesh the repairer works on (the same one at every call).
   /// \param changed faces created or moved since the last call (handles of the current mesh).
   /// \param mean_edge_length the mesh's mean edge length when the caller knows it (> 0): then
   ///        the call is local (a face grid kept up to date across calls, no pass over the mesh
@@ -310,6 +316,7 @@ class TwistRepairer {
   /// renumbering. \throws edgefront::InvalidInput when a map is shorter than the indices this
   /// repairer holds or maps to an index that is not a live element of `mesh`.
   void renumber(const edgefront::Mesh& mesh, const std::vector<int>& vertex_map, const std::vector<int>& face_map);
+  /// Number of `repair_changed` calls so far.
   size_t calls() const { return calls_; }
   /// (vertex copy, original) pairs made by the cuts so far (see `cuts_`).
   const std::vector<std::pair<edgefront::VertexHandle, edgefront::VertexHandle>>& cuts() const { return cuts_; }

@@ -58,8 +58,8 @@ namespace twist {
 struct SessionOptions {
   /// The repair (`garbage_collect` is ignored: the mirror keeps its indices while the host does).
   RepairOptions repair = {};
-  size_t max_retwists = 2;  ///< see `TwistRepairer`
-  edgefront::ConversionOptions conversion = {};
+  size_t max_retwists = 2;  ///< see `TwistRepairer`; >= 0
+  edgefront::ConversionOptions conversion = {};  ///< how the host's arrays are converted (`mesh_from_arrays`)
 };
 
 /// What the last answer did besides its record.
@@ -70,6 +70,8 @@ struct SessionStats {
   RepairReport report;           ///< of the last repair
 };
 
+/// A mirror of a host's mesh with incremental twist repair (see the file comment). Not copyable;
+/// one thread at a time.
 class RepairSession {
  public:
   /// Converts the host's arrays (`edgefront::mesh_from_arrays`).
@@ -77,12 +79,15 @@ class RepairSession {
   RepairSession(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
                 SessionOptions options = {});
   ~RepairSession();
+  /// Takes over the moved-from object's mirror and buffers; that object may then only be destroyed or assigned to.
   RepairSession(RepairSession&&) noexcept;
+  /// Takes over the moved-from object's mirror and buffers; that object may then only be destroyed or assigned to.
   RepairSession& operator=(RepairSession&&) noexcept;
 
   /// What the conversion changed (faces dropped, pinched vertices split) as a record on the
   /// host's arrays: the host applies it before its first edit. Empty for a manifold mesh.
   const EditRecord& initial_record() const;
+  /// What the conversion of the host's arrays found and changed.
   const edgefront::ConversionReport& conversion() const;
 
   // -- The host's edits (buffered; see the file comment) ----------------------------------------
@@ -125,13 +130,17 @@ class RepairSession {
   // -- State -----------------------------------------------------------------------------------
   size_t vertex_slots() const;  ///< the host's vertex index space (largest index + 1)
   size_t face_slots() const;    ///< the host's face index space
+  /// What the last answer did besides its record.
   const SessionStats& stats() const;
   /// The mirror (read-only: for tests, benchmarks and rendering; indices are the session's).
   const edgefront::Mesh& mirror() const;
   /// The mirror vertex of host vertex `v` (invalid for none), and the host vertex of a mirror vertex (-1).
   edgefront::VertexHandle mirror_vertex(int v) const;
+  /// The host vertex of mirror vertex `v` (-1 for none).
   int host_vertex(edgefront::VertexHandle v) const;
+  /// The mirror face of host face `f` (invalid for none or an empty slot).
   edgefront::FaceHandle mirror_face(int f) const;
+  /// The host face of mirror face `f` (-1 for none).
   int host_face(edgefront::FaceHandle f) const;
 
  private:

@@ -87,7 +87,7 @@ struct GridOptions {
   GridOutline outline = GridOutline::square;   ///< outline
   double jitter = 0.15;                        ///< jittered: max displacement per axis in cell sizes, in [0, 1/6) (no flips)
   double anisotropy = 20.0;                    ///< anisotropic: cell aspect ratio (x cells = cells * anisotropy), in [1, 1000]
-  std::uint64_t seed = 1;                      ///< jittered: seed of the displacements
+  std::uint64_t seed = 1;                      ///< jittered: seed of the displacements; any value
 };
 
 /// Planar grid in z = 0, normals +z. \throws InvalidInput on bad options.
@@ -215,7 +215,7 @@ struct PinchedBody {
   /// copy per pinch (3 vertices), linked as twins. Mirror-symmetric in z (vertex positions
   /// exactly, the triangulation too).
   Mesh mesh;
-  size_t input_vertices = 0;
+  size_t input_vertices = 0;  ///< vertices before the split (the copies are appended after them)
   /// The groups of twins: {torus vertex at (2, 0, 0), apex of the +x cone}, {torus vertex at
   /// (-2, 0, 0), apex of the -x cone}, {the origin on the upper side, on the lower side}; in each
   /// the original first, the copy second.
@@ -249,16 +249,18 @@ std::vector<VertexHandle> add_island(Mesh& mesh, const Vec3& corner = Vec3(0, 0,
 /// Shape parameters shared by `make` and `sample`. Each shape reads only the fields its row in
 /// the table above names; the others are ignored (and not validated).
 struct ShapeParams {
-  double radius = 1.0;        ///< R: sphere, hemisphere, cylinder, cone base, torus major, vault intrados and half span, Möbius centre circle; half side of grid, plate, landscape
+  /// R: sphere, hemisphere, cylinder, cone base, torus major, vault intrados and half span, Möbius
+  /// centre circle; half side of grid, plate, landscape. > 0.
+  double radius = 1.0;
   double minor_radius = 0.35; ///< torus and double torus tube radius, 0 < minor_radius < radius
   double inner_radius = 0.5;  ///< nested spheres: inner sphere radius, 0 < inner_radius < radius
-  double length = 2.0;        ///< cylinder and cone height, vault length (along y), ribbon length, hairpin arm length
-  double width = 0.5;         ///< ribbon, Möbius strip and hairpin width
+  double length = 2.0;        ///< cylinder and cone height, vault length (along y), ribbon length, hairpin arm length; > 0
+  double width = 0.5;         ///< ribbon, Möbius strip and hairpin width; > 0 (Möbius strip: width/2 < radius)
   double thickness = 0.1;     ///< vault shell, thin plate and hairpin wall thickness (absolute), 0 < thickness < radius
   double gap = 0.05;          ///< hairpin: distance between the arms' facing sides, > 0
   double amplitude = 0.1;     ///< bumpy sphere: relative bump height in [0, 1); landscape: peak height (absolute)
   double frequency = 4.0;     ///< bumpy sphere: f in sin(f·ux)...; landscape: largest wave number per radius; > 0
-  std::uint64_t surface_seed = 1;                   ///< landscape relief and grid jitter (not the sampling seed)
+  std::uint64_t surface_seed = 1;                   ///< landscape relief and grid jitter (not the sampling seed); any value
   GridVariant grid_variant = GridVariant::regular;  ///< "grid": vertex placement (mesh only)
   GridOutline grid_outline = GridOutline::square;   ///< "grid": outline (mesh and samples)
   double jitter = 0.15;       ///< jittered grid: max displacement per axis in cells, in [0, 1/6)
@@ -286,7 +288,7 @@ enum class NoiseKind {
 /// Options of `sample` and `sample_mesh`.
 struct SampleOptions {
   std::size_t points = 10000;                   ///< number of points in the output, outliers included, in [1, 10^8]
-  std::uint64_t seed = 1;                       ///< sampling seed (same seed, same points)
+  std::uint64_t seed = 1;                       ///< sampling seed (same seed, same points); any value
   double noise_sigma = 0.0;                     ///< standard deviation of the Gaussian noise, absolute length units, >= 0
   NoiseKind noise = NoiseKind::along_normal;    ///< direction of the noise; normals are never perturbed
   double outlier_fraction = 0.0;                ///< share of points replaced by outliers, in [0, 1]

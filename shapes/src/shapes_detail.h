@@ -12,7 +12,7 @@
 #include <string>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 
 namespace edgefront::shapes::detail {
 

@@ -1,4 +1,4 @@
-// Shape catalogue of edgefront/shapes.h: names, descriptions, option validation, and `make`,
+// Shape catalogue of shapes/shapes.h: names, descriptions, option validation, and `make`,
 // which maps a name, a resolution and the shape parameters onto the mesh generators.
 
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "shapes_detail.h"
 
 namespace edgefront::shapes {

@@ -1,4 +1,4 @@
-// Mesh generators of edgefront/shapes.h.
+// Mesh generators of shapes/shapes.h.
 //
 // Most shapes are unions of parametric grid patches. A small builder welds coincident vertices
 // (seams, poles, patch borders) within a tolerance, drops the triangles that welding made
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "edgefront/vertex_twins.h"
 #include "shapes_detail.h"
 

@@ -1,4 +1,4 @@
-// Area-uniform oriented samplers of edgefront/shapes.h.
+// Area-uniform oriented samplers of shapes/shapes.h.
 //
 // Every shape is a list of parametric patches (u, v) -> (point, unit normal, area element dA).
 // Sampling is exact rejection: a patch is chosen with probability proportional to
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "edgefront/error.h"
-#include "edgefront/shapes.h"
+#include "shapes/shapes.h"
 #include "shapes_detail.h"
 
 namespace edgefront::shapes {

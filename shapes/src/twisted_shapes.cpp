@@ -1,4 +1,4 @@
-#include "twist/twisted_shapes.h"
+#include "shapes/twisted_shapes.h"
 
 #include <cmath>
 #include <string>

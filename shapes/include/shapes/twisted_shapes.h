@@ -25,9 +25,9 @@ struct TwistedShape {
 struct TwistedTubeOptions {
   int along = 40;          ///< segments along x, even, in [4, 4096]
   int around = 24;         ///< segments around the cross-section, in [6, 4096]
-  double length = 2.0;     ///< the tube spans x in [-length/2, length/2]
-  double width = 0.5;      ///< half width of the flattened cross-section (y)
-  double thickness = 0.1;  ///< full thickness (z), < width
+  double length = 2.0;     ///< the tube spans x in [-length/2, length/2]; finite, > 0
+  double width = 0.5;      ///< half width of the flattened cross-section (y); finite, > 0
+  double thickness = 0.1;  ///< full thickness (z); > 0, < width
   int twist_segment = -1;  ///< index of the segment holding the twist line; -1: the middle one
 };
 
@@ -42,11 +42,11 @@ TwistedShape twisted_tube(const TwistedTubeOptions& options = {});
 struct FlippedDiskOptions {
   int rings = 12;             ///< rings of the top and bottom disks, in [6, 1024]
   int around = 32;            ///< vertices per ring, even, in [8, 4096]
-  double radius = 1.0;        ///< plate radius
-  double thickness = 0.1;     ///< full thickness, < radius
+  double radius = 1.0;        ///< plate radius; finite, > 0
+  double thickness = 0.1;     ///< full thickness; > 0, < radius
   int disk_rings = 3;         ///< rings of the flipped disk, in [1, rings - fold_rings - 2]
   int fold_rings = 2;         ///< rings of the fold band between disk and plate, in [1, 16]
-  double fold_height = 0.1;   ///< out-of-plane excursion of the fold band, relative to its radius
+  double fold_height = 0.1;   ///< out-of-plane excursion of the fold band, relative to its radius; in [0, 1]
 };
 
 /// A closed thin round plate (pillbox, outward) whose top carries a disk turned over like a coin
