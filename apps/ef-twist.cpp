@@ -1,15 +1,20 @@
 /// ef-twist: find and repair twisted (inconsistently oriented) regions of a mesh.
 ///
-///   ef-twist MESH [--points CLOUD] [--radius R] [--max-repairs N] [--threads N] -o FIXED [--png FILE.png ...]
+///   ef-twist MESH [--points CLOUD [--cut-cost C] [--detector]] [--radius R] [--max-repairs N] [--threads N]
+///            -o FIXED [--png FILE.png ...]
 ///
-/// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input with the twisted
-/// regions found in red and their sealed borders in purple); back faces are tinted orange.
+/// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input). Without --points
+/// the twisted regions found are red and their sealed borders purple; with --points the faces the
+/// cloud's normals reject are red. Back faces are tinted orange.
 ///
-/// Detects regions whose orientation disagrees with the side of the surface they approximate
-/// (facing layers of a thin structure, or disagreement with the oriented points of CLOUD), cuts
-/// each off along its border, flips the smaller side, orients the result globally, prints the
-/// report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
+/// Without --points: detects regions whose orientation disagrees with the side of the surface
+/// they approximate (facing layers of a thin structure), cuts each off along its border, flips
+/// the smaller side. With --points: labels every face keep or flip by the cloud's normals (a
+/// minimum cut: regions flipped whole by their area-weighted vote, cut only where regions that
+/// disagree meet; --detector: the detector's regions instead). Then orients the result globally,
+/// prints the report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -40,8 +45,21 @@ int main(int argc, char** argv) {
   app.add_option("--points", points, "oriented point cloud whose normals decide the right side (.xyz, .ply, .off, .obj)");
   app.add_option("--radius", radius, "layer search radius (0: twice the mean edge length)")
       ->check(edgefront::apps::non_negative());
-  app.add_option("--max-repairs", max_repairs, "most regions repaired")
+  app.add_option("--max-repairs", max_repairs, "most regions repaired (detector only)")
       ->check(edgefront::apps::integer_range(1, std::numeric_limits<std::size_t>::max()));
+  double cut_cost = twist::RepairOptions{}.cut_cost;
+  bool detector = false;
+  app.add_option("--cut-cost", cut_cost,
+                 "with --points: price of a cut per unit length, in mean edge lengths (0 ... 100; a wrongly oriented disk is"
+                 " flipped from a radius of about 2 x this many edges)")
+      ->capture_default_str()
+      ->check(edgefront::apps::real_range(0.0, 100.0));
+  size_t turned = 0;
+  app.add_option("--turned", turned,
+                 "with --points: straighten, collapse or (at a border) remove turned-over patches of up to this many faces that"
+                 " lie over another layer (0 ... 64, default 0 = off)")
+      ->check(edgefront::apps::integer_range(0, 64));
+  app.add_flag("--detector", detector, "with --points: repair the detector's regions instead of labelling every face by the points");
   unsigned threads = 0;
   edgefront::apps::add_threads_option(app, threads);
   edgefront::apps::PngOutput png(app);  // FILE.png: the repaired mesh; FILE-before.png: the input, twisted regions red
@@ -61,9 +79,36 @@ int main(int argc, char** argv) {
     options.detect.radius = radius;
     options.detect.reference = reference.get();
     options.max_repairs = max_repairs;
+    options.cut_cost = cut_cost;
+    options.drop_turned_patches = turned;
+    options.label_by_reference = !detector;
     options.detect.threads = threads;
     const size_t faces_before = read.mesh.n_faces();
-    if (png.requested()) {
+    auto area_of = [](const edgefront::Mesh& mesh) {
+      double a = 0;
+      for (edgefront::FaceHandle f : mesh.faces()) a += mesh.calc_face_area(f);
+      return a;
+    };
+    const double area_before = area_of(read.mesh);
+    const size_t pieces_before = edgefront::compute_stats(read.mesh).components;
+    const double consistency_before = reference ? twist::orientation_consistency(read.mesh, *reference) : 0.0;
+    // With --points: the faces the points' normals reject, in red.
+    auto rejected = [&](const edgefront::Mesh& mesh) {
+      edgefront::render::FaceHighlight h;
+      for (edgefront::FaceHandle f : mesh.faces()) {
+        const twist::FaceGeometry g = twist::face_geometry(mesh, f);
+        if (g.normal.sqrnorm() > 0 && OpenMesh::dot(g.normal, reference->nearest_normal(g.centre)) < 0) h.faces.push_back(f);
+      }
+      return h;
+    };
+    if (png.requested() && reference) {
+      edgefront::render::Scene before{.mesh = &read.mesh};
+      before.highlights.push_back(rejected(read.mesh));
+      std::string before_path = png.path();
+      before_path.insert(before_path.size() - 4, "-before");
+      edgefront::render::render_png(before, png.options(), before_path);
+      std::cerr << "ef-twist: picture " << before_path << " (the input, faces the points reject red)\n";
+    } else if (png.requested()) {
       // The input with what the detector finds: twisted regions in red, their sealed borders as lines.
       edgefront::render::Scene before{.mesh = &read.mesh};
       edgefront::render::FaceHighlight regions;
@@ -85,8 +130,14 @@ int main(int argc, char** argv) {
     std::cout << "input:              " << input << " (" << faces_before << " faces)\n";
     std::cout << "regions found:      " << r.regions_found << (r.capped ? " (more than --max-repairs)" : "") << "\n";
     std::cout << "repairs:            " << r.repairs << "\n";
+    const bool labelled = reference && options.label_by_reference;
     for (size_t i = 0; i < r.records.size(); ++i) {
       const twist::RepairRecord& rec = r.records[i];
+      if (labelled) {
+        std::cout << "  region " << i + 1 << ": " << rec.region_faces << " faces flipped, cut along " << rec.cut_edges << " edges ("
+                  << rec.vertices_duplicated << " vertices on the cut)\n";
+        continue;
+      }
       std::cout << "  repair " << i + 1 << ": region of " << rec.region_faces << " faces, cut " << rec.cut_edges
                 << " edges (" << rec.vertices_duplicated << " vertices duplicated), "
                 << (rec.removed ? "removed " : "flipped ") << (rec.removed ? rec.faces_visited - rec.other_side_faces : rec.flipped_faces)
@@ -95,7 +146,15 @@ int main(int argc, char** argv) {
     }
     std::cout << "faces flipped:      " << r.faces_flipped << " by repairs, " << r.faces_flipped_globally << " by the global orientation ("
               << r.components_flipped << " components)\n";
-    std::cout << "faces removed:      " << r.faces_removed << "\n";
+    const double area_after = area_of(read.mesh);
+    const double removed_share = (area_before - area_after) / area_before;  // rounding noise of a flip below 1e-9
+    std::cout << "faces removed:      " << r.faces_removed << " (" << (std::abs(removed_share) < 1e-9 ? 0.0 : 100.0 * removed_share)
+              << "% of the area)\n";
+    std::cout << "components:         " << pieces_before << " -> " << edgefront::compute_stats(read.mesh).components << "\n";
+    if (r.seam_pieces_flipped > 0) {
+      std::cout << "seams:              " << r.seam_pieces_flipped << " piece(s) (" << r.seam_faces_flipped
+                << " faces) flipped to meet their neighbours along reversed seams\n";
+    }
     if (r.regions_scattered > 0) {
       std::cout << "left alone:         " << r.regions_scattered
                 << " scattered region(s) (border far longer than a disk's of their size: noise or a wall thinner than the"
@@ -104,9 +163,29 @@ int main(int argc, char** argv) {
     std::cout << "non-orientable:     " << (r.non_orientable ? "yes (" + std::to_string(r.seam_edges) + " seam edges left cut open)" : std::string("no")) << "\n";
     std::cout << "evidence:           " << r.detect_stats.faces_tested << " faces tested, " << r.detect_stats.distance_queries
               << " bounded distance fronts, " << r.detect_stats.flagged_faces << " faces flagged\n";
-    if (reference) std::cout << "consistency:        " << twist::orientation_consistency(read.mesh, *reference) << " of the area agrees with --points\n";
+    if (reference) {
+      std::cout << "consistency:        " << consistency_before << " -> " << twist::orientation_consistency(read.mesh, *reference)
+                << " of the area agrees with --points\n";
+      // What disagrees still, by the reference's verdict (reference_vote, as the repair judges).
+      double total = 0, rejected_area = 0, undecided = 0;
+      const double edge = edgefront::compute_stats(read.mesh).mean_edge_length;
+      for (edgefront::FaceHandle f : read.mesh.faces()) {
+        const twist::FaceGeometry g = twist::face_geometry(read.mesh, f);
+        const double a = read.mesh.calc_face_area(f);
+        total += a;
+        if (g.normal.sqrnorm() == 0 || OpenMesh::dot(g.normal, reference->nearest_normal(g.centre)) >= 0) continue;
+        const int vote = twist::reference_vote(*reference, options.detect, g.centre, g.normal, edge);
+        (vote < 0 ? rejected_area : undecided) += a;
+      }
+      std::cout << "disagreeing still:  " << rejected_area / total << " rejected (patches too small or too costly to cut), "
+                << undecided / total << " undecided (about perpendicular to the points' normals, or on a wall thinner than the faces)\n";
+    }
     edgefront::write_mesh(read.mesh, output);
-    if (png.requested()) png.write(edgefront::render::Scene{.mesh = &read.mesh});
+    if (png.requested()) {
+      edgefront::render::Scene after{.mesh = &read.mesh};
+      if (reference) after.highlights.push_back(rejected(read.mesh));
+      png.write(after);
+    }
     std::cout << "written:            " << output << "\n";
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("cannot write to standard output");

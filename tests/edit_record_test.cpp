@@ -156,6 +156,9 @@ TEST(EditRecord, OneShotRepairsOfFlippedDisksReplayFaceForFace) {
     const twist::ReferenceNormals ref(twist::truth_points(shape));
     twist::RepairOptions ro;
     ro.detect.reference = &ref;
+    // The detector's regions (cut, flip the smaller side): the labelling does not flip disks this
+    // small (radius about two mean edges, fold band included) at its default cut price.
+    ro.label_by_reference = false;
     EXPECT_GT(replay_one_shot(shape.mesh, ro).repairs, 0u);
     EXPECT_GT(replay_one_shot(shape.mesh, {}).repairs, 0u);
   }
@@ -171,6 +174,7 @@ TEST(EditRecord, HandFlippedPatchesOnASphereReplayFaceForFace) {
   const twist::ReferenceNormals ref(truth);
   twist::RepairOptions o;
   o.detect.reference = &ref;
+  o.label_by_reference = false;  // the detector's regions: patches of 2-3 rings are below the labelling's cut price
   o.peel_flaps = 2;           // the repair's later steps too: removals,
   o.drop_turned_patches = 4;  // collapses and straightening moves
   int repaired = 0;

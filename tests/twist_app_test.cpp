@@ -77,6 +77,32 @@ TEST_F(TwistApp, UsesOrientedPointsAndReportsConsistency) {
   EXPECT_DOUBLE_EQ(twist::truth_consistency(edgefront::load_mesh(path("fixed.off")), s), 1.0);
 }
 
+TEST_F(TwistApp, LabelsByThePointsOrUsesTheDetectorWhenAsked) {
+  twist::TwistedTubeOptions to;
+  to.along = 24;
+  to.around = 16;
+  to.length = 1.6;
+  const twist::TwistedShape s = twist::twisted_tube(to);
+  edgefront::write_mesh(s.mesh, path("tube.off"));
+  edgefront::write_points(twist::truth_points(s), path("cloud.ply"));
+  const std::string in = eftest::shell_quoted(path("tube.off")) + " --points " + eftest::shell_quoted(path("cloud.ply"));
+  const auto r = run(in + " -o " + eftest::shell_quoted(path("labelled.off")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("faces flipped, cut along"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("faces removed:      0 (0% of the area)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("components:         1 -> 2"), std::string::npos) << r.out;
+  EXPECT_GE(twist::truth_consistency(edgefront::load_mesh(path("labelled.off")), s), 0.99);
+  const auto d = run(in + " --detector -o " + eftest::shell_quoted(path("detected.off")));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(d.out.find("fronts visited"), std::string::npos) << d.out;
+  const auto priced = run(in + " --cut-cost 100 -o " + eftest::shell_quoted(path("priced.off")));
+  ASSERT_EQ(priced.exit_code, 0) << priced.err;
+  EXPECT_NE(priced.out.find("repairs:            0"), std::string::npos) << priced.out;
+  const auto bad = run(in + " --cut-cost 101 -o " + eftest::shell_quoted(path("bad.off")));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--cut-cost"), std::string::npos) << bad.err;
+}
+
 TEST_F(TwistApp, ErrorsAreOneLine) {
   const auto missing = run(eftest::shell_quoted(path("missing.off")) + " -o " + eftest::shell_quoted(path("x.off")));
   EXPECT_EQ(missing.exit_code, 1);

@@ -324,6 +324,7 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;
+  o.label_by_reference = false;  // the detector's regions: its border-ratio guard is tested here
   // Reference points with opposed normals side by side read as a wall of thickness 0: by default
   // (DetectOptions::thin_wall) such rejections are no evidence, and nothing is found at all.
   Mesh untouched = sphere;

@@ -6,7 +6,9 @@
 #include <deque>
 #include <functional>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -821,11 +823,7 @@ bool region_is_most_of_its_component(const Mesh& mesh, const TwistRegion& region
   return true;
 }
 
-RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups,
-                         FaceGrid* grid = nullptr) {
-  // Incremental (a face grid and a restricted candidate set): nothing here passes over the mesh.
-  const bool incremental = grid && o.detect.restrict_to;
-  if (!incremental) detail::check_mesh(mesh, "twist::repair");
+void validate_repair_options(const RepairOptions& o) {
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
   if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
   if (!(o.max_border_ratio >= 0) || !std::isfinite(o.max_border_ratio)) {
@@ -842,6 +840,15 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   if (!(o.retest_move >= 0) || !std::isfinite(o.retest_move)) {
     throw InvalidInput("twist::repair: option retest_move must be finite and >= 0");
   }
+  if (!(o.cut_cost >= 0 && o.cut_cost <= 100)) throw InvalidInput("twist::repair: option cut_cost must lie in [0, 100]");
+}
+
+RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups,
+                         FaceGrid* grid = nullptr) {
+  // Incremental (a face grid and a restricted candidate set): nothing here passes over the mesh.
+  const bool incremental = grid && o.detect.restrict_to;
+  if (!incremental) detail::check_mesh(mesh, "twist::repair");
+  validate_repair_options(o);
   RepairReport report;
   // Reversed seams, except those of our own earlier cuts (a flipped side meets its old
   // neighbours with opposite orientation along the cut: that is the repair, not the input).
@@ -952,11 +959,185 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   return report;
 }
 
+/// Pieces that meet another piece along a reversed seam (their border halfedges lie on top of
+/// each other running the same way: a region turned over by hand, wound the other way in a file,
+/// its vertices split from the rest) are flipped so the seams become compatible: per group of
+/// pieces joined by such seams, the pieces get two classes (a piece and a piece it meets along a
+/// reversed seam are in different classes) and the class with fewer faces is flipped whole. A
+/// seam within one piece (a Moebius band cut open) or a group that cannot be split in two classes
+/// is left. The seam vertex pairs join `dups` so the global orientation treats the group as one
+/// surface. O(F + border halfedges log).
+void flip_seam_pieces(Mesh& mesh, DupList& dups, RepairReport& report) {
+  if (mesh.n_vertices() == 0) return;
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (VertexHandle v : mesh.vertices()) {
+    lo.minimize(mesh.point(v));
+    hi.maximize(mesh.point(v));
+  }
+  const double tol = std::max(1e-300, 1e-9 * (hi - lo).norm());
+  using Key = std::array<long long, 6>;
+  auto q = [&](double x) { return static_cast<long long>(std::llround(x / tol)); };
+  std::map<Key, std::vector<HalfedgeHandle>> by_key;
+  for (HalfedgeHandle h : mesh.halfedges()) {
+    if (mesh.status(h).deleted() || !mesh.is_boundary(h)) continue;
+    const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
+    const Vec3& b = mesh.point(mesh.to_vertex_handle(h));
+    by_key[Key{q(a[0]), q(a[1]), q(a[2]), q(b[0]), q(b[1]), q(b[2])}].push_back(h);
+  }
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  auto piece = [&](HalfedgeHandle h) { return labels.vertex_component[static_cast<size_t>(mesh.from_vertex_handle(h).idx())]; };
+  std::map<std::pair<int, int>, DupList> seams;  // (piece, piece) -> coincident vertex pairs
+  std::map<std::pair<int, int>, std::pair<double, size_t>> turn;  // (piece, piece) -> (sum of n.n' across the seam, edges)
+  for (const auto& entry : by_key) {
+    const std::vector<HalfedgeHandle>& hs = entry.second;
+    for (size_t i = 0; i < hs.size(); ++i)
+      for (size_t j = i + 1; j < hs.size(); ++j) {
+        const int a = piece(hs[i]), b = piece(hs[j]);
+        if (a == b) continue;
+        DupList& pairs = seams[{std::min(a, b), std::max(a, b)}];
+        pairs.emplace_back(mesh.from_vertex_handle(hs[j]), mesh.from_vertex_handle(hs[i]));
+        pairs.emplace_back(mesh.to_vertex_handle(hs[j]), mesh.to_vertex_handle(hs[i]));
+        const FaceHandle fa = mesh.opposite_face_handle(hs[i]), fb = mesh.opposite_face_handle(hs[j]);
+        auto& t = turn[{std::min(a, b), std::max(a, b)}];
+        t.first += OpenMesh::dot(detail::unit_normal(detail::face_points(mesh, fa)), detail::unit_normal(detail::face_points(mesh, fb)));
+        ++t.second;
+      }
+  }
+  // Only seams across which the surface runs on smoothly but turned over (the faces on the two
+  // sides face opposite ways: n.n' < -0.5 on average) are flipped; a seam across which they face
+  // the same way, or fold, is what a twist repair's cut leaves (the layers cross there) and stays.
+  for (auto it = seams.begin(); it != seams.end();) {
+    const auto& t = turn[it->first];
+    it = t.first < -0.5 * static_cast<double>(t.second) ? std::next(it) : seams.erase(it);
+  }
+  if (seams.empty()) return;
+  std::vector<std::vector<int>> adjacent(labels.count);
+  for (const auto& entry : seams) {
+    adjacent[static_cast<size_t>(entry.first.first)].push_back(entry.first.second);
+    adjacent[static_cast<size_t>(entry.first.second)].push_back(entry.first.first);
+  }
+  std::vector<std::vector<FaceHandle>> faces(labels.count);
+  for (FaceHandle f : mesh.faces()) {
+    if (!mesh.status(f).deleted()) faces[static_cast<size_t>(labels.vertex_component[static_cast<size_t>((*mesh.fv_begin(f)).idx())])].push_back(f);
+  }
+  std::vector<int> colour(labels.count, -1);
+  std::vector<FaceHandle> flip;
+  std::vector<int> resolved;  // pieces of groups that could be split in two classes
+  for (size_t start = 0; start < labels.count; ++start) {
+    if (colour[start] >= 0 || adjacent[start].empty()) continue;
+    std::vector<int> group{static_cast<int>(start)};
+    colour[start] = 0;
+    bool two_classes = true;
+    size_t class_faces[2] = {0, 0};
+    for (size_t k = 0; k < group.size(); ++k) {
+      const int c = group[k];
+      class_faces[colour[static_cast<size_t>(c)]] += faces[static_cast<size_t>(c)].size();
+      for (int d : adjacent[static_cast<size_t>(c)]) {
+        if (colour[static_cast<size_t>(d)] < 0) {
+          colour[static_cast<size_t>(d)] = 1 - colour[static_cast<size_t>(c)];
+          group.push_back(d);
+        } else if (colour[static_cast<size_t>(d)] == colour[static_cast<size_t>(c)]) {
+          two_classes = false;
+        }
+      }
+    }
+    if (!two_classes) continue;
+    const int flipped = class_faces[1] <= class_faces[0] ? 1 : 0;
+    for (int c : group) {
+      resolved.push_back(c);
+      if (colour[static_cast<size_t>(c)] != flipped) continue;
+      flip.insert(flip.end(), faces[static_cast<size_t>(c)].begin(), faces[static_cast<size_t>(c)].end());
+      ++report.seam_pieces_flipped;
+    }
+  }
+  std::sort(resolved.begin(), resolved.end());
+  for (const auto& entry : seams) {
+    if (std::binary_search(resolved.begin(), resolved.end(), entry.first.first)) dups.insert(dups.end(), entry.second.begin(), entry.second.end());
+  }
+  if (flip.empty()) return;
+  report.seam_faces_flipped += flip.size();
+  detail::cut_and_reverse(mesh, flip, true, nullptr);
+}
+
+/// `repair` with reference normals by labelling (see `RepairOptions::label_by_reference`).
+RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
+  detail::check_mesh(mesh, "twist::repair");
+  validate_repair_options(o);
+  RepairReport report;
+  const ReferenceLabelling labels = label_by_reference(mesh, o);
+  report.regions_found = labels.regions.size() + labels.regions_too_small;
+  report.detect_stats.faces_tested = labels.faces_voted;
+  std::vector<FaceHandle> side;
+  for (size_t r = 0; r < labels.regions.size(); ++r) {
+    const auto& region = labels.regions[r];
+    RepairRecord rec;
+    rec.region_faces = region.size();
+    rec.cut_edges = labels.cut_edges[r];
+    rec.flipped_faces = region.size();
+    rec.faces_visited = region.size();
+    rec.flipped_region = true;
+    // The vertices on the region's cut (each gets a copy per fan of the region around it: one
+    // on a simple cut loop).
+    std::unordered_set<int> inside, border;
+    for (FaceHandle f : region) inside.insert(f.idx());
+    for (FaceHandle f : region) {
+      for (HalfedgeHandle h : mesh.fh_range(f)) {
+        const FaceHandle g = mesh.opposite_face_handle(h);
+        if (!g.is_valid() || inside.count(g.idx())) continue;
+        border.insert(mesh.from_vertex_handle(h).idx());
+        border.insert(mesh.to_vertex_handle(h).idx());
+      }
+    }
+    rec.vertices_duplicated = border.size();
+    report.records.push_back(rec);
+    report.cut_edges += rec.cut_edges;
+    report.faces_flipped += rec.flipped_faces;
+    report.faces_visited += rec.faces_visited;
+    ++report.repairs;
+    side.insert(side.end(), region.begin(), region.end());
+  }
+  if (!side.empty()) report.vertices_duplicated = detail::cut_and_reverse(mesh, side, true, &dups);
+  // Reversed seams left after the flips, except along our own cuts (a flipped side meets its old
+  // neighbours with opposite orientation there: that is the repair): the surface meets itself
+  // with opposite orientation (a Moebius band; a region the votes left as it was).
+  std::unordered_set<int> cut_vertices;
+  for (const auto& [copy, original] : dups) {
+    cut_vertices.insert(copy.idx());
+    cut_vertices.insert(original.idx());
+  }
+  for (HalfedgeHandle h : reversed_seams(mesh)) {
+    if (cut_vertices.count(mesh.from_vertex_handle(h).idx()) && cut_vertices.count(mesh.to_vertex_handle(h).idx())) continue;
+    ++report.seam_edges;
+  }
+  report.non_orientable = report.seam_edges > 0;
+  // No piece the cuts separated is removed (min_cut_piece_share does not apply: the labelling
+  // never makes a piece under min_component_faces); border flaps only when asked.
+  if (o.peel_flaps > 0) {
+    const size_t peeled = peel_flaps(mesh, o, dups);
+    report.flap_faces_removed += peeled;
+    report.faces_removed += peeled;
+  }
+  if (o.global_orientation) orient_globally(mesh, o, dups, report);
+  drop_turned_patches(mesh, o, report);
+  if (o.garbage_collect) mesh.garbage_collection();
+  return report;
+}
+
 }  // namespace
 
 RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   DupList dups;
-  return repair_impl(mesh, options, nullptr, dups);
+  RepairReport seams;
+  if (options.flip_seam_pieces) {
+    detail::check_mesh(mesh, "twist::repair");
+    validate_repair_options(options);
+    flip_seam_pieces(mesh, dups, seams);
+  }
+  RepairReport report = options.detect.reference && options.label_by_reference ? label_repair(mesh, options, dups)
+                                                                                : repair_impl(mesh, options, nullptr, dups);
+  report.seam_pieces_flipped = seams.seam_pieces_flipped;
+  report.seam_faces_flipped = seams.seam_faces_flipped;
+  return report;
 }
 
 RepairReport orient(Mesh& mesh, const RepairOptions& options) {

@@ -40,7 +40,8 @@ struct RepairOptions {
   /// which stay local), a component that the cuts separated (it holds a vertex of a cut) and that
   /// has fewer than max(min_component_faces, this share x the largest component's faces) faces is
   /// removed: a sliver or fragment too small to stand as a part of the surface, often lying over
-  /// another piece with the same orientation. Components the input had stay. In [0, 1]; 0 = only
+  /// another piece with the same orientation. Components the input had stay. Not applied when
+  /// labelling by a reference (`label_by_reference`: it removes nothing). In [0, 1]; 0 = only
   /// `min_component_faces` at each cut.
   double min_cut_piece_share = 0.02;
   /// At the end of a full repair: rounds of removing border flaps, faces with a vertex on the
@@ -102,6 +103,33 @@ struct RepairOptions {
   /// changed face is tested. In [0, 180] and >= 0.
   double retest_turn_degrees = 10.0;
   double retest_move = 0.25;  ///< see `retest_turn_degrees`: corner movement in mean edge lengths, >= 0
+  /// `repair` with reference normals (`detect.reference`): label every face keep or flip by the
+  /// reference (`label_by_reference`: a minimum cut between the faces' votes and the price of
+  /// cutting), cut along the borders between the labels and flip the flip-labelled regions,
+  /// instead of detecting twisted regions and flipping the smaller side of each. The detector
+  /// needs a core of evidence, a compact region and a short border; a finished mesh whose
+  /// orientation disagrees with the reference in large irregular patches (a reconstruction twisted
+  /// along its whole length) has none of these. `TwistRepairer` (the refinement loop) never
+  /// labels. false = the detector's regions, as without a reference.
+  bool label_by_reference = true;
+  /// Labelling only: the price of cutting the mesh along an edge, per unit of edge length, in
+  /// units of the mean edge length (an area, comparable with the area of the faces the reference
+  /// rejects): a region is flipped only when the area it puts right exceeds the area it puts wrong
+  /// plus cut_cost x mean edge x the length of the cut around it. A disk of wrongly oriented faces
+  /// is flipped from a radius of about 2 x cut_cost mean edges on. In [0, 100]; default 1.
+  double cut_cost = 1.0;
+  /// `repair` only (not `TwistRepairer`), first of all: pieces that meet another piece along a
+  /// reversed seam (border halfedges on top of each other running the same way, see
+  /// `reversed_seams`: a patch turned over by hand or wound the other way in a file, which a
+  /// half-edge mesh holds as a separate piece in its hole) are flipped whole, the smaller class
+  /// of each group of pieces so joined, so the seams become compatible; the global orientation
+  /// then treats each group as one surface. Needs no reference. A seam within one piece (a Moebius
+  /// band) is left and reported (`non_orientable`). Only seams across which the faces face
+  /// opposite ways (n.n' < -0.5 on average) count. Off by default: the cut of a twist repair
+  /// leaves the same signature (the flipped side meets the rest along a reversed seam), so on a
+  /// mesh that was repaired before this would undo the repair; turn it on for meshes with patches
+  /// wound the other way (with a reference the labelling flips such pieces anyway).
+  bool flip_seam_pieces = false;
   bool global_orientation = true;    ///< apply the global orientation convention at the end
   bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
 };
@@ -137,6 +165,8 @@ struct RepairReport {
   size_t cut_edges = 0;                ///< edges cut, all repairs together
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
   size_t regions_scattered = 0;        ///< regions left alone: not compact (see max_border_ratio)
+  size_t seam_pieces_flipped = 0;      ///< pieces flipped whole to make reversed seams compatible (`flip_seam_pieces`)
+  size_t seam_faces_flipped = 0;       ///< their faces
   size_t components_flipped = 0;       ///< by the global orientation
   size_t faces_flipped_globally = 0;   ///< faces of the components the global orientation flipped
   bool non_orientable = false;         ///< the surface meets itself with opposite orientation
@@ -145,7 +175,41 @@ struct RepairReport {
   std::vector<RepairRecord> records;   ///< one per repair, in the order they were made
 };
 
-/// Detects and repairs the twisted regions of `mesh` (see the file comment).
+/// The keep/flip labelling of `label_by_reference`.
+struct ReferenceLabelling {
+  /// The regions to flip: edge-connected sets of flip-labelled faces (breadth-first order from
+  /// the lowest face index), lowest first face first.
+  std::vector<std::vector<edgefront::FaceHandle>> regions;
+  std::vector<size_t> cut_edges;  ///< per region: its interior edges shared with kept faces (the cut)
+  std::vector<double> votes;      ///< per region: the area its faces' votes add up to (< 0: rejected)
+  size_t regions_too_small = 0;   ///< flip regions left as they are: they need a cut and have < min_component_faces faces
+  size_t faces_voted = 0;         ///< live faces judged
+  double total_area = 0;          ///< of the live faces
+  double wrong_area_before = 0;   ///< area of the faces the reference rejects
+  double wrong_area_after = 0;    ///< area the reference rejects once the regions are flipped
+  double undecided_area = 0;      ///< area of the faces the reference leaves undecided (vote 0)
+};
+
+/// Labels every face keep or flip so that the orientation agrees with the reference normals
+/// wherever that is worth a cut: each face votes with its area (`reference_vote` under
+/// `options.detect`: +1 agrees, -1 disagrees, 0 undecided, e.g. on a wall thinner than
+/// `DetectOptions::thin_wall` mean edges), each interior edge costs `options.cut_cost` x mean
+/// edge x its length when its two faces get different labels, and a minimum s-t cut (exact,
+/// max-flow) picks the labelling of least total cost. Regions of consistently oriented faces are
+/// thus flipped whole by their area-weighted vote, and the cut runs only where two regions that
+/// disagree must meet: the twist line. Flip regions of fewer than `options.min_component_faces`
+/// faces that need a cut stay (`regions_too_small`). Does not change the mesh. Cost: one
+/// nearest-point query per face (two on thin walls), then the max-flow over the face graph.
+/// 	hrows edgefront::InvalidInput without `options.detect.reference`, for an empty mesh,
+///         non-finite coordinates or options out of range (`cut_cost`, `min_component_faces`, the
+///         detection options).
+ReferenceLabelling label_by_reference(const edgefront::Mesh& mesh, const RepairOptions& options);
+
+/// Detects and repairs the twisted regions of `mesh` (see the file comment). With reference
+/// normals and `RepairOptions::label_by_reference` (the default), the regions are those of
+/// `label_by_reference`: they are cut off along the label border and flipped (nothing removed),
+/// then the global orientation applies; the detector is not run (`regions_found` counts the
+/// labelled regions, `records` has one entry per region).
 /// A non-orientable surface (a reversed seam, see `reversed_seams`) cannot be oriented: the seam is
 /// left open, `non_orientable` is set, and the rest is repaired.
 /// \throws edgefront::InvalidInput as `detect`, or for options out of range.
