@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "edgefront/shapes.h"  // only to make the test host's sphere
+#include "shapes/shapes.h"  // only to make the test host's sphere
 #include "twist/arrays.h"
 #include "twist/repair_session.h"
 

@@ -351,6 +351,8 @@ class Reconstructor {
   /// missing: each gets a plane fitted to its point's 16 nearest points, oriented like the sum of
   /// the 8 nearest given normals (ReconstructResult::normals_filled); when no normal is usable the
   /// cloud is taken as one without normals (ReconstructResult::normals_unusable).
+  /// \param points   the cloud (normals optional; moved in)
+  /// \param options  see ReconstructOptions
   /// \param progress called at the start and end of the noise estimate and of the normal fitting
   ///        (Progress::phase; may be empty; its return value is ignored here).
   /// \throw edgefront::InvalidInput for fewer than 4 points, NaN or infinite coordinates,
