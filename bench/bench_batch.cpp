@@ -29,25 +29,8 @@
 
 namespace {
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
-  return out;
-}
-
-// User + system CPU time of the whole process (all threads), seconds.
-double process_cpu_seconds() {
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
-double load_average() {
-  double l[1] = {0};
-  return getloadavg(l, 1) == 1 ? l[0] : -1;
-}
+using efbench::load_average;
+using efbench::process_cpu_seconds;
 
 }  // namespace
 
@@ -64,9 +47,9 @@ int main(int argc, char** argv) {
       k = std::stoul(argv[++i]);
     } else if (a == "--threads" && has_value) {
       thread_counts.clear();
-      for (const std::string& t : split(argv[++i])) thread_counts.push_back(static_cast<unsigned>(std::stoul(t)));
+      for (const std::string& t : efbench::split_list(argv[++i])) thread_counts.push_back(static_cast<unsigned>(std::stoul(t)));
     } else if (a == "--methods" && has_value) {
-      methods = split(argv[++i]);
+      methods = efbench::split_list(argv[++i]);
     } else if (a == "--repeats" && has_value) {
       repeats = std::stoi(argv[++i]);
     } else if (!a.empty() && a[0] != '-' && mesh_path.empty()) {
