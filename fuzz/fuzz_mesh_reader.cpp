@@ -33,7 +33,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
       const edgefront::MeshReadResult r = edgefront::read_mesh_from_buffer(bytes, name);
       const edgefront::Mesh& m = r.mesh;
-      check(m.n_vertices() == r.report.vertices, name, "vertex count differs from the report");
+      // The file's vertices, then one copy per extra fan of each pinched vertex.
+      check(m.n_vertices() == r.report.vertices + r.report.vertex_copies, name,
+            "vertex count differs from the report");
+      check((r.report.pinched_vertices == 0) == (r.report.vertex_copies == 0), name,
+            "pinched vertices and their copies disagree");
       check(m.n_faces() == r.report.triangles_added, name, "face count differs from the report");
       check(edgefront::coordinate_range_problem(m).empty(), name, "a coordinate outside the range");
       for (const auto f : m.faces()) {
