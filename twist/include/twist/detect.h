@@ -243,7 +243,7 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
 /// Which partners make a same-orientation pair (see `same_orientation_pairs`).
 enum class LayerRule {
   /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >= `facing_cos`·|d|
-  /// for d = c_g - c_f (the rule of sessions 1-8). It also counts two faces of one wall side by
+  /// for d = c_g - c_f (the first rule). It also counts two faces of one wall side by
   /// side across a hole or a border gap, and two faces bevelled over a rim corner (two walls
   /// meeting at a right angle), when their normals tilt enough: both may be oriented right.
   Facing,
