@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "edgefront/arrays.h"
 #include "edgefront/error.h"
@@ -212,16 +213,17 @@ DistanceMatrix geodesic_distances(const GeodesicSolver& solver, std::span<const 
                          ? geodesic_distances(a.mesh, src, o, batch)
                          : geodesic_distances(a.mesh, src, cols, o, batch);
   if (m.columns == wanted) return m;
-  DistanceMatrix out = m;
-  out.columns = wanted;
-  out.values.assign(out.rows * wanted, kNaN);
-  for (std::size_t i = 0; i < out.rows; ++i) {
+  // A pinched vertex's column takes the smallest of its copies' values.
+  std::vector<double> folded(m.rows * wanted, kNaN);
+  for (std::size_t i = 0; i < m.rows; ++i) {
     if (!m.computed[i]) continue;
-    double* row = out.values.data() + i * wanted;
+    double* row = folded.data() + i * wanted;
     std::fill(row, row + wanted, kInf);
     for (std::size_t c = 0; c < m.columns; ++c) row[column_of[c]] = std::min(row[column_of[c]], m(i, c));
   }
-  return out;
+  m.values = std::move(folded);
+  m.columns = wanted;
+  return m;
 }
 
 }  // namespace edgefront
