@@ -178,6 +178,20 @@ bool missing_normal(const Vec3& n) {
   return !(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2])) || !(n.sqrnorm() > 0);
 }
 
+// The scatter matrix (sum of outer products) of the neighbours' positions about their centroid:
+// its eigenvector of the smallest eigenvalue is the normal of their least-squares plane.
+Eigen::Matrix3d neighbour_scatter(const std::vector<Vec3>& points, const std::vector<PointIndex::Neighbor>& knn) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const PointIndex::Neighbor& nb : knn) centre += Eigen::Vector3d(points[nb.index][0], points[nb.index][1], points[nb.index][2]);
+  centre /= static_cast<double>(knn.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const PointIndex::Neighbor& nb : knn) {
+    const Eigen::Vector3d q = Eigen::Vector3d(points[nb.index][0], points[nb.index][1], points[nb.index][2]) - centre;
+    cov += q * q.transpose();
+  }
+  return cov;
+}
+
 // Replaces the missing normals of `c` (missing_normal) by the normal of the plane through the
 // point's 16 nearest points, oriented like the sum of the 8 nearest given normals, and normalizes
 // the given ones that are not unit. Returns how many were filled; clears the normals when none is
@@ -207,14 +221,7 @@ size_t fill_missing_normals(edgefront::PointCloud& c, bool& unusable) {
   for (const size_t i : missing) {
     const Vec3& p = c.points[i];
     all.k_nearest(p, 16, knn);
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) centre += Eigen::Vector3d(c.points[nb.index][0], c.points[nb.index][1], c.points[nb.index][2]);
-    centre /= static_cast<double>(knn.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) {
-      const Eigen::Vector3d q = Eigen::Vector3d(c.points[nb.index][0], c.points[nb.index][1], c.points[nb.index][2]) - centre;
-      cov += q * q.transpose();
-    }
+    const Eigen::Matrix3d cov = neighbour_scatter(c.points, knn);
     given.k_nearest(p, 8, knn);
     Vec3 side(0, 0, 0);
     for (const PointIndex::Neighbor& nb : knn) side += given_normals[nb.index];
@@ -622,15 +629,7 @@ struct Reconstructor::Impl {
     Vec3& n = fitted_normal[i];
     if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
     tree->k_nearest(cloud.points[i], 20, knn);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) c += Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]);
-    c /= static_cast<double>(knn.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const PointIndex::Neighbor& nb : knn) {
-      const Eigen::Vector3d q = Eigen::Vector3d(cloud.points[nb.index][0], cloud.points[nb.index][1], cloud.points[nb.index][2]) - c;
-      cov += q * q.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(neighbour_scatter(cloud.points, knn));
     const Eigen::Vector3d e = eig.eigenvectors().col(0);
     const Eigen::Vector3d ev = eig.eigenvalues();
     // Not flat enough (noise comparable to the spacing): no usable normal (marked by a NaN).
