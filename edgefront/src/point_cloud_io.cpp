@@ -35,14 +35,15 @@ struct NormalTally {
   size_t total = 0, invalid = 0, zero = 0;
   std::string first;  // where and what the first invalid normal was
 
-  // `where` names the line or vertex for messages ("line 3", "vertex 2").
+  // `what` and `index` name the line or vertex for messages ("line 3", "vertex 2"); the text is
+  // made only for an invalid normal.
   template <class Fail>
-  Vec3 take(Vec3 n, const std::string& where, Fail&& fail) {
+  Vec3 take(Vec3 n, const char* what, size_t index, Fail&& fail) {
     ++total;
     const std::string problem = normalize_normal(n);
     if (problem.empty()) return n;
     if (!options.tolerate_invalid_normals) fail(problem);
-    if (invalid++ == 0) first = where + ": " + problem;
+    if (invalid++ == 0) first = std::string(what) + " " + std::to_string(index) + ": " + problem;
     if (n == Vec3(0, 0, 0)) ++zero;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return Vec3(nan, nan, nan);
@@ -122,7 +123,7 @@ PointCloud read_xyz(std::string_view data, const fs::path& file, NormalTally& ta
     if (!finite(p)) detail::throw_io_line(file, ln, "non-finite coordinate");
     cloud.points.push_back(p);
     if (per_line == 6 && !tally.options.ignore_normals) {
-      cloud.normals.push_back(tally.take(Vec3(v[3], v[4], v[5]), "line " + std::to_string(ln),
+      cloud.normals.push_back(tally.take(Vec3(v[3], v[4], v[5]), "line", ln,
                                          [&](const std::string& problem) { detail::throw_io_line(file, ln, problem); }));
     }
   }
@@ -164,9 +165,9 @@ PointCloud parse_points(std::string_view data, const fs::path& path, const std::
     had_normals = !raw.normals.empty();
     if (read_options.ignore_normals) raw.normals.clear();
     for (size_t i = 0; i < raw.normals.size(); ++i) {
-      const std::string where = "vertex " + std::to_string(i);
-      raw.normals[i] = tally.take(raw.normals[i], where,
-                                  [&](const std::string& problem) { detail::throw_io(path, where + ": " + problem); });
+      raw.normals[i] = tally.take(raw.normals[i], "vertex", i, [&](const std::string& problem) {
+        detail::throw_io(path, "vertex " + std::to_string(i) + ": " + problem);
+      });
     }
     cloud.points = std::move(raw.points);
     cloud.normals = std::move(raw.normals);
@@ -179,10 +180,7 @@ PointCloud parse_points(std::string_view data, const fs::path& path, const std::
 }  // namespace
 
 PointCloud read_points(const fs::path& path) {
-  const std::string ext = detail::lower_extension(path);
-  check_points_extension(path, ext);
-  const detail::FileContent content(path);
-  return parse_points(content.view(), path, ext, {}, nullptr);
+  return read_points(path, {}, nullptr);
 }
 
 PointCloud read_points(const fs::path& path, const PointReadOptions& options, PointReadReport* report) {
@@ -194,9 +192,7 @@ PointCloud read_points(const fs::path& path, const PointReadOptions& options, Po
 }
 
 PointCloud read_points_from_buffer(std::string_view data, const fs::path& name) {
-  const std::string ext = detail::lower_extension(name);
-  check_points_extension(name, ext);
-  return parse_points(data, name, ext, {}, nullptr);
+  return read_points_from_buffer(data, name, {}, nullptr);
 }
 
 PointCloud read_points_from_buffer(std::string_view data, const fs::path& name, const PointReadOptions& options,
