@@ -1005,24 +1005,8 @@ std::vector<TwistRegion> detect(const Mesh& mesh, const DetectOptions& options) 
 
 std::vector<HalfedgeHandle> reversed_seams(const Mesh& mesh) {
   std::vector<HalfedgeHandle> out;
-  if (mesh.n_vertices() == 0) return out;
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (VertexHandle v : mesh.vertices()) {
-    lo.minimize(mesh.point(v));
-    hi.maximize(mesh.point(v));
-  }
-  const double tol = std::max(1e-300, 1e-9 * (hi - lo).norm());
-  using Key = std::tuple<long long, long long, long long, long long, long long, long long>;
-  auto q = [&](double x) { return static_cast<long long>(std::llround(x / tol)); };
-  std::map<Key, std::vector<HalfedgeHandle>> by_key;
-  for (HalfedgeHandle h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h)) continue;
-    const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
-    const Vec3& b = mesh.point(mesh.to_vertex_handle(h));
-    by_key[Key{q(a[0]), q(a[1]), q(a[2]), q(b[0]), q(b[1]), q(b[2])}].push_back(h);
-  }
-  for (const auto& [key, hs] : by_key) {
-    if (hs.size() >= 2) out.push_back(*std::min_element(hs.begin(), hs.end(), [](auto x, auto y) { return x.idx() < y.idx(); }));
+  for (const std::vector<HalfedgeHandle>& hs : detail::coincident_border_halfedges(mesh)) {
+    out.push_back(*std::min_element(hs.begin(), hs.end(), [](auto x, auto y) { return x.idx() < y.idx(); }));
   }
   std::sort(out.begin(), out.end(), [](auto x, auto y) { return x.idx() < y.idx(); });
   return out;

@@ -1,10 +1,14 @@
 #include "detail/geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "edgefront/error.h"
 
@@ -13,6 +17,31 @@ namespace twist::detail {
 using edgefront::HalfedgeHandle;
 using edgefront::InternalError;
 using edgefront::InvalidInput;
+
+std::vector<std::vector<HalfedgeHandle>> coincident_border_halfedges(const Mesh& mesh) {
+  std::vector<std::vector<HalfedgeHandle>> out;
+  if (mesh.n_vertices() == 0) return out;
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (VertexHandle v : mesh.vertices()) {
+    lo.minimize(mesh.point(v));
+    hi.maximize(mesh.point(v));
+  }
+  const double tol = std::max(1e-300, 1e-9 * (hi - lo).norm());
+  using Key = std::array<long long, 6>;
+  auto q = [&](double x) { return static_cast<long long>(std::llround(x / tol)); };
+  std::map<Key, std::vector<HalfedgeHandle>> by_key;
+  const bool status = mesh.has_halfedge_status();
+  for (HalfedgeHandle h : mesh.halfedges()) {
+    if ((status && mesh.status(h).deleted()) || !mesh.is_boundary(h)) continue;
+    const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
+    const Vec3& b = mesh.point(mesh.to_vertex_handle(h));
+    by_key[Key{q(a[0]), q(a[1]), q(a[2]), q(b[0]), q(b[1]), q(b[2])}].push_back(h);
+  }
+  for (auto& entry : by_key) {
+    if (entry.second.size() >= 2) out.push_back(std::move(entry.second));
+  }
+  return out;
+}
 
 std::array<Vec3, 3> face_points(const Mesh& mesh, FaceHandle f) {
   std::array<Vec3, 3> p;

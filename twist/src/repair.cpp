@@ -968,28 +968,13 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
 /// is left. The seam vertex pairs join `dups` so the global orientation treats the group as one
 /// surface. O(F + border halfedges log).
 void flip_seam_pieces(Mesh& mesh, DupList& dups, RepairReport& report) {
-  if (mesh.n_vertices() == 0) return;
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (VertexHandle v : mesh.vertices()) {
-    lo.minimize(mesh.point(v));
-    hi.maximize(mesh.point(v));
-  }
-  const double tol = std::max(1e-300, 1e-9 * (hi - lo).norm());
-  using Key = std::array<long long, 6>;
-  auto q = [&](double x) { return static_cast<long long>(std::llround(x / tol)); };
-  std::map<Key, std::vector<HalfedgeHandle>> by_key;
-  for (HalfedgeHandle h : mesh.halfedges()) {
-    if (mesh.status(h).deleted() || !mesh.is_boundary(h)) continue;
-    const Vec3& a = mesh.point(mesh.from_vertex_handle(h));
-    const Vec3& b = mesh.point(mesh.to_vertex_handle(h));
-    by_key[Key{q(a[0]), q(a[1]), q(a[2]), q(b[0]), q(b[1]), q(b[2])}].push_back(h);
-  }
+  const std::vector<std::vector<HalfedgeHandle>> coincident = detail::coincident_border_halfedges(mesh);
+  if (coincident.empty()) return;
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   auto piece = [&](HalfedgeHandle h) { return labels.vertex_component[static_cast<size_t>(mesh.from_vertex_handle(h).idx())]; };
   std::map<std::pair<int, int>, DupList> seams;  // (piece, piece) -> coincident vertex pairs
   std::map<std::pair<int, int>, std::pair<double, size_t>> turn;  // (piece, piece) -> (sum of n.n' across the seam, edges)
-  for (const auto& entry : by_key) {
-    const std::vector<HalfedgeHandle>& hs = entry.second;
+  for (const std::vector<HalfedgeHandle>& hs : coincident) {
     for (size_t i = 0; i < hs.size(); ++i)
       for (size_t j = i + 1; j < hs.size(); ++j) {
         const int a = piece(hs[i]), b = piece(hs[j]);

@@ -24,6 +24,12 @@ Vec3 unit_normal(const std::array<Vec3, 3>& p);
 double area(const std::array<Vec3, 3>& p);
 Vec3 centroid(const std::array<Vec3, 3>& p);
 
+/// The live border halfedges that lie on top of another border halfedge running the same way
+/// (their end points coincide within 1e-9 of the bounding-box diagonal): one group per such
+/// position, groups in the order of their quantized end points, each group in halfedge order.
+/// A reversed seam: a part turned over by hand or wound the other way, split from its neighbours.
+std::vector<std::vector<edgefront::HalfedgeHandle>> coincident_border_halfedges(const Mesh& mesh);
+
 /// Does the segment p-q cross the interior of triangle t (not merely touch it: its ends lie more
 /// than `eps` off t's plane on opposite sides, and the crossing more than `eps` inside every edge)?
 bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps);
