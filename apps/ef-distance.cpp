@@ -274,11 +274,8 @@ int main(int argc, char** argv) {
       bo.threads = threads;
       if (bar) {
         bo.progress = [](size_t done, size_t total) {
-          constexpr size_t kWidth = 40;
-          const size_t filled = total ? done * kWidth / total : kWidth;
-          std::fprintf(stderr, "\r[%s%s] %zu/%zu sources", std::string(filled, '#').c_str(),
-                       std::string(kWidth - filled, ' ').c_str(), done, total);
-          std::fflush(stderr);
+          edgefront::apps::draw_progress_bar("distances", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0,
+                                             std::to_string(done) + "/" + std::to_string(total) + " sources");
           return true;
         };
       }

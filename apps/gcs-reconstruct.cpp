@@ -168,17 +168,13 @@ int main(int argc, char** argv) {
     gcs::ProgressCallback progress = [&, bar](const gcs::Progress& p) {
       if (p.phase == gcs::Phase::growth) snapshot(p);
       if (bar) {
-        const int width = 40;
-        const int filled = static_cast<int>(std::min(1.0, std::max(0.0, p.phase_fraction)) * width);
-        const std::string phase = gcs::to_string(p.phase);
+        char detail[96];
         if (p.phase == gcs::Phase::growth) {
-          std::fprintf(stderr, "\r%-16s [%s%s] %zu/%zu vertices, %.1f s   ", phase.c_str(), std::string(filled, '#').c_str(),
-                       std::string(width - filled, ' ').c_str(), p.vertices, p.target_vertices, p.seconds);
+          std::snprintf(detail, sizeof detail, "%zu/%zu vertices, %.1f s", p.vertices, p.target_vertices, p.seconds);
         } else {
-          std::fprintf(stderr, "\r%-16s [%s%s] %.1f s                    ", phase.c_str(), std::string(filled, '#').c_str(),
-                       std::string(width - filled, ' ').c_str(), p.seconds);
+          std::snprintf(detail, sizeof detail, "%.1f s", p.seconds);
         }
-        std::fflush(stderr);
+        edgefront::apps::draw_progress_bar(gcs::to_string(p.phase), p.phase_fraction, detail);
       }
       return true;
     };

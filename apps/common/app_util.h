@@ -19,6 +19,8 @@
 ///   }
 /// \endcode
 
+#include <algorithm>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <initializer_list>
@@ -94,6 +96,17 @@ inline std::string describe_request(const CLI::App& app, std::initializer_list<c
 }
 
 /// Parses `argv` with `app`, then runs `body` (a callable returning the exit code, usually 0).
+/// Draws (or redraws) a one-line progress bar on stderr: "LABEL [####      ] DETAIL", returning
+/// the cursor to the line's start. Call it only when stderr is a terminal (isatty), and end the
+/// line with a newline when the work is done.
+inline void draw_progress_bar(const std::string& label, double fraction, const std::string& detail) {
+  constexpr int kWidth = 40;
+  const int filled = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * kWidth);
+  std::fprintf(stderr, "\r%-16s [%s%s] %-36s", label.c_str(), std::string(static_cast<size_t>(filled), '#').c_str(),
+               std::string(static_cast<size_t>(kWidth - filled), ' ').c_str(), detail.c_str());
+  std::fflush(stderr);
+}
+
 /// --help prints the help on stdout and returns 0; a parse error (an empty argument included)
 /// prints one line and a hint on stderr and returns 2; an exception from `body` prints one line
 /// and returns 1 (2 for AppUsageError). `sized` names the options (and positional files) whose
