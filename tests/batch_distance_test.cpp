@@ -228,6 +228,13 @@ TEST(BatchDistance, BadInputIsAClearError) {
             std::string::npos);
   EXPECT_NE(message([&] { edgefront::geodesic_distances(mesh, one, {.target = VertexHandle(1)}); }).find("target"),
             std::string::npos);
+  // An absurd thread count (a typo, or -1 cast to unsigned) is refused before any thread starts.
+  const std::vector<VertexHandle> two{VertexHandle(0), VertexHandle(1)};
+  EXPECT_NE(message([&] { edgefront::geodesic_distances(mesh, two, {}, {.threads = 4097}); }).find("threads must be at most 4096"),
+            std::string::npos);
+  EXPECT_NE(message([&] { edgefront::geodesic_distances(mesh, two, {}, {.threads = static_cast<unsigned>(-1)}); })
+                .find("threads must be at most"),
+            std::string::npos);
 }
 
 TEST(BatchDistance, ArrayEntryPointMatchesTheSolverOnAPinchedMesh) {

@@ -27,6 +27,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app_output.h"
+#include "edgefront/parallel.h"
 #include "app_parse.h"
 #include "edgefront/error.h"
 
@@ -159,7 +160,7 @@ inline CLI::Option* add_seed_option(CLI::App& app, const std::string& name, std:
 inline CLI::Option* add_threads_option(CLI::App& app, unsigned& threads) {
   return app.add_option("--threads", threads, "threads to use, 0 ... 4096 (default 0: all cores); the results are the "
                                               "same for any count")
-      ->check(integer_range(0, 4096));
+      ->check(integer_range(0, edgefront::kMaxThreads));
 }
 
 /// An output file: its extension (lower case, with the dot) one of `extensions`, its directory

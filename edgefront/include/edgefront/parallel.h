@@ -30,8 +30,11 @@
 #include <cstddef>
 #include <exception>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include "edgefront/error.h"
 
 namespace edgefront {
 
@@ -41,9 +44,20 @@ inline unsigned default_threads() {
   return n == 0 ? 1u : n;
 }
 
+/// The largest `threads` option accepted: far beyond any machine's cores, low enough that a typo
+/// (or a negative number cast to unsigned) is refused instead of starting millions of threads.
+inline constexpr unsigned kMaxThreads = 4096;
+
 /// The thread count a `threads` option stands for: 0 means `default_threads()`, any other value
-/// is taken as given.
-inline unsigned resolve_threads(unsigned threads) { return threads == 0 ? default_threads() : threads; }
+/// is taken as given. Every parallel loop resolves its option here.
+/// \throws InvalidInput for more than `kMaxThreads`.
+inline unsigned resolve_threads(unsigned threads) {
+  if (threads > kMaxThreads) {
+    throw InvalidInput("threads must be at most " + std::to_string(kMaxThreads) + " (0: all cores; got " +
+                       std::to_string(threads) + ")");
+  }
+  return threads == 0 ? default_threads() : threads;
+}
 
 /// The threads `parallel_for` and `parallel_items` use for `n` items and the option `threads`
 /// (0: all cores): `min(resolve_threads(threads), n)`, at least 1.
