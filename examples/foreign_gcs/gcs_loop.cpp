@@ -218,6 +218,8 @@ class Loop {
     so.max_retwists = o_.max_retwists;
     // The border operations this loop lacks, done by the session and replayed like the rest.
     so.heal.enabled = o_.heal;
+    so.heal.max_gap_edges = o_.heal_gap_edges;
+    so.heal.max_hole_vertices = o_.heal_hole_vertices;
     session_ = std::make_unique<twist::RepairSession>(V, F, so);
     replay(session_->initial_record());  // empty for the octahedron
     m_.dirty.clear();
@@ -566,6 +568,8 @@ LoopStats run_gcs(const Cloud& cloud, const LoopOptions& options, std::vector<Po
   if (options.target_vertices < 6) throw std::runtime_error("--vertices must be at least 6");
   if (!cloud.normals.empty() && cloud.normals.size() != cloud.points.size())
     throw std::runtime_error("normals do not match the points");
+  if (options.heal && cloud.normals.empty())
+    throw std::runtime_error("--heal needs oriented points (x y z nx ny nz): the healed faces must lie on the reference cloud");
   Loop loop(cloud, options);
   return loop.run(out_vertices, out_faces);
 }

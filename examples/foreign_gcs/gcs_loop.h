@@ -30,6 +30,8 @@ struct LoopOptions {
   size_t min_repair_vertices = 200;  ///< no repair while the mesh is smaller (a coarse blob has no layers)
   size_t max_retwists = 2;        ///< twist::SessionOptions::max_retwists (a place repaired more often is cut out)
   bool heal = false;              ///< twist::SessionOptions::heal: the session re-joins borders after each repair (needs normals)
+  double heal_gap_edges = 1.0;    ///< twist::HealOptions::max_gap_edges
+  size_t heal_hole_vertices = 8;  ///< twist::HealOptions::max_hole_vertices
   size_t probes_per_batch = 16;   ///< "far along the surface?" queries per batch (0: none)
   bool verbose = false;           ///< one line per batch on stderr
 };

@@ -28,7 +28,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--verbose]\n"
+    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--verbose]\n"
     "  POINTS         text file, one point per line: x y z [nx ny nz]\n"
     "  -o MESH        output mesh, .off or .ply (ASCII)\n"
     "  --vertices N   stop at N live vertices (6 to 10000000, default 2000)\n"
@@ -39,6 +39,8 @@ constexpr const char* kUsage =
     "  --max-retwists R a place the repair turned more often than R times is cut out (default 2)\n"
     "  --probes K     'far along the surface?' MDF probes per batch (0 to 10000, default 16)\n"
     "  --heal         the session re-joins borders after each repair (zips, small holes; needs normals)\n"
+    "  --heal-gap E   with --heal: zip border chains closer than E mean edges (0 to 10, default 1)\n"
+    "  --heal-holes N with --heal: close holes of at most N border vertices by a fan (0 to 1000, default 8)\n"
     "  --verbose      one line per batch on stderr\n";
 
 struct UsageError : std::runtime_error {
@@ -53,6 +55,15 @@ std::uint64_t parse_count(const std::string& name, const std::string& text, std:
   const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
   if (errno == ERANGE || v < lo || v > hi)
     throw UsageError(name + ": " + text + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
+double parse_real(const std::string& name, const std::string& text, double lo, double hi) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() ? std::nan("") : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !(v >= lo && v <= hi))
+    throw UsageError(name + ": '" + text + "' is not a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return v;
 }
 
@@ -164,6 +175,10 @@ int main(int argc, char** argv) {
         o.probes_per_batch = parse_count(a, value(), 0, 10000);
       } else if (a == "--heal") {
         o.heal = true;
+      } else if (a == "--heal-gap") {
+        o.heal_gap_edges = parse_real(a, value(), 0, 10);
+      } else if (a == "--heal-holes") {
+        o.heal_hole_vertices = parse_count(a, value(), 0, 1000);
       } else if (a == "--verbose") {
         o.verbose = true;
       } else if (!a.empty() && a[0] == '-') {
