@@ -469,6 +469,7 @@ bool RepairSession::pending() const { return !impl_->face_edits.empty() || !impl
 EditRecord RepairSession::sync() {
   std::vector<FaceHandle> changed;
   impl_->commit(changed);
+  impl_->stats.heal = {};  // no heal here
   return impl_->record(false);
 }
 

@@ -98,7 +98,7 @@ struct SessionStats {
   size_t faces_changed = 0;      ///< faces the last batch added, re-connected or moved
   size_t pinched_split = 0;      ///< vertices the last batch left pinched, split
   RepairReport report;           ///< of the last repair
-  HealReport heal;               ///< of the last answer's heal (zero when off)
+  HealReport heal;               ///< of the last answer's heal (zero when off, and after `sync`)
 };
 
 /// A mirror of a host's mesh with incremental twist repair (see the file comment). Not copyable;
