@@ -6,7 +6,8 @@
 #
 # Defaults: seeds 1-10 (--first S --seeds N: seeds S .. S+N-1), 3000 vertices, 20000 oriented points, t/R 0.2 (R = 1). Per seed: a cloud
 # from ef-shapes (seed S), foreign-gcs in each mode (seed S): plain (--no-twist), repair, heal
-# (the repair with the session's border heal, --heal); default modes "plain repair heal". Each result
+# (the repair with the session's border heal, --heal), heal2 (the heal zipping within 2 mean edges,
+# --heal --heal-gap 2); default modes "plain repair heal". Each result
 # judged by gcs-eval against a denser sample of the same shape (200000 points, seed 1000 + S):
 # orientation consistency "raw" (share of the area whose normal agrees with the nearest
 # ground-truth normal, no sign forgiven), "per component" (each component with its better sign),
@@ -25,9 +26,12 @@ while (($#)); do
     --modes) MODES=$2; shift 2 ;;
     --build) BUILD=$2; shift 2 ;;
     --out) OUT=$2; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "bench-foreign.sh: unknown argument $1" >&2; exit 2 ;;
   esac
+done
+for mode in $MODES; do
+  case $mode in plain|repair|heal|heal2) ;; *) echo "bench-foreign.sh: unknown mode $mode (plain, repair, heal, heal2)" >&2; exit 2 ;; esac
 done
 FOREIGN=$BUILD/examples/foreign_gcs/foreign-gcs
 SHAPES=$BUILD/apps/ef-shapes
@@ -52,7 +56,7 @@ for ((s = FIRST; s < FIRST + SEEDS; ++s)); do
       plain) flags=(--no-twist) ;;
       repair) ;;
       heal) flags=(--heal) ;;
-      *) echo "bench-foreign.sh: unknown mode $mode (plain, repair, heal)" >&2; exit 2 ;;
+      heal2) flags=(--heal --heal-gap 2) ;;
     esac
     start=$(date +%s.%N)
     log=$("$FOREIGN" "$cloud" -o "$mesh" --vertices "$VERTICES" --seed "$s" ${flags[@]+"${flags[@]}"} 2>&1)
@@ -74,7 +78,7 @@ done | tee "$OUT/table.md"
 "$PY" - "$OUT/table.md" <<'PY'
 import sys
 rows = [l.split("|")[1:-1] for l in open(sys.argv[1]) if l.startswith("| ") and not l.startswith("| seed")]
-for mode in ("plain", "repair", "heal"):
+for mode in ("plain", "repair", "heal", "heal2"):
     r = [[c.strip() for c in x] for x in rows if x[1].strip() == mode]
     if not r: continue
     raw = [float(x[2]) for x in r]; comp = [int(x[4]) for x in r]
