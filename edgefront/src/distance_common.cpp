@@ -9,7 +9,6 @@
 
 namespace edgefront::detail {
 
-
 void check_distance_options(const Mesh& mesh, const DistanceOptions& o) {
   if (std::isnan(o.max_distance) || o.max_distance < 0) {
     throw InvalidInput("distance: max_distance must be a non-negative number, got " + std::to_string(o.max_distance));

@@ -13,7 +13,6 @@ namespace edgefront {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-
 DistanceField collect(const Mesh& mesh, MinimalDistanceFront& front, const DistanceOptions& options) {
   DistanceField out;
   out.distance.assign(mesh.n_vertices(), kInf);

@@ -186,7 +186,6 @@ bool MinimalDistanceFront::Impl::lay_out(const DRec& rx, int x, int ic, int jf, 
   return false;
 }
 
-
 // The bracket (above) one face further: a line that passes beyond y reaches c through another
 // face of c. c's faces after t0, away from x, are unfolded about c until the one whose corner at
 // c the line comes through; it is taken when both ends of that face's edge opposite c are

@@ -18,7 +18,6 @@ using detail::point_of;
 using detail::mdf::DRec;
 using detail::mdf::Window;
 
-
 void MinimalDistanceFront::Impl::check_options(const DistanceOptions& o) const {
   check_distance_options(mesh, o);
   if (o.method == DistanceMethod::Fast || o.method == DistanceMethod::Dijkstra) {

@@ -11,7 +11,6 @@
 
 namespace gcs {
 
-
 namespace {
 
 std::string num(double v) {

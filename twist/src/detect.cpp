@@ -449,7 +449,6 @@ class Detector {
   std::vector<std::pair<double, FaceHandle>> layers_;
 };
 
-
 }  // namespace
 
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal,

@@ -12,7 +12,6 @@
 
 namespace twist {
 
-
 using edgefront::FaceHandle;
 using edgefront::InvalidInput;
 using edgefront::Mesh;

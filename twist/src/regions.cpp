@@ -12,7 +12,6 @@
 
 namespace twist::detail {
 
-
 using edgefront::FaceHandle;
 using edgefront::HalfedgeHandle;
 using edgefront::Mesh;

@@ -40,7 +40,6 @@ struct Candidate {
   Vec3 origin{0, 0, 0};
 };
 
-
 // Distance record of a vertex that is reached and still needed: tentative, or settled with
 // neighbours that are not settled yet (they may still take their distance from it).
 // The fields every lookup reads (d, settled, unsettled) come first, in the record's first cache line.
@@ -315,7 +314,6 @@ struct MinimalDistanceFront::Impl : detail::EdgeFrontCore {
   void propagate_from_line(int x, const DRec& rx, int c);
 
   // ---- Windows (mdf_windows.cpp) ---------------------------------------------------------------
-
 
   double edge_length(int h) const {
     return (mesh.point(VertexHandle(tov(h))) - mesh.point(VertexHandle(fromv(h)))).norm();

@@ -25,7 +25,6 @@ using edgefront::Vec3;
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-
 struct Box {
   Vec3 lo = Vec3(kInf, kInf, kInf);
   Vec3 hi = Vec3(-kInf, -kInf, -kInf);
