@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       ->check(edgefront::apps::non_negative());
   app.add_option("--max-repairs", max_repairs, "most regions repaired (detector only)")
       ->check(edgefront::apps::integer_range(1, std::numeric_limits<std::size_t>::max()));
-  double cut_cost = twist::RepairOptions{}.cut_cost;
+  double cut_cost = twist::RepairOptions{}.cuts.cut_cost;
   bool detector = false;
   app.add_option("--cut-cost", cut_cost,
                  "with --points: price of a cut per unit length, in mean edge lengths (0 ... 100; a wrongly oriented disk is"
@@ -79,8 +79,8 @@ int main(int argc, char** argv) {
     options.detect.radius = radius;
     options.detect.reference = reference.get();
     options.max_repairs = max_repairs;
-    options.cut_cost = cut_cost;
-    options.drop_turned_patches = turned;
+    options.cuts.cut_cost = cut_cost;
+    options.experimental.drop_turned_patches = turned;
     options.label_by_reference = !detector;
     options.detect.threads = threads;
     const size_t faces_before = read.mesh.n_faces();

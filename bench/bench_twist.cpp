@@ -195,11 +195,11 @@ void detect_scaling() {
       const auto t0 = std::chrono::steady_clock::now();
       for (size_t call = 0; call < patches.size(); ++call) {
         twist::DetectOptions o;
-        o.restrict_to = patches[call];
-        o.audit_offset = call * 7919;
+        o.incremental.restrict_to = patches[call];
+        o.incremental.audit_offset = call * 7919;
         if (local) {
           grid.update(mesh, patches[call]);
-          o.face_grid = &grid;
+          o.incremental.face_grid = &grid;
           o.mean_edge_length = mean_edge;
         }
         tested[local] += twist::detect_regions(mesh, o).stats.faces_tested;
@@ -348,9 +348,9 @@ void cloud_run(const std::string& path, size_t vertices, size_t seeds, bool rete
       std::shared_ptr<gcs::TwistOperation> op;
       if (with) {
         gcs::TwistOperationOptions to;
-        if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
+        if (retest_all) to.repair.experimental.retest_turn_degrees = to.repair.experimental.retest_move = 0;
         to.rejoin_borders = rejoin;
-        if (peel >= 0) to.repair.peel_flaps = peel;
+        if (peel >= 0) to.repair.experimental.peel_flaps = peel;
         op = std::make_shared<gcs::TwistOperation>(to);
         rec.add_operation(op);
       }
@@ -388,7 +388,7 @@ std::vector<std::string> split(const std::string& s) {
 int main(int argc, char** argv) {
   size_t vertices = 1500, points = 20000, seeds = 3, first_seed = 1, max_retwists = 2, min_flagged = 0;
   double side_weight = 0.0, only_thickness = 0, margin = 1.5, border_ratio = 0.0;
-  double thin_wall = twist::DetectOptions{}.thin_wall;
+  double thin_wall = twist::DetectOptions{}.vote.thin_wall;
   int explain = 0;
   bool only_repair = false, trace = false, rejoin = gcs::TwistOperationOptions{}.rejoin_borders;
   int peel = -1, turned = -1, stacked_rounds = -1;
@@ -537,18 +537,18 @@ int main(int argc, char** argv) {
         std::shared_ptr<gcs::TwistOperation> op;
         if (with) {
           gcs::TwistOperationOptions to;
-          to.repair.detect.reference_side_weight = side_weight;
-          to.repair.detect.reference_margin = margin;
-          to.repair.detect.thin_wall = thin_wall;
-          if (min_flagged > 0) to.repair.detect.min_flagged_faces = min_flagged;
+          to.repair.detect.experimental.reference_side_weight = side_weight;
+          to.repair.detect.experimental.reference_margin = margin;
+          to.repair.detect.vote.thin_wall = thin_wall;
+          if (min_flagged > 0) to.repair.detect.regions.min_flagged_faces = min_flagged;
           to.local = local;
-          to.repair.max_border_ratio = border_ratio;
+          to.repair.cuts.max_border_ratio = border_ratio;
           to.max_retwists = max_retwists;
-          to.repair.regrow_cut_outs = regrow;
+          to.repair.experimental.regrow_cut_outs = regrow;
           to.rejoin_borders = rejoin;
-          if (peel >= 0) to.repair.peel_flaps = peel;
-          if (turned >= 0) to.repair.drop_turned_patches = static_cast<size_t>(turned);
-          if (retest_all) to.repair.retest_turn_degrees = to.repair.retest_move = 0;
+          if (peel >= 0) to.repair.experimental.peel_flaps = peel;
+          if (turned >= 0) to.repair.experimental.drop_turned_patches = static_cast<size_t>(turned);
+          if (retest_all) to.repair.experimental.retest_turn_degrees = to.repair.experimental.retest_move = 0;
           op = std::make_shared<gcs::TwistOperation>(to);
           if (trace) rec.add_operation(std::make_shared<TraceOperation>("before twist"));
           rec.add_operation(op);

@@ -175,8 +175,8 @@ TEST(EditRecord, HandFlippedPatchesOnASphereReplayFaceForFace) {
   twist::RepairOptions o;
   o.detect.reference = &ref;
   o.label_by_reference = false;  // the detector's regions: patches of 2-3 rings are below the labelling's cut price
-  o.peel_flaps = 2;           // the repair's later steps too: removals,
-  o.drop_turned_patches = 4;  // collapses and straightening moves
+  o.experimental.peel_flaps = 2;           // the repair's later steps too: removals,
+  o.experimental.drop_turned_patches = 4;  // collapses and straightening moves
   int repaired = 0;
   for (unsigned seed = 1; seed <= 8; ++seed) {
     std::mt19937 rng(seed);

@@ -35,7 +35,7 @@ TEST_F(TwistApp, RepairsAFlippedDiskAndWritesTheResult) {
   const edgefront::Mesh fixed = edgefront::load_mesh(path("fixed.ply"));
   // At most a sliver the cut split off is removed (never left as a tiny component).
   EXPECT_LE(fixed.n_faces(), s.mesh.n_faces());
-  EXPECT_GT(fixed.n_faces() + twist::RepairOptions{}.min_component_faces, s.mesh.n_faces());
+  EXPECT_GT(fixed.n_faces() + twist::RepairOptions{}.cuts.min_component_faces, s.mesh.n_faces());
   EXPECT_DOUBLE_EQ(twist::truth_consistency(fixed, s), 1.0);
   EXPECT_EQ(edgefront::compute_stats(fixed).nonmanifold_vertices, 0u);
 }

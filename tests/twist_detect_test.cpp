@@ -186,8 +186,8 @@ TEST(TwistDetect, IncrementalDetectionFromAFewChangedFacesFindsTheWholeRegionLoc
   const auto full = twist::detect(s.mesh);
   ASSERT_EQ(full.size(), 1u);
   twist::DetectOptions o;
-  o.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
-  o.audit_faces = 8;
+  o.incremental.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
+  o.incremental.audit_faces = 8;
   const auto local = twist::detect_regions(s.mesh, o);
   ASSERT_EQ(local.regions.size(), 1u);
   const auto [twisted, covered] = twisted_covered(s, local.regions[0]);
@@ -200,10 +200,10 @@ TEST(TwistDetect, IncrementalDetectionFromAFewChangedFacesFindsTheWholeRegionLoc
   mo.resolution = 24;
   mo.shape.thickness = 0.05;
   const Mesh plate = edgefront::shapes::make("thin-plate", mo);
-  o.restrict_to = std::vector<FaceHandle>{FaceHandle(0), FaceHandle(1), FaceHandle(2)};
+  o.incremental.restrict_to = std::vector<FaceHandle>{FaceHandle(0), FaceHandle(1), FaceHandle(2)};
   const auto quiet = twist::detect_regions(plate, o);
   EXPECT_TRUE(quiet.regions.empty());
-  EXPECT_LE(quiet.stats.faces_tested, 3u + o.audit_faces);
+  EXPECT_LE(quiet.stats.faces_tested, 3u + o.incremental.audit_faces);
 }
 
 TEST(TwistDetect, ReferenceNormalsDecideTheSide) {
@@ -229,7 +229,7 @@ TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {
   // disk. On the default plate (0.1 thick, about one edge) the rule changes nothing.
   auto votes = [](const twist::TwistedShape& s, const twist::ReferenceNormals& ref, double thin_wall) {
     twist::DetectOptions o;
-    o.thin_wall = thin_wall;
+    o.vote.thin_wall = thin_wall;
     double mean_edge = 0;
     for (auto e : s.mesh.edges()) mean_edge += s.mesh.calc_edge_length(e);
     mean_edge /= static_cast<double>(s.mesh.n_edges());
@@ -274,7 +274,7 @@ TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {
   EXPECT_EQ(off[0], thin_votes[1]);
   twist::DetectOptions o;
   o.reference = &thin_ref;
-  o.thin_wall = 0;
+  o.vote.thin_wall = 0;
   const auto regions = twist::detect(thin.mesh, o);
   ASSERT_EQ(regions.size(), 1u);
   const auto [twisted, covered] = twisted_covered(thin, regions[0]);
@@ -290,7 +290,7 @@ TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {
   EXPECT_EQ(thick_ref.wall_thickness(Vec3(0.6, 0.1, 0.045)), std::numeric_limits<double>::infinity());
   EXPECT_NEAR(thick_ref.wall_thickness(Vec3(0.6, 0.1, 0.045), 100000), 0.1, 1e-9);
   EXPECT_THROW(thin_ref.wall_thickness(c, 0), InvalidInput);
-  o.thin_wall = 5;
+  o.vote.thin_wall = 5;
   EXPECT_THROW(twist::detect(thin.mesh, o), InvalidInput);
 }
 
@@ -322,11 +322,11 @@ TEST(TwistDetect, BadInputThrowsNamingTheProblem) {
   };
   bad([](twist::DetectOptions& o) { o.radius = -1; }, "radius");
   bad([](twist::DetectOptions& o) { o.radius = std::numeric_limits<double>::quiet_NaN(); }, "radius");
-  bad([](twist::DetectOptions& o) { o.surface_factor = 0.5; }, "surface_factor");
-  bad([](twist::DetectOptions& o) { o.grow_levels = 0; }, "grow_levels");
-  bad([](twist::DetectOptions& o) { o.fold_cos = 0.5; }, "fold_cos");
-  bad([](twist::DetectOptions& o) { o.facing_cos = 0; }, "facing_cos");
-  bad([](twist::DetectOptions& o) { o.restrict_to = std::vector<FaceHandle>{FaceHandle(100000)}; }, "restrict_to");
+  bad([](twist::DetectOptions& o) { o.experimental.surface_factor = 0.5; }, "surface_factor");
+  bad([](twist::DetectOptions& o) { o.regions.grow_levels = 0; }, "grow_levels");
+  bad([](twist::DetectOptions& o) { o.experimental.fold_cos = 0.5; }, "fold_cos");
+  bad([](twist::DetectOptions& o) { o.experimental.facing_cos = 0; }, "facing_cos");
+  bad([](twist::DetectOptions& o) { o.incremental.restrict_to = std::vector<FaceHandle>{FaceHandle(100000)}; }, "restrict_to");
   m.set_point(edgefront::VertexHandle(3), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   EXPECT_THROW(twist::detect(m), InvalidInput);
 

@@ -149,11 +149,11 @@ TEST(TwistLabel, ACutTooExpensiveIsNotMade) {
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;
-  o.cut_cost = 100;
+  o.cuts.cut_cost = 100;
   const twist::ReferenceLabelling priced_out = twist::label_by_reference(s.mesh, o);
   EXPECT_EQ(priced_out.regions.size(), 0u);
   EXPECT_DOUBLE_EQ(priced_out.wrong_area_after, priced_out.wrong_area_before);
-  o.cut_cost = 1;
+  o.cuts.cut_cost = 1;
   EXPECT_EQ(twist::label_by_reference(s.mesh, o).regions.size(), 1u);
 }
 
@@ -180,7 +180,7 @@ TEST(TwistLabel, HandFlippedPatchesOfSphereAndTorusAreFlippedBack) {
         Mesh mm = m;
         twist::RepairOptions o;
         o.detect.reference = &ref;
-        o.flip_seam_pieces = seams;
+        o.experimental.flip_seam_pieces = seams;
         const twist::RepairReport r = twist::repair(mm, o);
         EXPECT_DOUBLE_EQ(twist::orientation_consistency(mm, ref), 1.0) << what << seams;
         EXPECT_EQ(mm.n_faces(), c.mesh.n_faces()) << what;
@@ -205,7 +205,7 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
     Mesh m = flip_patches(sphere, 4, 40 + 60 * seed, seed, &flipped);
     ASSERT_LT(twist::orientation_consistency(m, ref), 0.97) << seed;
     twist::RepairOptions o;
-    o.flip_seam_pieces = true;
+    o.experimental.flip_seam_pieces = true;
     Mesh off = m;
     EXPECT_EQ(twist::repair(off).seam_faces_flipped, 0u) << "off by default";
     const twist::RepairReport r = twist::repair(m, o);
@@ -233,7 +233,7 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
   }
   ASSERT_LT(twist::orientation_consistency(m, ref), 0.5);
   twist::RepairOptions o;
-  o.flip_seam_pieces = true;
+  o.experimental.flip_seam_pieces = true;
   const twist::RepairReport r = twist::repair(m, o);
   EXPECT_DOUBLE_EQ(twist::orientation_consistency(m, ref), 1.0);
   EXPECT_EQ(r.seam_faces_flipped, flipped);
@@ -283,14 +283,14 @@ TEST(TwistLabel, ScatteredRejectionsDoNotShredTheSurface) {
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;
-  o.detect.thin_wall = 0;  // every rejection counts as a vote
+  o.detect.vote.thin_wall = 0;  // every rejection counts as a vote
   Mesh m = sphere;
   const twist::RepairReport r = twist::repair(m, o);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.cut_edges, 0u);
   EXPECT_EQ(m.n_faces(), sphere.n_faces());
   EXPECT_EQ(components(m), 1u);
-  o.cut_cost = 0;  // free cuts: every rejected face would be flipped, but alone each is a tiny piece
+  o.cuts.cut_cost = 0;  // free cuts: every rejected face would be flipped, but alone each is a tiny piece
   const twist::ReferenceLabelling free_cuts = twist::label_by_reference(sphere, o);
   EXPECT_EQ(free_cuts.regions.size(), 0u);
   EXPECT_GT(free_cuts.regions_too_small, 100u);
@@ -304,12 +304,12 @@ TEST(TwistLabel, OptionsAreChecked) {
   const twist::ReferenceNormals ref(cloud);
   o.detect.reference = &ref;
   for (double bad : {-1.0, 101.0, std::nan("")}) {
-    o.cut_cost = bad;
+    o.cuts.cut_cost = bad;
     EXPECT_THROW(twist::label_by_reference(s.mesh, o), InvalidInput) << bad;
     EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput) << bad;
   }
   Mesh empty;
-  o.cut_cost = 1;
+  o.cuts.cut_cost = 1;
   EXPECT_THROW(twist::label_by_reference(empty, o), InvalidInput);
 }
 

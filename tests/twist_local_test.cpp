@@ -114,7 +114,7 @@ TEST(TwistFaceGrid, HugeQueriesScanTheGridAndBadQueriesAreRefused) {
   EXPECT_THROW(grid.query(mesh, Vec3(nan, 0, 0), 1.0, got), InvalidInput);
   EXPECT_THROW(grid.query(mesh, Vec3(0, 0, 0), std::numeric_limits<double>::infinity(), got), InvalidInput);
   twist::DetectOptions o;
-  o.reference_side_weight = 0.5;  // neither off (0) nor in [1, 100]
+  o.experimental.reference_side_weight = 0.5;  // neither off (0) nor in [1, 100]
   EXPECT_THROW(twist::detect(mesh, o), InvalidInput);
 }
 
@@ -128,10 +128,10 @@ TEST(TwistLocalDetection, FindsTheSameRegionWithTheFaceGrid) {
   twist::FaceGrid grid;
   grid.rebuild(s.mesh, 2 * mean_edge);
   twist::DetectOptions o;
-  o.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
-  o.audit_faces = 4;
+  o.incremental.restrict_to = std::vector<FaceHandle>{full[0].faces.front()};
+  o.incremental.audit_faces = 4;
   const auto with_tree = twist::detect_regions(s.mesh, o);
-  o.face_grid = &grid;
+  o.incremental.face_grid = &grid;
   o.mean_edge_length = mean_edge;
   const auto with_grid = twist::detect_regions(s.mesh, o);
   ASSERT_EQ(with_grid.regions.size(), 1u);
@@ -147,7 +147,7 @@ TEST(TwistRegrow, ACutOutRegionIsReplacedByAConsistentPatchNotAHole) {
   for (bool regrow : {false, true}) {
     twist::TwistedShape s = twist::flipped_disk_plate();
     twist::RepairOptions o;
-    o.regrow_cut_outs = regrow;
+    o.experimental.regrow_cut_outs = regrow;
     o.garbage_collect = false;
     twist::TwistRepairer repairer(o, 1);  // a place repaired a second time is cut out
     {
@@ -165,7 +165,7 @@ TEST(TwistRegrow, ACutOutRegionIsReplacedByAConsistentPatchNotAHole) {
     for (FaceHandle f : s.mesh.faces()) ++faces_of[static_cast<size_t>(labels.vertex_component[static_cast<size_t>((*s.mesh.cfv_begin(f)).idx())])];
     for (size_t c = 0; c < labels.count; ++c) {
       if (faces_of[c] > 0) {
-        EXPECT_GE(faces_of[c], o.min_component_faces) << regrow << ": no tiny component left";
+        EXPECT_GE(faces_of[c], o.cuts.min_component_faces) << regrow << ": no tiny component left";
       }
     }
     if (regrow) {
@@ -329,13 +329,13 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
   // (DetectOptions::thin_wall) such rejections are no evidence, and nothing is found at all.
   Mesh untouched = sphere;
   EXPECT_EQ(twist::repair(untouched, o).regions_found, 0u);
-  o.detect.thin_wall = 0;  // the border-ratio guard is what is tested below
+  o.detect.vote.thin_wall = 0;  // the border-ratio guard is what is tested below
   Mesh kept = sphere;
   const twist::RepairReport r = twist::repair(kept, o);
   EXPECT_GE(r.regions_scattered, 1u);
   EXPECT_EQ(r.vertices_duplicated, 0u);
   EXPECT_EQ(edgefront::compute_stats(kept).components, 1u) << "not shredded";
-  o.max_border_ratio = 0;  // no limit: the old behaviour cuts it apart
+  o.cuts.max_border_ratio = 0;  // no limit: the old behaviour cuts it apart
   Mesh cut = sphere;
   const twist::RepairReport r0 = twist::repair(cut, o);
   EXPECT_EQ(r0.regions_scattered, 0u);
@@ -343,7 +343,7 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
   // Shredded: the pieces too small to stand (min_cut_piece_share) are removed, the rest is in pieces.
   EXPECT_TRUE(edgefront::compute_stats(cut).components > 1u || cut.n_faces() < sphere.n_faces());
   EXPECT_GT(r0.faces_removed, 0u);
-  o.max_border_ratio = -1;
+  o.cuts.max_border_ratio = -1;
   EXPECT_THROW(twist::repair(cut, o), InvalidInput);
 }
 
@@ -363,7 +363,7 @@ TEST(TwistRetest, StableFacesAreNotTestedAgainButMovedOnesAndTwistsAre) {
   Mesh mesh = edgefront::shapes::icosphere(3);
   const double edge = mean_edge_of(mesh);
   twist::RepairOptions o;
-  o.detect.audit_faces = 0;
+  o.detect.incremental.audit_faces = 0;
   o.garbage_collect = false;
   twist::TwistRepairer repairer(o);
   std::vector<FaceHandle> all(mesh.faces().begin(), mesh.faces().end());
@@ -385,14 +385,14 @@ TEST(TwistRetest, StableFacesAreNotTestedAgainButMovedOnesAndTwistsAre) {
   EXPECT_GE(again, ring);
   EXPECT_LT(again, mesh.n_faces() / 4);
   // Every changed face tested every time when both thresholds are 0.
-  o.retest_turn_degrees = o.retest_move = 0;
+  o.experimental.retest_turn_degrees = o.experimental.retest_move = 0;
   twist::TwistRepairer all_again(o);
   all_again.repair_changed(mesh, all, edge);
   EXPECT_GE(all_again.repair_changed(mesh, all, edge).detect_stats.faces_tested, mesh.n_faces());
-  o.retest_move = -1;
+  o.experimental.retest_move = -1;
   EXPECT_THROW(twist::TwistRepairer(o).repair_changed(mesh, all, edge), InvalidInput);
-  o.retest_move = 0;
-  o.retest_turn_degrees = 181;
+  o.experimental.retest_move = 0;
+  o.experimental.retest_turn_degrees = 181;
   EXPECT_THROW(twist::TwistRepairer(o).repair_changed(mesh, all, edge), InvalidInput);
 }
 
@@ -453,8 +453,8 @@ TEST(TwistRetest, AbsurdRetestOptionsAreRefused) {
   for (const auto& [turn, move] : std::vector<std::pair<double, double>>{
            {-1, 0.25}, {181, 0.25}, {std::nan(""), 0.25}, {10, -1}, {10, std::numeric_limits<double>::infinity()}}) {
     twist::RepairOptions o;
-    o.retest_turn_degrees = turn;
-    o.retest_move = move;
+    o.experimental.retest_turn_degrees = turn;
+    o.experimental.retest_move = move;
     EXPECT_THROW(twist::repair(mesh, o), InvalidInput) << turn << " " << move;
   }
 }

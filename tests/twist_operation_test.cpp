@@ -136,46 +136,69 @@ TEST(TwistOperation, ScatteredLimitAppliesOnlyWithoutNormals) {
 
 // The hook's repair settings (TwistOperationOptions::default_repair) differ from twist::repair's
 // defaults in the four fields twist_operation.h and docs/twist.md name, and only there.
+// The groups are compared whole (operator==), so a field added to a group later is covered too.
+void expect_same_detection(const twist::DetectOptions& a, const twist::DetectOptions& b) {
+  EXPECT_EQ(a.radius, b.radius);
+  EXPECT_EQ(a.reference.get(), b.reference.get());
+  EXPECT_EQ(a.threads, b.threads);
+  EXPECT_EQ(a.self_intersections, b.self_intersections);
+  EXPECT_EQ(a.mean_edge_length, b.mean_edge_length);
+  EXPECT_TRUE(a.regions == b.regions);
+  EXPECT_TRUE(a.vote == b.vote);
+  EXPECT_TRUE(a.experimental == b.experimental);
+  EXPECT_EQ(a.incremental.restrict_to.has_value(), b.incremental.restrict_to.has_value());
+  EXPECT_EQ(a.incremental.audit_faces, b.incremental.audit_faces);
+  EXPECT_EQ(a.incremental.audit_offset, b.incremental.audit_offset);
+  EXPECT_EQ(a.incremental.face_grid.get(), b.incremental.face_grid.get());
+}
+
 TEST(TwistOperation, DefaultRepairDiffersFromRepairDefaultsOnlyWhereDocumented) {
   const twist::RepairOptions plain;
   const twist::RepairOptions hook = gcs::TwistOperationOptions{}.repair;
-  EXPECT_EQ(hook.max_border_ratio, 0.0);
-  EXPECT_EQ(hook.peel_flaps, 3);
-  EXPECT_TRUE(hook.peel_from_cuts);
-  EXPECT_EQ(hook.drop_turned_patches, 4u);
-  EXPECT_NE(hook.max_border_ratio, plain.max_border_ratio);
-  EXPECT_NE(hook.peel_flaps, plain.peel_flaps);
-  EXPECT_NE(hook.peel_from_cuts, plain.peel_from_cuts);
-  EXPECT_NE(hook.drop_turned_patches, plain.drop_turned_patches);
-  EXPECT_EQ(hook.max_repairs, plain.max_repairs);
-  EXPECT_EQ(hook.min_component_faces, plain.min_component_faces);
-  EXPECT_EQ(hook.min_cut_piece_share, plain.min_cut_piece_share);
-  EXPECT_EQ(hook.regrow_cut_outs, plain.regrow_cut_outs);
-  EXPECT_EQ(hook.retest_turn_degrees, plain.retest_turn_degrees);
-  EXPECT_EQ(hook.retest_move, plain.retest_move);
+  // The four documented differences, each one a real difference.
+  EXPECT_EQ(hook.cuts.max_border_ratio, 0.0);
+  EXPECT_EQ(hook.experimental.peel_flaps, 3);
+  EXPECT_TRUE(hook.experimental.peel_from_cuts);
+  EXPECT_EQ(hook.experimental.drop_turned_patches, 4u);
+  EXPECT_NE(hook.cuts.max_border_ratio, plain.cuts.max_border_ratio);
+  EXPECT_NE(hook.experimental.peel_flaps, plain.experimental.peel_flaps);
+  EXPECT_NE(hook.experimental.peel_from_cuts, plain.experimental.peel_from_cuts);
+  EXPECT_NE(hook.experimental.drop_turned_patches, plain.experimental.drop_turned_patches);
+  // Nothing else differs.
+  twist::CutOptions cuts = plain.cuts;
+  cuts.max_border_ratio = hook.cuts.max_border_ratio;
+  EXPECT_TRUE(hook.cuts == cuts);
+  twist::RepairExperimentalOptions experimental = plain.experimental;
+  experimental.peel_flaps = hook.experimental.peel_flaps;
+  experimental.peel_from_cuts = hook.experimental.peel_from_cuts;
+  experimental.drop_turned_patches = hook.experimental.drop_turned_patches;
+  EXPECT_TRUE(hook.experimental == experimental);
   EXPECT_EQ(hook.label_by_reference, plain.label_by_reference);
-  EXPECT_EQ(hook.cut_cost, plain.cut_cost);
-  EXPECT_EQ(hook.flip_seam_pieces, plain.flip_seam_pieces);
+  EXPECT_EQ(hook.max_repairs, plain.max_repairs);
   EXPECT_EQ(hook.global_orientation, plain.global_orientation);
   EXPECT_EQ(hook.garbage_collect, plain.garbage_collect);  // (TwistOperation turns it off itself)
-  const twist::DetectOptions& hd = hook.detect;
-  const twist::DetectOptions& pd = plain.detect;
-  EXPECT_EQ(hd.radius, pd.radius);
-  EXPECT_EQ(hd.surface_factor, pd.surface_factor);
-  EXPECT_EQ(hd.parallel_cos, pd.parallel_cos);
-  EXPECT_EQ(hd.facing_cos, pd.facing_cos);
-  EXPECT_EQ(hd.fold_cos, pd.fold_cos);
-  EXPECT_EQ(hd.self_intersections, pd.self_intersections);
-  EXPECT_EQ(hd.grow_levels, pd.grow_levels);
-  EXPECT_EQ(hd.min_flagged_faces, pd.min_flagged_faces);
-  EXPECT_EQ(hd.min_flagged_share, pd.min_flagged_share);
-  EXPECT_EQ(hd.require_orientation_evidence, pd.require_orientation_evidence);
-  EXPECT_EQ(hd.reference_cos, pd.reference_cos);
-  EXPECT_EQ(hd.reference_side_weight, pd.reference_side_weight);
-  EXPECT_EQ(hd.reference_margin, pd.reference_margin);
-  EXPECT_EQ(hd.thin_wall, pd.thin_wall);
-  EXPECT_EQ(hd.audit_faces, pd.audit_faces);
-  EXPECT_EQ(hd.threads, pd.threads);
+  expect_same_detection(hook.detect, plain.detect);
+}
+
+TEST(TwistOperation, DefaultRepairIsTheInLoopPresetAndPlainRepairTheFinishedMeshPreset) {
+  const twist::RepairOptions plain;
+  const twist::RepairOptions hook = gcs::TwistOperationOptions::default_repair();
+  const twist::RepairOptions in_loop = twist::RepairOptions::in_loop();
+  const twist::RepairOptions finished = twist::RepairOptions::finished_mesh();
+  EXPECT_TRUE(hook.cuts == in_loop.cuts);
+  EXPECT_TRUE(hook.experimental == in_loop.experimental);
+  EXPECT_EQ(hook.label_by_reference, in_loop.label_by_reference);
+  EXPECT_EQ(hook.max_repairs, in_loop.max_repairs);
+  expect_same_detection(hook.detect, in_loop.detect);
+  EXPECT_TRUE(plain.cuts == finished.cuts);
+  EXPECT_TRUE(plain.experimental == finished.experimental);
+  EXPECT_EQ(plain.label_by_reference, finished.label_by_reference);
+  EXPECT_EQ(plain.max_repairs, finished.max_repairs);
+  EXPECT_EQ(plain.global_orientation, finished.global_orientation);
+  EXPECT_EQ(plain.garbage_collect, finished.garbage_collect);
+  expect_same_detection(plain.detect, finished.detect);
+  EXPECT_FALSE(in_loop.cuts == finished.cuts);
+  EXPECT_FALSE(in_loop.experimental == finished.experimental);
 }
 
 TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {

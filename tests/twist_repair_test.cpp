@@ -50,9 +50,9 @@ void expect_repaired(twist::TwistedShape s, const std::string& what) {
   EXPECT_DOUBLE_EQ(twist::truth_consistency(s.mesh, s), 1.0) << what;
   // A cut may split off a sliver of the other side (a face that hung on the region by its edges):
   // it is removed, never left as a tiny component; nothing else is lost.
-  EXPECT_LT(r.faces_removed, twist::RepairOptions{}.min_component_faces) << what;
+  EXPECT_LT(r.faces_removed, twist::RepairOptions{}.cuts.min_component_faces) << what;
   EXPECT_EQ(s.mesh.n_faces(), faces - r.faces_removed) << what << ": no face lost but tiny pieces";
-  EXPECT_GE(smallest_component_faces(s.mesh), twist::RepairOptions{}.min_component_faces) << what << ": no tiny component";
+  EXPECT_GE(smallest_component_faces(s.mesh), twist::RepairOptions{}.cuts.min_component_faces) << what << ": no tiny component";
   EXPECT_GT(r.faces_flipped, 0u) << what;
   EXPECT_LE(2 * r.faces_flipped, faces) << what << ": at most half flipped";
   EXPECT_LE(r.faces_visited, 2 * r.faces_flipped) << what << ": at most twice the flipped side visited";
@@ -146,23 +146,23 @@ TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
   Mesh kept = m;
   EXPECT_EQ(twist::repair(kept, o).flap_faces_removed, 0u) << "off by default";
   EXPECT_EQ(kept.n_faces(), 208u);
-  o.drop_turned_patches = 4;
+  o.experimental.drop_turned_patches = 4;
   const twist::RepairReport right = twist::repair(kept, o);
   EXPECT_EQ(right.turned_faces_removed + right.turned_faces_collapsed, 0u) << "the flap is oriented right: not turned over";
   EXPECT_EQ(kept.n_faces(), 208u);
-  o.drop_turned_patches = 0;
-  o.peel_flaps = 1;
+  o.experimental.drop_turned_patches = 0;
+  o.experimental.peel_flaps = 1;
   const twist::RepairReport r = twist::repair(m, o);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.flap_faces_removed, 8u);
   EXPECT_EQ(m.n_faces(), 200u);
   EXPECT_EQ(edgefront::compute_stats(m).components, 1u);
   EXPECT_EQ(twist::same_orientation_pairs(m).size(), 0u);
-  o.peel_flaps = 17;
+  o.experimental.peel_flaps = 17;
   EXPECT_THROW(twist::repair(m, o), InvalidInput);
-  o.peel_flaps = 1;
+  o.experimental.peel_flaps = 1;
   for (double share : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
-    o.min_cut_piece_share = share;
+    o.cuts.min_cut_piece_share = share;
     EXPECT_THROW(twist::repair(m, o), InvalidInput) << share;
   }
 }
@@ -207,7 +207,7 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_EQ(off.repairs, 0u);
   EXPECT_EQ(off.turned_faces_removed, 0u) << "off by default";
   EXPECT_EQ(kept.n_faces(), 145u);
-  o.drop_turned_patches = 4;
+  o.experimental.drop_turned_patches = 4;
   const twist::RepairReport r = twist::repair(s.mesh, o);
   EXPECT_EQ(r.repairs, 0u);
   EXPECT_EQ(r.turned_faces_removed, 1u);
@@ -215,7 +215,7 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_EQ(s.mesh.n_faces(), 144u);
   EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
   EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
-  o.drop_turned_patches = 65;
+  o.experimental.drop_turned_patches = 65;
   EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
 }
 
@@ -232,7 +232,7 @@ std::vector<FaceHandle> turned_top_faces(const Mesh& mesh) {
 twist::RepairReport drop_turned(Mesh& mesh, const twist::ReferenceNormals& ref) {
   twist::RepairOptions o;
   o.detect.reference = &ref;
-  o.drop_turned_patches = 4;
+  o.experimental.drop_turned_patches = 4;
   return twist::repair(mesh, o);
 }
 
@@ -406,7 +406,7 @@ TEST(TwistRepair, IncrementalRepairerFindsTheRegionFromAChangedFace) {
   const auto regions = twist::detect(s.mesh);
   ASSERT_EQ(regions.size(), 1u);
   twist::RepairOptions o;
-  o.detect.audit_faces = 0;
+  o.detect.incremental.audit_faces = 0;
   twist::TwistRepairer repairer(o);
   const auto r = repairer.repair_changed(s.mesh, {regions[0].faces.back()});
   EXPECT_EQ(r.repairs, 1u);
@@ -438,7 +438,7 @@ TEST(TwistRepair, ARenumberedRepairerRepairsAsOneThatWasNot) {
   twist::TwistedShape a = twist::twisted_tube();
   twist::TwistedShape b = twist::twisted_tube();
   twist::RepairOptions o;
-  o.detect.audit_faces = 0;  // the audit samples by index
+  o.detect.incremental.audit_faces = 0;  // the audit samples by index
   o.garbage_collect = false;
   twist::TwistRepairer ra(o, 1), rb(o, 1);
   double mean_edge = 0;
@@ -664,7 +664,7 @@ TEST(TwistRepair, PairsRestrictedToFacesAreThoseOfTheWholeScan) {
     for (const auto& p : all) ASSERT_TRUE(p.first != middle && p.second != middle);
     const std::vector<FaceHandle> some{middle, all.front().first};
     twist::DetectOptions o;
-    o.restrict_to = some;
+    o.incremental.restrict_to = some;
     std::vector<std::pair<FaceHandle, FaceHandle>> expected;
     for (const auto& p : all) {
       if (std::find(some.begin(), some.end(), p.first) != some.end() || std::find(some.begin(), some.end(), p.second) != some.end()) {
@@ -674,9 +674,9 @@ TEST(TwistRepair, PairsRestrictedToFacesAreThoseOfTheWholeScan) {
     ASSERT_GE(expected.size(), 1u);
     ASSERT_LT(expected.size(), all.size());
     EXPECT_EQ(twist::same_orientation_pairs(m, o, rule), expected);
-    o.restrict_to = std::vector<FaceHandle>{middle};
+    o.incremental.restrict_to = std::vector<FaceHandle>{middle};
     EXPECT_TRUE(twist::same_orientation_pairs(m, o, rule).empty());
-    o.restrict_to = std::vector<FaceHandle>{FaceHandle(static_cast<int>(m.n_faces()))};
+    o.incremental.restrict_to = std::vector<FaceHandle>{FaceHandle(static_cast<int>(m.n_faces()))};
     EXPECT_THROW(twist::same_orientation_pairs(m, o, rule), InvalidInput);
   }
 }
@@ -813,7 +813,7 @@ TEST(TwistRepair, StackedLayerRemovalRejectsBadOptions) {
   o.min_component_faces = 0;
   EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput);
   o = {};
-  o.detect.surface_factor = std::numeric_limits<double>::quiet_NaN();
+  o.detect.experimental.surface_factor = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(twist::remove_stacked_layers(m, o), InvalidInput);
   Mesh nan = spiral_ramp(1);
   nan.set_point(*nan.vertices().begin(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
@@ -834,7 +834,7 @@ TEST(TwistRepair, BadInputThrowsNamingTheProblem) {
     EXPECT_NE(std::string(e.what()).find("max_repairs"), std::string::npos) << e.what();
   }
   o = {};
-  o.detect.grow_levels = 100;
+  o.detect.regions.grow_levels = 100;
   EXPECT_THROW(twist::repair(m, o), InvalidInput);
   EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0)}, {}), InvalidInput);
   EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 3}}), InvalidInput);

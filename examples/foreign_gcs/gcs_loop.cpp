@@ -211,10 +211,10 @@ class Loop {
     }
     // As EdgeFront's own GCS hook sets it (gcs/twist_operation.h): cut scattered regions too, and
     // at the end peel the flaps the cuts left and drop small turned-over patches.
-    so.repair.max_border_ratio = 0;
-    so.repair.peel_flaps = 3;
-    so.repair.peel_from_cuts = true;
-    so.repair.drop_turned_patches = 4;
+    so.repair.cuts.max_border_ratio = 0;
+    so.repair.experimental.peel_flaps = 3;
+    so.repair.experimental.peel_from_cuts = true;
+    so.repair.experimental.drop_turned_patches = 4;
     so.max_retwists = o_.max_retwists;
     // The border operations this loop lacks, done by the session and replayed like the rest.
     so.heal.enabled = o_.heal;

@@ -53,7 +53,7 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   if (!repairer_) {
     twist::RepairOptions o = options_.repair;
     o.detect.reference = reference_.get();
-    if (!reference_) o.max_border_ratio = options_.max_border_ratio_without_normals;
+    if (!reference_) o.cuts.max_border_ratio = options_.max_border_ratio_without_normals;
     repairer_ = std::make_unique<twist::TwistRepairer>(o, options_.max_retwists);
   }
   if (context.live_vertices < options_.min_vertices && !context.final_call) return result;

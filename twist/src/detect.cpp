@@ -50,23 +50,23 @@ void check_range(bool ok, const std::string& what) {
 
 void validate_options(const Mesh& mesh, const DetectOptions& o) {
   check_range(std::isfinite(o.radius) && o.radius >= 0, "radius must be finite and >= 0 (0 = automatic)");
-  check_range(std::isfinite(o.surface_factor) && o.surface_factor >= 1, "surface_factor must be finite and >= 1");
-  check_range(o.parallel_cos >= 0 && o.parallel_cos <= 1, "parallel_cos must lie in [0, 1]");
-  check_range(o.facing_cos > 0 && o.facing_cos <= 1, "facing_cos must lie in (0, 1]");
-  check_range(o.fold_cos >= -1 && o.fold_cos <= 0, "fold_cos must lie in [-1, 0]");
-  check_range(o.grow_levels >= 1 && o.grow_levels <= 64, "grow_levels must lie in [1, 64]");
-  check_range(o.min_flagged_faces >= 1, "min_flagged_faces must be >= 1");
-  check_range(o.min_flagged_share >= 0 && o.min_flagged_share <= 1, "min_flagged_share must lie in [0, 1]");
-  check_range(o.reference_cos >= -1 && o.reference_cos <= 1, "reference_cos must lie in [-1, 1]");
-  check_range(o.reference_side_weight == 0 || (o.reference_side_weight >= 1 && o.reference_side_weight <= 100),
-              "reference_side_weight must be 0 or lie in [1, 100]");
+  check_range(std::isfinite(o.experimental.surface_factor) && o.experimental.surface_factor >= 1, "experimental.surface_factor must be finite and >= 1");
+  check_range(o.experimental.parallel_cos >= 0 && o.experimental.parallel_cos <= 1, "experimental.parallel_cos must lie in [0, 1]");
+  check_range(o.experimental.facing_cos > 0 && o.experimental.facing_cos <= 1, "experimental.facing_cos must lie in (0, 1]");
+  check_range(o.experimental.fold_cos >= -1 && o.experimental.fold_cos <= 0, "experimental.fold_cos must lie in [-1, 0]");
+  check_range(o.regions.grow_levels >= 1 && o.regions.grow_levels <= 64, "regions.grow_levels must lie in [1, 64]");
+  check_range(o.regions.min_flagged_faces >= 1, "regions.min_flagged_faces must be >= 1");
+  check_range(o.regions.min_flagged_share >= 0 && o.regions.min_flagged_share <= 1, "regions.min_flagged_share must lie in [0, 1]");
+  check_range(o.vote.reference_cos >= -1 && o.vote.reference_cos <= 1, "vote.reference_cos must lie in [-1, 1]");
+  check_range(o.experimental.reference_side_weight == 0 || (o.experimental.reference_side_weight >= 1 && o.experimental.reference_side_weight <= 100),
+              "experimental.reference_side_weight must be 0 or lie in [1, 100]");
   check_range(std::isfinite(o.mean_edge_length) && o.mean_edge_length >= 0, "mean_edge_length must be finite and >= 0");
-  check_range(o.reference_margin >= 1 && o.reference_margin <= 100, "reference_margin must lie in [1, 100]");
-  check_range(o.thin_wall >= 0 && o.thin_wall <= 4, "thin_wall must lie in [0, 4]");
-  if (o.restrict_to) {
-    for (FaceHandle f : *o.restrict_to) {
+  check_range(o.experimental.reference_margin >= 1 && o.experimental.reference_margin <= 100, "experimental.reference_margin must lie in [1, 100]");
+  check_range(o.vote.thin_wall >= 0 && o.vote.thin_wall <= 4, "vote.thin_wall must lie in [0, 4]");
+  if (o.incremental.restrict_to) {
+    for (FaceHandle f : *o.incremental.restrict_to) {
       if (!edgefront::is_live(mesh, f)) {
-        throw InvalidInput("twist::detect: restrict_to names face " + std::to_string(f.idx()) +
+        throw InvalidInput("twist::detect: incremental.restrict_to names face " + std::to_string(f.idx()) +
                            ", which is not a live face of the mesh");
       }
     }
@@ -78,7 +78,7 @@ class Detector {
  public:
   /// `quick`: no layer is looked for in front of a face the reference confirms (see `test`).
   Detector(const Mesh& mesh, const DetectOptions& o, bool quick)
-      : quick_(quick), collect_behind_(o.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.face_grid) {
+      : quick_(quick), collect_behind_(o.incremental.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.incremental.face_grid) {
     if (!grid_) {
       // Full mode (or no incremental index given): a k-d tree over every live face's centroid.
       geo_.resize(mesh.n_faces());
@@ -193,7 +193,7 @@ class Detector {
     }
     for (HalfedgeHandle h : mesh_.fh_range(f)) {
       const FaceHandle g = mesh_.opposite_face_handle(h);
-      if (g.is_valid() && OpenMesh::dot(nf, normal(g)) <= o_.fold_cos) {
+      if (g.is_valid() && OpenMesh::dot(nf, normal(g)) <= o_.experimental.fold_cos) {
         ev = Evidence{EvidenceKind::FoldedEdge, f, g};
         return true;
       }
@@ -221,7 +221,7 @@ class Detector {
       if (g == f) continue;
       const Vec3 d = center(g) - cf;
       const double dist = d.norm();
-      if (dist > 0 && dist <= radius_ && -OpenMesh::dot(nf, d) >= o_.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.parallel_cos &&
+      if (dist > 0 && dist <= radius_ && -OpenMesh::dot(nf, d) >= o_.experimental.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.experimental.parallel_cos &&
           !shares_vertex(f, g)) {
         return true;
       }
@@ -295,11 +295,11 @@ class Detector {
       if (!(dist > 0 && dist <= radius_)) continue;
       const double along = OpenMesh::dot(nf, d);
       const double cos_ng = OpenMesh::dot(nf, normal(g));
-      const bool layer = side * along >= o_.facing_cos * dist &&
-                         (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.parallel_cos;
+      const bool layer = side * along >= o_.experimental.facing_cos * dist &&
+                         (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.experimental.parallel_cos;
       // Behind f with the same orientation: g may point at f's back, so its evidence changed with f.
       const bool behind = !layer && collect_behind_ && side > 0 && !same_orientation_only &&
-                          -along >= o_.facing_cos * dist && cos_ng >= o_.parallel_cos;
+                          -along >= o_.experimental.facing_cos * dist && cos_ng >= o_.experimental.parallel_cos;
       if (!layer && !behind) continue;
       if (shares_vertex(f, g)) continue;
       if (layer && stacked && !stacked_on(f, g)) continue;
@@ -319,7 +319,7 @@ class Detector {
     near_flag_.assign(layers_.size(), 0);
     unresolved_ = layers_.size();
     // A layer is near when the surface distance to one of its vertices is within this limit.
-    const auto limit_of = [&](size_t i) { return o_.surface_factor * layers_[i].first + mean_edge_; };
+    const auto limit_of = [&](size_t i) { return o_.experimental.surface_factor * layers_[i].first + mean_edge_; };
     for (size_t i = 0; i < layers_.size(); ++i) {
       reach = std::max(reach, limit_of(i));
       for (int v : geo(layers_[i].second).vertices) cand_of_vertex_[v].emplace_back(i, limit_of(i));
@@ -453,15 +453,15 @@ class Detector {
 
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal,
                    double mean_edge_length) {
-  if (options.reference_side_weight > 0) {
-    return reference.judge(centre, normal, 16, options.reference_side_weight, options.reference_margin);
+  if (options.experimental.reference_side_weight > 0) {
+    return reference.judge(centre, normal, 16, options.experimental.reference_side_weight, options.experimental.reference_margin);
   }
   const double c = OpenMesh::dot(normal, reference.nearest_normal(centre));
-  if (c < options.reference_cos) {
-    const double thin = options.thin_wall * mean_edge_length;
+  if (c < options.vote.reference_cos) {
+    const double thin = options.vote.thin_wall * mean_edge_length;
     return thin > 0 && reference.wall_thickness(centre) < thin ? 0 : -1;
   }
-  return c >= -options.reference_cos ? 1 : 0;
+  return c >= -options.vote.reference_cos ? 1 : 0;
 }
 
 namespace {
@@ -470,10 +470,10 @@ namespace {
 /// over the mesh).
 void check_pass_input(const Mesh& mesh, const DetectOptions& options) {
   edgefront::require_attributes(mesh, "twist::detect");
-  if (options.face_grid && options.restrict_to) {
+  if (options.incremental.face_grid && options.incremental.restrict_to) {
     // Incremental: no pass over the mesh; the candidates' vertices are checked.
     if (mesh.n_faces() == 0) throw InvalidInput("twist::detect: the mesh has no faces");
-    for (FaceHandle f : *options.restrict_to) {
+    for (FaceHandle f : *options.incremental.restrict_to) {
       if (!edgefront::is_live(mesh, f)) continue;  // reported by validate_options
       for (VertexHandle v : mesh.fv_range(f)) {
         const Vec3& p = mesh.point(v);
@@ -558,13 +558,13 @@ void test_whole_mesh(const Mesh& mesh, const DetectOptions& options, Detector& d
 /// Step 1 in incremental mode: the candidates (`DetectOptions::restrict_to`) and an audit sample,
 /// the faces right behind them, and the faces grown around flagged ones.
 void test_candidates(const Mesh& mesh, const DetectOptions& options, Detector& det, PassEvidence& pass) {
-  std::vector<FaceHandle> candidates = *options.restrict_to;
+  std::vector<FaceHandle> candidates = *options.incremental.restrict_to;
   // The audit: evenly spaced face indices (the next live face after a deleted one), so it
   // costs O(audit_faces), not a pass over the mesh.
   const size_t nf = mesh.n_faces();
-  const size_t audit = std::min(options.audit_faces, nf);
+  const size_t audit = std::min(options.incremental.audit_faces, nf);
   for (size_t i = 0; i < audit; ++i) {
-    size_t k = (options.audit_offset + i * nf / audit) % nf;
+    size_t k = (options.incremental.audit_offset + i * nf / audit) % nf;
     for (size_t probe = 0; probe < 16 && !edgefront::is_live(mesh, FaceHandle(static_cast<int>(k))); ++probe) k = (k + 1) % nf;
     if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(k)))) candidates.push_back(FaceHandle(static_cast<int>(k)));
   }
@@ -573,7 +573,7 @@ void test_candidates(const Mesh& mesh, const DetectOptions& options, Detector& d
   // see `require_orientation_evidence`), so the candidates are not scanned for them: only the
   // faces grown around flagged ones are (the scan is the costliest test, and most candidates
   // of a batch are right).
-  det.set_scan_intersections(!options.require_orientation_evidence);
+  det.set_scan_intersections(!options.regions.require_orientation_evidence);
   for (FaceHandle f : candidates) {
     if (pass.run_test(det, f)) queue.emplace_back(f, 0);
   }
@@ -588,7 +588,7 @@ void test_candidates(const Mesh& mesh, const DetectOptions& options, Detector& d
   while (!queue.empty()) {
     const auto [f, hops] = queue.front();
     queue.pop_front();
-    if (hops >= options.grow_levels) continue;
+    if (hops >= options.regions.grow_levels) continue;
     for (HalfedgeHandle h : mesh.fh_range(f)) {
       const FaceHandle g = mesh.opposite_face_handle(h);
       if (!g.is_valid() || pass.tested.count(g.idx())) continue;
@@ -613,7 +613,7 @@ bool core_evidence(const DetectOptions& options, Detector& det, const std::unord
   if (it == flagged.end()) return false;
   if (it->second.kind == EvidenceKind::Reference) return true;
   if (it->second.kind != EvidenceKind::FacingLayer) return false;
-  return !options.reference || (options.reference_side_weight > 0 && det.vote(f) == 0);
+  return !options.reference || (options.experimental.reference_side_weight > 0 && det.vote(f) == 0);
 }
 
 /// A face of a core: with core evidence, as are its neighbours across every edge.
@@ -663,12 +663,12 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
   constexpr std::size_t kFacesPerThread = 1000;
   const unsigned threads =
-      options.restrict_to ? 1u
+      options.incremental.restrict_to ? 1u
                           : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),
                                                                         std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
-  if (!options.restrict_to && threads > 1) {
+  if (!options.incremental.restrict_to && threads > 1) {
     test_whole_mesh_parallel(mesh, options, quick, threads, det, pass);
-  } else if (!options.restrict_to) {
+  } else if (!options.incremental.restrict_to) {
     test_whole_mesh(mesh, options, det, pass);
   } else {
     test_candidates(mesh, options, det, pass);
@@ -680,10 +680,10 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   auto core = [&](FaceHandle f) { return is_core(mesh, options, det, pass.flagged, f); };
   // No core anywhere: no region can be kept, so none is grown (most calls of a refinement loop).
   has_core = std::any_of(pass.order.begin(), pass.order.end(), core);
-  if (quick || (options.require_orientation_evidence && !has_core)) return result;
+  if (quick || (options.regions.require_orientation_evidence && !has_core)) return result;
 
   // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
-  const std::vector<edgefront::FrontLoop> loops = detail::grow_front(mesh, pass.order, options.grow_levels);
+  const std::vector<edgefront::FrontLoop> loops = detail::grow_front(mesh, pass.order, options.regions.grow_levels);
   // 3. Regions: the surface behind the front, connected without crossing it.
   std::unordered_map<int, int> region_of;
   std::vector<TwistRegion> regions = detail::regions_behind_front(mesh, pass.order, pass.flagged, loops, region_of);
@@ -692,15 +692,15 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   // 5. Trim: faces added by growing or filling that show evidence of being right leave the region.
   trim_right_faces(mesh, pass.flagged, det, regions);
   auto orientation_evidence = [&](const TwistRegion& r) {
-    if (!options.require_orientation_evidence) return true;
+    if (!options.regions.require_orientation_evidence) return true;
     for (const Evidence& e : r.evidence) {
       if (core(e.face)) return true;
     }
     return false;
   };
   for (auto& r : regions) {
-    const bool enough = r.flagged_faces >= options.min_flagged_faces &&
-                        static_cast<double>(r.flagged_faces) >= options.min_flagged_share * static_cast<double>(r.faces.size());
+    const bool enough = r.flagged_faces >= options.regions.min_flagged_faces &&
+                        static_cast<double>(r.flagged_faces) >= options.regions.min_flagged_share * static_cast<double>(r.faces.size());
     if (enough && orientation_evidence(r)) result.regions.push_back(std::move(r));
   }
   std::stable_sort(result.regions.begin(), result.regions.end(), [](const TwistRegion& a, const TwistRegion& b) {
@@ -713,7 +713,7 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
 
 DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   bool has_core = false;
-  if (options.reference && options.reference_side_weight == 0 && options.require_orientation_evidence) {
+  if (options.reference && options.experimental.reference_side_weight == 0 && options.regions.require_orientation_evidence) {
     // With a reference judging by the nearest normal, a core needs reference evidence, which does
     // not depend on layers: a first pass that looks for no layer in front of the faces the
     // reference confirms (two right parts of a surface facing each other across a narrow gap
@@ -740,7 +740,7 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
     throw InvalidInput("twist::same_orientation_pairs: unknown layer rule " + std::to_string(static_cast<int>(rule)));
   }
   DetectOptions full = options;
-  full.restrict_to.reset();  // the detector as for the whole mesh; the set only picks the faces
+  full.incremental.restrict_to.reset();  // the detector as for the whole mesh; the set only picks the faces
   Detector det(mesh, full, false);
   std::vector<std::pair<FaceHandle, FaceHandle>> out;
   auto add_pair = [&](FaceHandle f, const std::unordered_set<int>* keep) {
@@ -750,7 +750,7 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
     if (!g.is_valid()) g = det.far_layer(f, -1.0, true, stacked);
     if (g.is_valid() && (!keep || keep->count(f.idx()) || keep->count(g.idx()))) out.emplace_back(f, g);
   };
-  if (!options.restrict_to) {
+  if (!options.incremental.restrict_to) {
     for (FaceHandle f : mesh.faces()) add_pair(f, nullptr);
     return out;
   }
@@ -758,11 +758,11 @@ std::vector<std::pair<FaceHandle, FaceHandle>> same_orientation_pairs(const Mesh
   // around it are all that can make such a pair.
   const std::unordered_set<int> keep = [&] {
     std::unordered_set<int> k;
-    for (FaceHandle f : *options.restrict_to) k.insert(f.idx());
+    for (FaceHandle f : *options.incremental.restrict_to) k.insert(f.idx());
     return k;
   }();
-  std::vector<FaceHandle> candidates = *options.restrict_to;
-  for (FaceHandle f : *options.restrict_to) {
+  std::vector<FaceHandle> candidates = *options.incremental.restrict_to;
+  for (FaceHandle f : *options.incremental.restrict_to) {
     for (FaceHandle g : det.around(f)) candidates.push_back(g);
   }
   std::sort(candidates.begin(), candidates.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });

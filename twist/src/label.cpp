@@ -128,11 +128,11 @@ class MaxFlow {
 ReferenceLabelling label_by_reference(const Mesh& mesh, const RepairOptions& o) {
   detail::check_mesh(mesh, "twist::label_by_reference");
   if (!o.detect.reference) throw InvalidInput("twist::label_by_reference: no reference normals (options.detect.reference)");
-  if (!(o.cut_cost >= 0 && o.cut_cost <= 100)) throw InvalidInput("twist::label_by_reference: option cut_cost must lie in [0, 100]");
-  if (o.min_component_faces < 1) throw InvalidInput("twist::label_by_reference: option min_component_faces must be >= 1");
+  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100)) throw InvalidInput("twist::label_by_reference: option cuts.cut_cost must lie in [0, 100]");
+  if (o.cuts.min_component_faces < 1) throw InvalidInput("twist::label_by_reference: option cuts.min_component_faces must be >= 1");
   DetectOptions d = o.detect;
-  d.restrict_to.reset();
-  d.face_grid = nullptr;
+  d.incremental.restrict_to.reset();
+  d.incremental.face_grid = nullptr;
   validate_detect_options(mesh, d);
   const ReferenceNormals& reference = *o.detect.reference;
   const double h = d.mean_edge_length > 0 ? d.mean_edge_length : detail::mean_edge_length(mesh);
@@ -164,7 +164,7 @@ ReferenceLabelling label_by_reference(const Mesh& mesh, const RepairOptions& o) 
     if (w > 0) flow.add(s, f.idx(), w, 0);
     if (w < 0) flow.add(f.idx(), t, -w, 0);
   }
-  const double per_length = o.cut_cost * h;
+  const double per_length = o.cuts.cut_cost * h;
   for (EdgeHandle e : mesh.edges()) {
     if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
     const HalfedgeHandle he = mesh.halfedge_handle(e, 0);
@@ -207,7 +207,7 @@ ReferenceLabelling label_by_reference(const Mesh& mesh, const RepairOptions& o) 
   // min_component_faces faces) stays as it is: a tiny component is worse than a small wrong patch.
   size_t kept = 0;
   for (size_t r = 0; r < out.regions.size(); ++r) {
-    if (out.cut_edges[r] > 0 && out.regions[r].size() < o.min_component_faces) {
+    if (out.cut_edges[r] > 0 && out.regions[r].size() < o.cuts.min_component_faces) {
       ++out.regions_too_small;
       continue;
     }

@@ -219,11 +219,11 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
   rec.flipped_region = exhausted == &a;
   rec.other_side_faces = other.order.size();
   rec.faces_visited = a.order.size() + b.order.size();
-  if (exhausted->order.size() < o.min_component_faces) {
-    if (exhausted == &a && o.regrow_cut_outs) {
-      regrow_region(mesh, region, o.min_component_faces);
+  if (exhausted->order.size() < o.cuts.min_component_faces) {
+    if (exhausted == &a && o.experimental.regrow_cut_outs) {
+      regrow_region(mesh, region, o.cuts.min_component_faces);
     } else {
-      remove_faces(mesh, exhausted->order, o.min_component_faces);
+      remove_faces(mesh, exhausted->order, o.cuts.min_component_faces);
     }
     rec.removed = true;
     return rec;
@@ -240,7 +240,7 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
     at_cut.push_back(dups[i].first);
     at_cut.push_back(dups[i].second);
   }
-  rec.tiny_faces_removed = remove_tiny_pieces(mesh, at_cut, o.min_component_faces);
+  rec.tiny_faces_removed = remove_tiny_pieces(mesh, at_cut, o.cuts.min_component_faces);
   return rec;
 }
 
@@ -265,22 +265,22 @@ bool region_is_most_of_its_component(const Mesh& mesh, const TwistRegion& region
 
 void validate_repair_options(const RepairOptions& o) {
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
-  if (o.min_component_faces < 1) throw InvalidInput("twist::repair: option min_component_faces must be >= 1");
-  if (!(o.max_border_ratio >= 0) || !std::isfinite(o.max_border_ratio)) {
-    throw InvalidInput("twist::repair: option max_border_ratio must be finite and >= 0");
+  if (o.cuts.min_component_faces < 1) throw InvalidInput("twist::repair: option cuts.min_component_faces must be >= 1");
+  if (!(o.cuts.max_border_ratio >= 0) || !std::isfinite(o.cuts.max_border_ratio)) {
+    throw InvalidInput("twist::repair: option cuts.max_border_ratio must be finite and >= 0");
   }
-  if (!(o.retest_turn_degrees >= 0 && o.retest_turn_degrees <= 180)) {
-    throw InvalidInput("twist::repair: option retest_turn_degrees must lie in [0, 180]");
+  if (!(o.experimental.retest_turn_degrees >= 0 && o.experimental.retest_turn_degrees <= 180)) {
+    throw InvalidInput("twist::repair: option experimental.retest_turn_degrees must lie in [0, 180]");
   }
-  if (!(o.min_cut_piece_share >= 0 && o.min_cut_piece_share <= 1)) {
-    throw InvalidInput("twist::repair: option min_cut_piece_share must lie in [0, 1]");
+  if (!(o.cuts.min_cut_piece_share >= 0 && o.cuts.min_cut_piece_share <= 1)) {
+    throw InvalidInput("twist::repair: option cuts.min_cut_piece_share must lie in [0, 1]");
   }
-  if (o.peel_flaps < 0 || o.peel_flaps > 16) throw InvalidInput("twist::repair: option peel_flaps must lie in [0, 16]");
-  if (o.drop_turned_patches > 64) throw InvalidInput("twist::repair: option drop_turned_patches must lie in [0, 64]");
-  if (!(o.retest_move >= 0) || !std::isfinite(o.retest_move)) {
-    throw InvalidInput("twist::repair: option retest_move must be finite and >= 0");
+  if (o.experimental.peel_flaps < 0 || o.experimental.peel_flaps > 16) throw InvalidInput("twist::repair: option experimental.peel_flaps must lie in [0, 16]");
+  if (o.experimental.drop_turned_patches > 64) throw InvalidInput("twist::repair: option experimental.drop_turned_patches must lie in [0, 64]");
+  if (!(o.experimental.retest_move >= 0) || !std::isfinite(o.experimental.retest_move)) {
+    throw InvalidInput("twist::repair: option experimental.retest_move must be finite and >= 0");
   }
-  if (!(o.cut_cost >= 0 && o.cut_cost <= 100)) throw InvalidInput("twist::repair: option cut_cost must lie in [0, 100]");
+  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100)) throw InvalidInput("twist::repair: option cuts.cut_cost must lie in [0, 100]");
 }
 
 }  // namespace
@@ -290,7 +290,7 @@ namespace detail {
 RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& cut_out, DupList& dups,
                          FaceGrid* grid) {
   // Incremental (a face grid and a restricted candidate set): nothing here passes over the mesh.
-  const bool incremental = grid && o.detect.restrict_to;
+  const bool incremental = grid && o.detect.incremental.restrict_to;
   if (!incremental) detail::check_mesh(mesh, "twist::repair");
   validate_repair_options(o);
   RepairReport report;
@@ -308,7 +308,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   report.non_orientable = report.seam_edges > 0;
 
   DetectOptions dopt = o.detect;
-  if (grid) dopt.face_grid = grid;
+  if (grid) dopt.incremental.face_grid = grid;
   bool first = true;
   while (report.repairs < o.max_repairs) {
     const size_t faces_before = mesh.n_faces();
@@ -333,7 +333,7 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       bool has_cut = false;
       for (size_t i = 0; i < region.border.size(); ++i) has_cut = has_cut || !region.border_on_mesh_border[i];
       if (!has_cut) continue;  // a whole component: the global orientation decides its side
-      if (o.max_border_ratio > 0) {
+      if (o.cuts.max_border_ratio > 0) {
         // A twist is a compact region behind a short twist line; a region whose border is far
         // longer than a disk's of its size is scattered evidence (noise, or a wall thinner than
         // the faces), and cutting along it would shred the surface.
@@ -341,16 +341,16 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
         for (size_t i = 0; i < region.border.size(); ++i) {
           if (!region.border_on_mesh_border[i]) border_edges += region.border[i].size();
         }
-        if (static_cast<double>(border_edges) > o.max_border_ratio * std::sqrt(static_cast<double>(region.faces.size())) + 16) {
+        if (static_cast<double>(border_edges) > o.cuts.max_border_ratio * std::sqrt(static_cast<double>(region.faces.size())) + 16) {
           ++report.regions_scattered;
           continue;
         }
       }
       if (cut_out && !region_is_most_of_its_component(mesh, region) && cut_out(mesh, region)) {
-        if (o.regrow_cut_outs) {
-          regrow_region(mesh, region, o.min_component_faces);
+        if (o.experimental.regrow_cut_outs) {
+          regrow_region(mesh, region, o.cuts.min_component_faces);
         } else {
-          remove_faces(mesh, region.faces, o.min_component_faces);
+          remove_faces(mesh, region.faces, o.cuts.min_component_faces);
         }
         ++report.regions_cut_out;
         report.faces_removed += region.faces.size();
@@ -374,21 +374,21 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
       // Re-detect on what is left of the candidates and the faces the repairs created.
       grid->update_new(mesh);
       std::vector<FaceHandle> next;
-      for (FaceHandle f : *dopt.restrict_to) {
+      for (FaceHandle f : *dopt.incremental.restrict_to) {
         if (edgefront::is_live(mesh, f)) next.push_back(f);
       }
       for (size_t i = faces_before; i < mesh.n_faces(); ++i) {
         if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(i)))) next.push_back(FaceHandle(static_cast<int>(i)));
       }
-      dopt.restrict_to = std::move(next);
+      dopt.incremental.restrict_to = std::move(next);
     } else {
       // Re-detect on the whole mesh: handles of the restricted set may be gone.
-      dopt.restrict_to.reset();
+      dopt.incremental.restrict_to.reset();
     }
   }
   if (grid) grid->update_new(mesh);
-  if (!incremental && o.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
-  if (!incremental && o.peel_flaps > 0) {
+  if (!incremental && o.cuts.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
+  if (!incremental && o.experimental.peel_flaps > 0) {
     const size_t peeled = peel_flaps(mesh, o, dups);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
@@ -460,7 +460,7 @@ RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
   report.non_orientable = report.seam_edges > 0;
   // No piece the cuts separated is removed (min_cut_piece_share does not apply: the labelling
   // never makes a piece under min_component_faces); border flaps only when asked.
-  if (o.peel_flaps > 0) {
+  if (o.experimental.peel_flaps > 0) {
     const size_t peeled = peel_flaps(mesh, o, dups);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
@@ -479,7 +479,7 @@ using detail::repair_impl;
 RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   DupList dups;
   RepairReport seams;
-  if (options.flip_seam_pieces) {
+  if (options.experimental.flip_seam_pieces) {
     detail::check_mesh(mesh, "twist::repair");
     validate_repair_options(options);
     flip_seam_pieces(mesh, dups, seams);
@@ -489,6 +489,17 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
   report.seam_pieces_flipped = seams.seam_pieces_flipped;
   report.seam_faces_flipped = seams.seam_faces_flipped;
   return report;
+}
+
+RepairOptions RepairOptions::finished_mesh() { return RepairOptions{}; }
+
+RepairOptions RepairOptions::in_loop() {
+  RepairOptions o;
+  o.cuts.max_border_ratio = 0;  // no limit: the loop cuts scattered regions too
+  o.experimental.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
+  o.experimental.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
+  o.experimental.drop_turned_patches = 4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
+  return o;
 }
 
 }  // namespace twist

@@ -95,7 +95,7 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
   std::vector<size_t> face_count(labels.count, 0);
   for (FaceHandle f : mesh.faces()) ++face_count[label_of(f)];
   const size_t largest = face_count.empty() ? 0 : *std::max_element(face_count.begin(), face_count.end());
-  const double limit = std::max(static_cast<double>(o.min_component_faces), o.min_cut_piece_share * static_cast<double>(largest));
+  const double limit = std::max(static_cast<double>(o.cuts.min_component_faces), o.cuts.min_cut_piece_share * static_cast<double>(largest));
   std::vector<char> doomed(labels.count, 0);
   for (const auto& [copy, original] : dups) {
     for (VertexHandle v : {copy, original}) {
@@ -123,27 +123,27 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
   // round faces at a vertex of a face peeled before (a flap of the loop's own border operations
   // is not the repair's business: a run without any cut keeps its mesh as it is).
   std::unordered_set<int> reach;
-  for (const auto& [copy, original] : o.peel_from_cuts ? dups : DupList{}) {
+  for (const auto& [copy, original] : o.experimental.peel_from_cuts ? dups : DupList{}) {
     reach.insert(copy.idx());
     reach.insert(original.idx());
   }
   DetectOptions d = o.detect;
-  d.restrict_to.reset();
-  d.face_grid = nullptr;
+  d.incremental.restrict_to.reset();
+  d.incremental.face_grid = nullptr;
   d.mean_edge_length = 0;
-  for (int round = 0; round < o.peel_flaps; ++round) {
+  for (int round = 0; round < o.experimental.peel_flaps; ++round) {
     if (mesh.faces().begin() == mesh.faces().end()) break;  // nothing left to judge
     std::vector<FaceHandle> flaps;
     auto on_border = [&](FaceHandle f) {
       bool border = false, reached = false;
       for (VertexHandle v : mesh.fv_range(f)) {
         border = border || mesh.is_boundary(v);
-        reached = reached || !o.peel_from_cuts || reach.count(v.idx()) > 0;
+        reached = reached || !o.experimental.peel_from_cuts || reach.count(v.idx()) > 0;
       }
       return border && reached;
     };
     std::vector<FaceHandle> candidates;  // faces that can be flaps
-    if (o.peel_from_cuts) {
+    if (o.experimental.peel_from_cuts) {
       for (int v : reach) {
         if (!edgefront::is_live(mesh, VertexHandle(v))) continue;
         for (FaceHandle f : mesh.vf_range(VertexHandle(v))) {
@@ -158,7 +158,7 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
     std::sort(candidates.begin(), candidates.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     if (candidates.empty()) break;
-    d.restrict_to = std::move(candidates);
+    d.incremental.restrict_to = std::move(candidates);
     for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
       if (on_border(f)) flaps.push_back(f);
       if (on_border(g)) flaps.push_back(g);
@@ -169,7 +169,7 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
     for (FaceHandle f : flaps) {
       for (VertexHandle v : mesh.fv_range(f)) reach.insert(v.idx());
     }
-    removed += remove_faces(mesh, flaps, o.min_component_faces);
+    removed += remove_faces(mesh, flaps, o.cuts.min_component_faces);
   }
   return removed;
 }
@@ -246,10 +246,10 @@ bool straighten_face(Mesh& mesh, FaceHandle f, const MoveTest& test) {
 /// with `restrict_to`): the reference's verdict costs a nearest-point query, a pair test a
 /// bounded front.
 void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
-  if (!o.detect.reference || o.drop_turned_patches == 0 || mesh.faces().begin() == mesh.faces().end()) return;
+  if (!o.detect.reference || o.experimental.drop_turned_patches == 0 || mesh.faces().begin() == mesh.faces().end()) return;
   DetectOptions d = o.detect;
-  d.restrict_to.reset();
-  d.face_grid = nullptr;
+  d.incremental.restrict_to.reset();
+  d.incremental.face_grid = nullptr;
   d.mean_edge_length = 0;
   const double edge = detail::mean_edge_length(mesh);
   // The reference's verdict on a triangle: rejected (thin-wall rule on).
@@ -260,9 +260,9 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     // A face the nearest normal leaves undecided (at a crease or rim its nearest point may lie on
     // the other wall meeting there, at a right angle) is judged by sides (its own wall), unless
     // the wall is thinner than the thin-wall rule allows.
-    if (vote == 0 && o.detect.reference_side_weight == 0 &&
-        std::abs(OpenMesh::dot(n, o.detect.reference->nearest_normal(c))) < -o.detect.reference_cos &&
-        !(o.detect.reference->wall_thickness(c) < o.detect.thin_wall * edge)) {
+    if (vote == 0 && o.detect.experimental.reference_side_weight == 0 &&
+        std::abs(OpenMesh::dot(n, o.detect.reference->nearest_normal(c))) < -o.detect.vote.reference_cos &&
+        !(o.detect.reference->wall_thickness(c) < o.detect.vote.thin_wall * edge)) {
       vote = o.detect.reference->judge(c, n);
     }
     return vote < 0;
@@ -280,7 +280,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     if (rejected(f)) rejected_faces.push_back(f);
   }
   if (rejected_faces.empty()) return;
-  d.restrict_to = std::move(rejected_faces);
+  d.incremental.restrict_to = std::move(rejected_faces);
   std::vector<FaceHandle> seeds;
   for (const auto& [f, g] : same_orientation_pairs(mesh, d)) {
     if (rejected(f)) seeds.push_back(f);
@@ -296,7 +296,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
     // face than the limit (a bigger group is left to the detector).
     std::vector<FaceHandle> group{s};
     grouped.insert(s.idx());
-    for (size_t q = 0; q < group.size() && group.size() <= o.drop_turned_patches; ++q) {
+    for (size_t q = 0; q < group.size() && group.size() <= o.experimental.drop_turned_patches; ++q) {
       for (FaceHandle g : mesh.ff_range(group[q])) {
         if (!grouped.count(g.idx()) && rejected(g)) {
           grouped.insert(g.idx());
@@ -304,7 +304,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
         }
       }
     }
-    if (group.size() <= o.drop_turned_patches) groups.push_back(std::move(group));
+    if (group.size() <= o.experimental.drop_turned_patches) groups.push_back(std::move(group));
   }
   // Straightening turned face f (`straighten_face`) is kept when f is then right, no face around
   // the moved vertices is degenerate and fewer of them are rejected than before (near a rim
@@ -372,7 +372,7 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
       if (border) flaps.push_back(f);
     }
   }
-  const size_t removed = remove_faces(mesh, flaps, o.min_component_faces);
+  const size_t removed = remove_faces(mesh, flaps, o.cuts.min_component_faces);
   report.turned_faces_removed += removed;
   report.faces_removed += removed;
 }

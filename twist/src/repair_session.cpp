@@ -499,8 +499,8 @@ std::vector<int> RepairSession::detect() {
   Impl& s = *impl_;
   s.require_synced("detect");
   DetectOptions o = s.options.repair.detect;
-  o.restrict_to.reset();
-  o.face_grid = nullptr;
+  o.incremental.restrict_to.reset();
+  o.incremental.face_grid = nullptr;
   const DetectResult found = detect_regions(s.mirror(), o);
   std::vector<int> out(s.host.face_slots(), -1);
   for (size_t i = 0; i < found.regions.size(); ++i) {

@@ -100,8 +100,8 @@ StackedLayerReport remove_stacked_layers(Mesh& mesh, const StackedLayerOptions& 
   if (options.min_component_faces < 1) throw InvalidInput("twist::remove_stacked_layers: option min_component_faces must be >= 1");
   DetectOptions d = options.detect;
   d.reference = nullptr;
-  d.restrict_to.reset();
-  d.face_grid = nullptr;
+  d.incremental.restrict_to.reset();
+  d.incremental.face_grid = nullptr;
   d.mean_edge_length = 0;
   validate_detect_options(mesh, d);
   StackedLayerReport report;

@@ -29,9 +29,9 @@ TwistRepairer::TwistRepairer(RepairOptions options, size_t max_retwists)
 std::vector<FaceHandle> TwistRepairer::retest(const Mesh& mesh, const std::vector<FaceHandle>& changed, double mean_edge_length,
                                               std::vector<std::pair<int, Snapshot>>& current) const {
   current.clear();
-  const bool all = options_.retest_turn_degrees == 0 && options_.retest_move == 0;
-  const double min_cos = std::cos(options_.retest_turn_degrees * std::numbers::pi / 180.0);
-  const double max_move2 = std::pow(options_.retest_move * mean_edge_length, 2);
+  const bool all = options_.experimental.retest_turn_degrees == 0 && options_.experimental.retest_move == 0;
+  const double min_cos = std::cos(options_.experimental.retest_turn_degrees * std::numbers::pi / 180.0);
+  const double max_move2 = std::pow(options_.experimental.retest_move * mean_edge_length, 2);
   std::vector<FaceHandle> out;
   for (FaceHandle f : changed) {
     if (!edgefront::is_live(mesh, f)) continue;
@@ -58,7 +58,7 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
   RepairOptions o = options_;
   std::vector<std::pair<int, Snapshot>> snapshots;
   const bool local = mean_edge_length > 0 && std::isfinite(mean_edge_length);
-  o.detect.restrict_to = local ? retest(mesh, changed, mean_edge_length, snapshots) : changed;
+  o.detect.incremental.restrict_to = local ? retest(mesh, changed, mean_edge_length, snapshots) : changed;
   if (local) {
     // Local mode: keep the face grid current (a rebuild only when the edge length drifted by 2x).
     o.detect.mean_edge_length = mean_edge_length;
@@ -70,7 +70,7 @@ RepairReport TwistRepairer::repair_changed(Mesh& mesh, const std::vector<FaceHan
       grid_.update_new(mesh);
     }
   }
-  o.detect.audit_offset = calls_ * 7919;  // a different audit sample every call
+  o.detect.incremental.audit_offset = calls_ * 7919;  // a different audit sample every call
   o.global_orientation = false;
   auto rule = [this](const Mesh& m, const TwistRegion& region) {
     Vec3 centre(0, 0, 0);

@@ -2,7 +2,7 @@
 /// \file twist_operation.h
 /// The twist repair as a hook of the GCS loop (see `operation.h` and `twist/repair.h`): after
 /// each batch, twisted regions are searched near the changed faces that turned or moved across
-/// their plane since they were last tested (`twist::RepairOptions::retest_turn_degrees`; the
+/// their plane since they were last tested (`twist::RepairExperimentalOptions::retest_turn_degrees`; the
 /// smoothing moves almost every face a little in every batch) plus a small audit sample, cut off
 /// and flipped; a place that re-twists repeatedly is cut out so the loop re-grows it; the
 /// final call repairs the whole mesh and applies the global orientation. When the input points
@@ -22,34 +22,28 @@ namespace gcs {
 
 /// Options of the `TwistOperation` hook.
 struct TwistOperationOptions {
-  /// Detection and repair settings (garbage collection is forced off). Defaults here: no limit
-  /// on the border of a region (`max_border_ratio` = 0; for a cloud with normals, see
-  /// `max_border_ratio_without_normals` for one without): in the loop, cutting scattered regions
-  /// too gives higher orientation consistency on the vault shells, at the price of more
-  /// components (bench/results/twist-vaults.md has both); and the final call peels border flaps
-  /// (`peel_flaps` = 3: faces at a border lying over another layer with the same orientation),
-  /// and, with reference normals, removes or collapses turned-over patches of up to 4 faces that
-  /// lie over the other layer (`drop_turned_patches`).
+  /// Detection and repair settings (garbage collection is forced off). Default
+  /// `default_repair()`, i.e. `twist::RepairOptions::in_loop()`.
   twist::RepairOptions repair = default_repair();
-  /// The hook's default repair settings: `twist::RepairOptions`' defaults with `max_border_ratio`
-  /// 0, `peel_flaps` 3, `peel_from_cuts` on and `drop_turned_patches` 4 (see `repair`). These
-  /// differ on purpose from `twist::repair`'s own defaults, which suit a one-shot repair of a
-  /// finished mesh.
-  static twist::RepairOptions default_repair() {
-    twist::RepairOptions o;
-    o.max_border_ratio = 0;
-    o.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
-    o.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
-    o.drop_turned_patches = 4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
-    return o;
-  }
-  /// `repair.max_border_ratio` for a cloud without normals. Without normals the detector's
+  /// The hook's default repair settings: `twist::RepairOptions::in_loop()`, which differs from
+  /// `twist::repair`'s own defaults (`twist::RepairOptions::finished_mesh()`, for a one-shot repair
+  /// of a finished mesh) on purpose in four fields: no limit on the border of a region
+  /// (`cuts.max_border_ratio` = 0; for a cloud with normals, see
+  /// `max_border_ratio_without_normals` for one without): in the loop, cutting scattered regions
+  /// too gives higher orientation consistency on the vault shells, at the price of more components
+  /// (bench/results/twist-vaults.md has both); and the final call peels border flaps the cuts left
+  /// (`experimental.peel_flaps` = 3 with `experimental.peel_from_cuts`: faces at a border lying
+  /// over another layer with the same orientation), and, with reference normals, removes or
+  /// collapses turned-over patches of up to 4 faces that lie over the other layer
+  /// (`experimental.drop_turned_patches` = 4).
+  static twist::RepairOptions default_repair() { return twist::RepairOptions::in_loop(); }
+  /// `repair.cuts.max_border_ratio` for a cloud without normals. Without normals the detector's
   /// evidence is geometric only (facing layers, folded edges, self-intersections), and on a noisy
   /// cloud whose noise is about an edge length the loop's crumpled surface shows such evidence all
   /// over, and cutting every such region shreds the surface into many pieces with many holes
   /// (CGAL's sphere_20k: bench/results/gcs.md). So without normals a region whose cut border is longer
   /// than this ratio times the square root of its face count (plus 16 edges) is left alone as
-  /// scattered evidence (see `twist::RepairOptions::max_border_ratio`). 0 = no limit; finite, >= 0.
+  /// scattered evidence (see `twist::CutOptions::max_border_ratio`). 0 = no limit; finite, >= 0.
   double max_border_ratio_without_normals = 4.0;
   std::size_t max_retwists = 2;      ///< a place repaired more often than this is cut out; >= 0
   std::size_t min_vertices = 200;    ///< no repair while the mesh has fewer live vertices (a box has no layers); >= 0
@@ -78,7 +72,7 @@ struct TwistOperationStats {
   std::size_t regions_cut_out = 0;  ///< regions removed because they re-twisted (`max_retwists`)
   std::size_t faces_flipped = 0;    ///< faces flipped by the repairs (not the global orientation)
   std::size_t faces_removed = 0;    ///< faces removed (tiny pieces, cut-outs, flaps)
-  std::size_t regions_scattered = 0;   ///< left alone: not compact (`twist::RepairOptions::max_border_ratio`)
+  std::size_t regions_scattered = 0;   ///< left alone: not compact (`twist::CutOptions::max_border_ratio`)
   std::size_t components_flipped = 0;  ///< by the global orientation of the final call
   bool non_orientable = false;         ///< a repair met a reversed seam (see `twist::RepairReport`)
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)

@@ -7,9 +7,9 @@
 /// Evidence, per face f (all semi-local):
 /// - **Reference**: with reference normals, f's normal disagrees with the nearest oriented point.
 /// - **Facing layer**: another face g lies *in front of* f (on the side f's normal points to)
-///   within `radius`, roughly parallel (|n_f·n_g| >= `parallel_cos`), and is *far along the
+///   within `radius`, roughly parallel (|n_f·n_g| >= `DetectExperimentalOptions::parallel_cos`), and is *far along the
 ///   surface*: a Minimal Distance Front from f's centroid, bounded by `max_distance`, does not
-///   reach g within `surface_factor` times their distance. On a correctly oriented thin closed
+///   reach g within `DetectExperimentalOptions::surface_factor` times their distance. On a correctly oriented thin closed
 ///   structure every face has the material, not another layer of the same surface, right behind
 ///   it and empty space in front: layers of one thin wall are back to back. A face whose normal
 ///   points at another layer is twisted: either both layers face each other (a wall turned inside
@@ -17,13 +17,13 @@
 ///   the one pointing at the other is flagged). Convention and limit: two distinct surface parts
 ///   facing each other across a gap narrower than `radius` (a hairpin's arms) look like an
 ///   inverted wall; pass reference normals for such inputs (they then decide the side, see
-///   `DetectOptions::require_orientation_evidence`) or lower `radius`.
-/// - **Folded edge**: an edge whose two faces fold onto each other (n_f·n_g <= `fold_cos`,
+///   `RegionOptions::require_orientation_evidence`) or lower `radius`.
+/// - **Folded edge**: an edge whose two faces fold onto each other (n_f·n_g <= `DetectExperimentalOptions::fold_cos`,
 ///   dihedral angle near 0).
 /// - **Self-intersection**: f intersects a face it shares no vertex with.
 ///
 /// Flagged faces are grown into regions with a Minimal Edge Front started at their vertices and
-/// run `grow_levels` levels (this also closes small gaps between flagged patches); a region is
+/// run `RegionOptions::grow_levels` levels (this also closes small gaps between flagged patches); a region is
 /// the surface behind the front, its border the front's sealed loops. Pieces of the rest that a
 /// region encloses (bounded by one of its several loops) and that are smaller than the region
 /// join it (hole filling, explored with a budget of the region's size); the largest piece stays
@@ -89,7 +89,7 @@ struct FaceGeometry {
 FaceGeometry face_geometry(const edgefront::Mesh& mesh, edgefront::FaceHandle f);
 
 /// An incremental spatial hash of face centroids, for repeated local detection on a mesh that
-/// changes a little at a time (see `DetectOptions::face_grid`): updating it costs O(changed
+/// changes a little at a time (see `IncrementalOptions::face_grid`): updating it costs O(changed
 /// faces), a query O(faces in the cells it covers). It holds each face's geometry as of the last
 /// `update`/`rebuild` of that face: queries answer for those stored centroids (no mesh access
 /// but the deleted flag) and `geometry` returns the stored geometry, so the caller updates every
@@ -135,29 +135,16 @@ class FaceGrid {
   std::vector<Record> records_;  ///< by face index
 };
 
-/// Options of `detect`. Lengths are absolute; 0 means "automatic" where stated.
-struct DetectOptions {
-  /// Search radius for layers, > 0, or 0: 2 x the mean edge length. Must exceed the thickness of
-  /// the thinnest wall to be checked.
-  double radius = 0.0;
-  /// A layer is far along the surface when the geodesic distance exceeds this factor times the
-  /// straight distance (plus one mean edge length of slack). >= 1.
-  double surface_factor = 2.0;
-  /// Layers count as parallel when |n_f·n_g| >= this. In [0, 1].
-  double parallel_cos = 0.5;
-  /// g lies in front of f when n_f·(c_g - c_f)/|c_g - c_f| >= this. In (0, 1].
-  double facing_cos = 0.3;
-  /// An edge is folded when the normals of its faces satisfy n_f·n_g <= this. In [-1, 0].
-  double fold_cos = -0.9;
-  /// Look for self-intersecting face pairs.
-  bool self_intersections = true;
-  /// Minimal Edge Front levels grown around flagged faces to form regions. In [1, 64].
+/// How flagged faces become regions, and which regions `detect` keeps (`DetectOptions::regions`).
+struct RegionOptions {
+  /// Minimal Edge Front levels grown around flagged faces to form regions (this also closes small
+  /// gaps between flagged patches). Default 2; in [1, 64].
   int grow_levels = 2;
-  /// Regions with fewer flagged faces are dropped (noise). >= 1.
+  /// Regions with fewer flagged faces are dropped (noise). Default 1; >= 1.
   size_t min_flagged_faces = 1;
   /// Regions in which flagged faces are fewer than this share of all faces (after growing,
   /// filling and trimming) are dropped: mostly unflagged regions are grown around stray evidence,
-  /// such as a fold band left over right faces after a cut. In [0, 1].
+  /// such as a fold band left over right faces after a cut. Default 0.3; in [0, 1].
   double min_flagged_share = 0.3;
   /// Keep only regions with a core of orientation evidence: a face with reference or facing-layer
   /// evidence whose neighbours across all its edges have it too. Folds and self-intersections
@@ -165,53 +152,121 @@ struct DetectOptions {
   /// intersect itself, e.g. a GCS mesh in transit), and a triangle or two turned over against
   /// right neighbours in a crease is a tangle, not a wrongly oriented patch. With a `reference`,
   /// facing-layer evidence counts for the core only where the side judge abstains
-  /// (`reference_side_weight` > 0 and a vote of 0): wherever the reference decides, a layer in
-  /// front of a face it confirms is another right part of the surface across a narrow gap.
+  /// (`DetectExperimentalOptions::reference_side_weight` > 0 and a vote of 0): wherever the
+  /// reference decides, a layer in front of a face it confirms is another right part of the
+  /// surface across a narrow gap. Default true.
   bool require_orientation_evidence = true;
-  /// Oriented reference points (the caller's, borrowed; may be null). When set, reference
-  /// evidence is used.
-  edgefront::Borrowed<const ReferenceNormals> reference = nullptr;
-  /// A face disagrees with its reference normal when n·n_ref < this. In [-1, 1].
+  /// Field by field.
+  bool operator==(const RegionOptions&) const = default;
+};
+
+/// How the reference normals judge a face in the default nearest-point mode
+/// (`DetectOptions::vote`; used by `reference_vote`, hence by `label_by_reference` too).
+struct VoteOptions {
+  /// A face disagrees with its nearest reference normal when n·n_ref < this, and agrees when
+  /// n·n_ref >= -this; in between it is undecided (normals nearly perpendicular). A cosine;
+  /// default -0.2; in [-1, 1].
   double reference_cos = -0.2;
-  /// How the reference judges a face: 0 = the nearest point to its centroid (disagrees when
-  /// n.n_ref < `reference_cos`, agrees when n.n_ref >= -`reference_cos`); >= 1 = by sides
-  /// (`ReferenceNormals::judge` with this normal weight and `reference_margin`), which tells
-  /// the face's own wall on walls thinner than the mesh's edges and abstains between the walls.
-  /// 0 or in [1, 100].
-  double reference_side_weight = 0.0;
-  double reference_margin = 1.5;  ///< see `reference_side_weight`; in [1, 100]
-  /// Nearest-point mode (`reference_side_weight` = 0) only: a face the nearest reference normal
-  /// rejects is left undecided instead when it lies on a wall thinner than this many mean edge
-  /// lengths (`ReferenceNormals::wall_thickness` at its centroid): the mesh does not resolve
-  /// such a wall (its two layers are closer than a fraction of an edge and cross each other), so
-  /// which side is nearest a face, and the verdict, is noise, and repairing it shreds the wall
-  /// (thin vault shells: bench/results/twist-vaults.md). Agreeing
-  /// verdicts are kept (they start no repair). 0 = off; in [0, 4].
+  /// A face the nearest reference normal rejects is left undecided instead when it lies on a wall
+  /// thinner than this many mean edge lengths (`ReferenceNormals::wall_thickness` at its
+  /// centroid): the mesh does not resolve such a wall (its two layers are closer than a fraction
+  /// of an edge and cross each other), so which side is nearest a face, and the verdict, is noise,
+  /// and repairing it shreds the wall (thin vault shells: bench/results/twist-vaults.md).
+  /// Agreeing verdicts are kept (they start no repair). Nearest-point mode only
+  /// (`DetectExperimentalOptions::reference_side_weight` = 0). In mean edge lengths; default
+  /// 0.35; in [0, 4]; 0 = off.
   double thin_wall = 0.35;
-  /// Incremental mode: when set, only these faces plus `audit_faces` evenly spaced faces (from
-  /// `audit_offset`) are tested first, then the faces right behind them with the same
-  /// orientation (they point at a candidate's back; with a reference only those it leaves
-  /// undecided); faces within `grow_levels` of a flagged face are then tested too, so a twisted
-  /// region is found whole. With `require_orientation_evidence`, self-intersections are looked
-  /// for only on those grown faces, not on the candidates (they mark a twist line, never a
+  /// Field by field.
+  bool operator==(const VoteOptions&) const = default;
+};
+
+/// Incremental detection, as `TwistRepairer` drives it (`DetectOptions::incremental`): the
+/// repairer sets `restrict_to`, `audit_offset` and `face_grid` per call; a one-shot `detect` of a
+/// whole mesh leaves them unset.
+struct IncrementalOptions {
+  /// When set, only these faces plus `audit_faces` evenly spaced faces (from `audit_offset`) are
+  /// tested first, then the faces right behind them with the same orientation (they point at a
+  /// candidate's back; with a reference only those it leaves undecided); faces within
+  /// `RegionOptions::grow_levels` of a flagged face are then tested too, so a twisted region is
+  /// found whole. With `RegionOptions::require_orientation_evidence`, self-intersections are
+  /// looked for only on those grown faces, not on the candidates (they mark a twist line, never a
   /// region on their own, and the scan is the costliest test). Invalid or deleted handles throw.
+  /// Default unset (the whole mesh is tested).
   std::optional<std::vector<edgefront::FaceHandle>> restrict_to = std::nullopt;
-  size_t audit_faces = 64;  ///< incremental mode: evenly spaced faces tested besides `restrict_to` (0: none)
-  /// Incremental mode: where the evenly spaced audit starts (a face index, modulo the face count;
-  /// the repair advances it every call so that the audits cover the whole mesh over time).
+  /// With `restrict_to`: evenly spaced faces tested besides it, so that twists away from the
+  /// changed faces are found over time. Faces; default 64; >= 0; 0 = none.
+  size_t audit_faces = 64;
+  /// With `restrict_to`: where the evenly spaced audit starts (a face index, modulo the face
+  /// count; the repairer advances it every call so that the audits cover the whole mesh over
+  /// time). Default 0; any value.
   size_t audit_offset = 0;
   /// Incremental index of face centroids kept up to date by the caller (borrowed; may be null).
   /// With it and `restrict_to`, a detection touches only the candidates, their neighbourhoods
-  /// and the audit: no pass over the whole mesh (pass `mean_edge_length` too). Without it, a
-  /// k-d tree over all face centroids is built per call.
+  /// and the audit: no pass over the whole mesh (pass `DetectOptions::mean_edge_length` too).
+  /// Without it, a k-d tree over all face centroids is built per call. Default null.
   edgefront::Borrowed<const FaceGrid> face_grid = nullptr;
-  /// The mesh's mean edge length if known (> 0), else 0: computed (a pass over the edges).
-  double mean_edge_length = 0;
-  /// Threads for the per-face evidence of a whole-mesh detection (no `restrict_to`), >= 0; 0 (the
-  /// default) = all cores. Each thread tests a contiguous range of faces with its own detector
-  /// (its own k-d tree over the face centroids), at most one thread per 1,000 faces; the regions
-  /// are the same for any count. Incremental detection (`restrict_to`) runs on one thread.
+};
+
+/// Thresholds of the geometric evidence and the alternative reference judge
+/// (`DetectOptions::experimental`). The defaults are what every test, benchmark and the GCS hook
+/// use; changing them is rarely useful (the side judge measured worse on the thicker vault shells,
+/// bench/results/twist-vaults.md) and they may change or go.
+struct DetectExperimentalOptions {
+  /// A layer is far along the surface when the geodesic distance exceeds this factor times the
+  /// straight distance (plus one mean edge length of slack). Default 2; finite, >= 1.
+  double surface_factor = 2.0;
+  /// Layers count as parallel when |n_f·n_g| >= this. A cosine; default 0.5; in [0, 1].
+  double parallel_cos = 0.5;
+  /// g lies in front of f when n_f·(c_g - c_f)/|c_g - c_f| >= this. A cosine; default 0.3; in
+  /// (0, 1].
+  double facing_cos = 0.3;
+  /// An edge is folded when the normals of its faces satisfy n_f·n_g <= this. A cosine; default
+  /// -0.9; in [-1, 0].
+  double fold_cos = -0.9;
+  /// How the reference judges a face: 0 = the nearest point to its centroid (see `VoteOptions`);
+  /// >= 1 = by sides (`ReferenceNormals::judge` with this normal weight and `reference_margin`),
+  /// which tells the face's own wall on walls thinner than the mesh's edges and abstains between
+  /// the walls. Default 0; 0 or in [1, 100].
+  double reference_side_weight = 0.0;
+  /// Side judge only (`reference_side_weight` >= 1): the margin passed to
+  /// `ReferenceNormals::judge`. Default 1.5; in [1, 100].
+  double reference_margin = 1.5;
+  /// Field by field.
+  bool operator==(const DetectExperimentalOptions&) const = default;
+};
+
+/// Options of `detect`: the few settings a caller usually sets first, then named groups. Lengths
+/// are absolute (the mesh's length unit); 0 means "automatic" where stated.
+///
+/// \code
+///   twist::DetectOptions o;
+///   o.reference = &reference;     // oriented points decide which side is right
+///   o.radius = 0.01;              // or 0: twice the mean edge length
+///   o.regions.grow_levels = 3;    // a group
+///   twist::detect(mesh, o);
+/// \endcode
+struct DetectOptions {
+  /// Search radius for layers, or 0: 2 x the mean edge length. Must exceed the thickness of the
+  /// thinnest wall to be checked. Length; default 0; finite, >= 0.
+  double radius = 0.0;
+  /// Oriented reference points (the caller's, borrowed; may be null). When set, reference
+  /// evidence is used. Default null.
+  edgefront::Borrowed<const ReferenceNormals> reference = nullptr;
+  /// Threads for the per-face evidence of a whole-mesh detection (no
+  /// `IncrementalOptions::restrict_to`): 0 = all cores. Each thread tests a contiguous range of
+  /// faces with its own detector (its own k-d tree over the face centroids), at most one thread
+  /// per 1,000 faces; the regions are the same for any count. Incremental detection runs on one
+  /// thread. Default 0; >= 0.
   unsigned threads = 0;
+  /// Look for self-intersecting face pairs. Default true.
+  bool self_intersections = true;
+  /// The mesh's mean edge length if the caller knows it, else 0: computed (a pass over the
+  /// edges). Length; default 0; finite, >= 0.
+  double mean_edge_length = 0;
+  RegionOptions regions{};                   ///< growing flagged faces into regions, and which are kept
+  VoteOptions vote{};                        ///< how the reference judges a face
+  IncrementalOptions incremental{};          ///< detection restricted to changed faces (the repairer's)
+  DetectExperimentalOptions experimental{};  ///< evidence thresholds and the side judge; rarely useful
 };
 
 /// Statistics of a detection run (for reports and benchmarks).
@@ -235,14 +290,14 @@ struct DetectResult {
 DetectResult detect_regions(const edgefront::Mesh& mesh, const DetectOptions& options = {});
 
 /// The reference's verdict on a face with this centre and unit normal under `options` (see
-/// `DetectOptions::reference_side_weight`): +1 agrees, -1 disagrees, 0 undecided.
-/// `mean_edge_length` (> 0) turns on `DetectOptions::thin_wall`; 0 leaves it off.
+/// `DetectExperimentalOptions::reference_side_weight`, `VoteOptions`): +1 agrees, -1 disagrees, 0 undecided.
+/// `mean_edge_length` (> 0) turns on `VoteOptions::thin_wall`; 0 leaves it off.
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const edgefront::Vec3& centre,
                    const edgefront::Vec3& normal, double mean_edge_length = 0);
 
 /// Which partners make a same-orientation pair (see `same_orientation_pairs`).
 enum class LayerRule {
-  /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >= `facing_cos`·|d|
+  /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >= `DetectExperimentalOptions::facing_cos`·|d|
   /// for d = c_g - c_f (the first rule). It also counts two faces of one wall side by
   /// side across a hole or a border gap, and two faces bevelled over a rim corner (two walls
   /// meeting at a right angle), when their normals tilt enough: both may be oriented right.
@@ -258,11 +313,11 @@ enum class LayerRule {
 };
 
 /// Faces that have a partner close in space (centroids within `radius`, in front or behind:
-/// |n_f·d| >= `facing_cos`·|d|), far along the surface (as for facing layers) and with the same
-/// orientation (n_f·n_g >= `parallel_cos`): the signature of a twist the issue asks to rule out.
+/// |n_f·d| >= `DetectExperimentalOptions::facing_cos`·|d|), far along the surface (as for facing layers) and with the same
+/// orientation (n_f·n_g >= `DetectExperimentalOptions::parallel_cos`): the signature of a twist the issue asks to rule out.
 /// `rule` sharpens which partners count (see `LayerRule`; the repair's flap peeling and turned
 /// patch dropping use `Facing`). Uses the geometry only (`reference` is ignored). With
-/// `restrict_to`, only the pairs in which the face or its partner is one of those faces are
+/// `IncrementalOptions::restrict_to`, only the pairs in which the face or its partner is one of those faces are
 /// returned (the same pairs the whole scan gives for them; only those faces and the faces within
 /// the layer radius of them are tested, so a small set costs little). Throws as `detect`, and
 /// InvalidInput for a `rule` that is no `LayerRule`.

@@ -28,40 +28,60 @@
 
 namespace twist {
 
-/// Options of `repair`, `orient` and `TwistRepairer` (and, through `SessionOptions`, of a
-/// `RepairSession`).
-struct RepairOptions {
-  DetectOptions detect;              ///< how regions are found (reference normals go here)
-  size_t max_repairs = 16;           ///< at most this many regions are repaired per call, >= 1
-  /// A side smaller than this (in faces) is never left as its own component: it is removed
-  /// instead of flipped. >= 1.
+/// Where the repair may cut and what it leaves standing (`RepairOptions::cuts`).
+struct CutOptions {
+  /// Labelling only (`RepairOptions::label_by_reference`): the price of cutting the mesh along an
+  /// edge, per unit of edge length, in units of the mean edge length (an area, comparable with
+  /// the area of the faces the reference rejects): a region is flipped only when the area it puts
+  /// right exceeds the area it puts wrong plus cut_cost x mean edge x the length of the cut around
+  /// it. A disk of wrongly oriented faces is flipped from a radius of about 2 x cut_cost mean
+  /// edges on. Mean edge lengths; default 1; in [0, 100].
+  double cut_cost = 1.0;
+  /// Detector path only: regions whose cut border has more than max_border_ratio * sqrt(faces) +
+  /// 16 edges are not repaired (counted in `RepairReport::regions_scattered`): a twist is a
+  /// compact region behind a short twist line, while scattered evidence (noise, a wall thinner
+  /// than the faces) joined into one region has a border snaking through the surface, and cutting
+  /// along it shreds it. A disk of n faces has a border of about 3.5 sqrt(n) edges. Edges per
+  /// square root of a face count; default 6; finite, >= 0; 0 = no limit.
+  double max_border_ratio = 6.0;
+  /// A side smaller than this is never left as its own component: it is removed instead of
+  /// flipped (and the labelling leaves flip regions this small that would need a cut). Faces;
+  /// default 8; >= 1.
   size_t min_component_faces = 8;
   /// At the end of a full repair (`repair`, `TwistRepairer::finish`; not the incremental calls,
   /// which stay local), a component that the cuts separated (it holds a vertex of a cut) and that
   /// has fewer than max(min_component_faces, this share x the largest component's faces) faces is
   /// removed: a sliver or fragment too small to stand as a part of the surface, often lying over
   /// another piece with the same orientation. Components the input had stay. Not applied when
-  /// labelling by a reference (`label_by_reference`: it removes nothing). In [0, 1]; 0 = only
-  /// `min_component_faces` at each cut.
+  /// labelling by a reference (it removes nothing). A share of faces; default 0.02; in [0, 1];
+  /// 0 = only `min_component_faces` at each cut.
   double min_cut_piece_share = 0.02;
+  /// Field by field.
+  bool operator==(const CutOptions&) const = default;
+};
+
+/// Clean-ups and filters that are off (or neutral) in a one-shot repair of a finished mesh
+/// (`RepairOptions::experimental`). The GCS hook turns the first three on
+/// (`RepairOptions::in_loop()`); the rest measured no clear gain (bench/results/twist-vaults.md)
+/// and may change or go.
+struct RepairExperimentalOptions {
   /// At the end of a full repair: rounds of removing border flaps, faces with a vertex on the
   /// mesh border that have a partner close in space, far along the surface and with the same
   /// orientation (`same_orientation_pairs`). Such a face is not a twist (the orientation of both
   /// may be right) but a double layer: a flap of one piece lying over another piece or over the
   /// same piece further along (left by a cut, a re-join or the loop's border operations). Each
   /// round peels one ring; the tiny pieces it leaves go too. Faces away from a border are left to
-  /// the detector. In [0, 16]; 0 = off (the default: on a mesh that no refinement loop will fit
-  /// again, the faces of a twist line cut through but not moved count as flaps; the GCS hook
-  /// turns it on, see `gcs::TwistOperationOptions`).
+  /// the detector. Off by default: on a mesh that no refinement loop will fit again, the faces of
+  /// a twist line cut through but not moved count as flaps. Rounds; default 0; in [0, 16]; 0 = off.
   int peel_flaps = 0;
   /// Peel only flaps the cuts left: the first round only faces at a vertex of a cut (of this call,
   /// or for `TwistRepairer::finish` of the whole run), each further round faces at a vertex of a
-  /// face peeled before. A run that cut nothing then keeps its mesh as it is (the GCS hook turns
-  /// it on: the loop's own border flaps are the loop's business).
+  /// face peeled before. A run that cut nothing then keeps its mesh as it is (in a loop, the
+  /// loop's own border flaps are the loop's business). Default false.
   bool peel_from_cuts = false;
   /// At the end of a full repair, after the global orientation, with reference normals only:
   /// small turned-over patches the detector leaves alone (no core of orientation evidence, see
-  /// `DetectOptions::require_orientation_evidence`) but that lie over another layer with their
+  /// `RegionOptions::require_orientation_evidence`) but that lie over another layer with their
   /// orientation. A patch is an edge-connected group of at most this many faces the reference
   /// rejects (`reference_vote` with the thin-wall rule: faces on a wall thinner than the edges
   /// stay undecided and are never touched), at least one of which has a same-orientation partner
@@ -80,58 +100,86 @@ struct RepairOptions {
   /// and faces of the same wall across it then count as pairs (bench/results/twist-vaults.md).
   /// Each such face makes every face of the other layer within the radius a same-orientation
   /// pair (tens of pairs from one face of a few thousandths of the area). Bigger groups are the
-  /// detector's business. In [0, 64]; 0 = off (the default; the GCS hook turns it on).
+  /// detector's business. Faces; default 0; in [0, 64]; 0 = off.
   size_t drop_turned_patches = 0;
   /// A region cut out (re-twist guard) or a region side too small to stand alone is replaced by
   /// a fan per border loop wound like its surroundings (re-grown in place) instead of leaving a
-  /// hole; falls back to a hole when a loop is not simple.
+  /// hole; falls back to a hole when a loop is not simple. Default false (no clear gain in the
+  /// loop: bench/results/twist-vaults.md).
   bool regrow_cut_outs = false;
-  /// Regions whose cut border has more than max_border_ratio * sqrt(faces) + 16 edges are not
-  /// repaired (counted in `regions_scattered`): a twist is a compact region behind a short twist
-  /// line, while scattered evidence (noise, a wall thinner than the faces) joined into one
-  /// region has a border snaking through the surface, and cutting along it shreds it. A disk
-  /// of n faces has a border of about 3.5 sqrt(n) edges. 0 = no limit; >= 0.
-  double max_border_ratio = 6.0;
-  /// `TwistRepairer::repair_changed` only: a changed face is tested again only when it is new,
-  /// its normal turned by more than `retest_turn_degrees`, or one of its corners moved by more
-  /// than `retest_move` mean edge lengths since it was last tested (a corner replaced by another
-  /// vertex counts as moved to that vertex's position). In a
-  /// GCS loop the smoothing moves almost every vertex a little in every batch, so without this
-  /// every face would be tested after every batch (the whole mesh per call, and the same stable
-  /// folds found again and again). Faces a tested face points at from behind are tested too
-  /// (see `DetectOptions::restrict_to`), and the audit still samples the rest. Both 0: every
-  /// changed face is tested. In [0, 180] and >= 0.
-  double retest_turn_degrees = 10.0;
-  double retest_move = 0.25;  ///< see `retest_turn_degrees`: corner movement in mean edge lengths, >= 0
-  /// `repair` with reference normals (`detect.reference`): label every face keep or flip by the
-  /// reference (`label_by_reference`: a minimum cut between the faces' votes and the price of
-  /// cutting), cut along the borders between the labels and flip the flip-labelled regions,
-  /// instead of detecting twisted regions and flipping the smaller side of each. The detector
-  /// needs a core of evidence, a compact region and a short border; a finished mesh whose
-  /// orientation disagrees with the reference in large irregular patches (a reconstruction twisted
-  /// along its whole length) has none of these. `TwistRepairer` (the refinement loop) never
-  /// labels. false = the detector's regions, as without a reference.
-  bool label_by_reference = true;
-  /// Labelling only: the price of cutting the mesh along an edge, per unit of edge length, in
-  /// units of the mean edge length (an area, comparable with the area of the faces the reference
-  /// rejects): a region is flipped only when the area it puts right exceeds the area it puts wrong
-  /// plus cut_cost x mean edge x the length of the cut around it. A disk of wrongly oriented faces
-  /// is flipped from a radius of about 2 x cut_cost mean edges on. In [0, 100]; default 1.
-  double cut_cost = 1.0;
   /// `repair` only (not `TwistRepairer`), first of all: pieces that meet another piece along a
   /// reversed seam (border halfedges on top of each other running the same way, see
   /// `reversed_seams`: a patch turned over by hand or wound the other way in a file, which a
   /// half-edge mesh holds as a separate piece in its hole) are flipped whole, the smaller class
   /// of each group of pieces so joined, so the seams become compatible; the global orientation
   /// then treats each group as one surface. Needs no reference. A seam within one piece (a Moebius
-  /// band) is left and reported (`non_orientable`). Only seams across which the faces face
-  /// opposite ways (n.n' < -0.5 on average) count. Off by default: the cut of a twist repair
-  /// leaves the same signature (the flipped side meets the rest along a reversed seam), so on a
-  /// mesh that was repaired before this would undo the repair; turn it on for meshes with patches
-  /// wound the other way (with a reference the labelling flips such pieces anyway).
+  /// band) is left and reported (`RepairReport::non_orientable`). Only seams across which the
+  /// faces face opposite ways (n.n' < -0.5 on average) count. Off by default: the cut of a twist
+  /// repair leaves the same signature (the flipped side meets the rest along a reversed seam), so
+  /// on a mesh that was repaired before this would undo the repair; turn it on for meshes with
+  /// patches wound the other way (with a reference the labelling flips such pieces anyway).
+  /// Default false.
   bool flip_seam_pieces = false;
-  bool global_orientation = true;    ///< apply the global orientation convention at the end
-  bool garbage_collect = true;       ///< compact the mesh at the end (deleted faces/edges/vertices)
+  /// `TwistRepairer::repair_changed` only: a changed face is tested again only when it is new,
+  /// its normal turned by more than `retest_turn_degrees`, or one of its corners moved by more
+  /// than `retest_move` mean edge lengths since it was last tested (a corner replaced by another
+  /// vertex counts as moved to that vertex's position). In a GCS loop the smoothing moves almost
+  /// every vertex a little in every batch, so without this every face would be tested after
+  /// every batch (the whole mesh per call, and the same stable folds found again and again).
+  /// Faces a tested face points at from behind are tested too (see
+  /// `IncrementalOptions::restrict_to`), and the audit still samples the rest. Both 0: every
+  /// changed face is tested. Degrees; default 10; in [0, 180].
+  double retest_turn_degrees = 10.0;
+  /// See `retest_turn_degrees`: corner movement. Mean edge lengths; default 0.25; finite, >= 0.
+  double retest_move = 0.25;
+  /// Field by field.
+  bool operator==(const RepairExperimentalOptions&) const = default;
+};
+
+/// Options of `repair`, `orient` and `TwistRepairer` (and, through `SessionOptions`, of a
+/// `RepairSession`): the few settings a caller usually sets first (the detection with its search
+/// radius, reference and threads; what to repair), then named groups. The defaults suit a
+/// one-shot repair of a finished mesh; `in_loop()` is what the GCS hook uses inside a refinement
+/// loop.
+///
+/// \code
+///   twist::RepairOptions o;                 // or twist::RepairOptions::in_loop()
+///   o.detect.reference = &reference;        // oriented points decide which side is right
+///   o.detect.radius = 0.01;                 // layer search radius (0: twice the mean edge)
+///   o.cuts.cut_cost = 2;                    // a group
+///   twist::repair(mesh, o);
+/// \endcode
+struct RepairOptions {
+  /// How regions are found: search radius, reference normals, threads (see `DetectOptions`).
+  DetectOptions detect;
+  /// `repair` with reference normals (`detect.reference`): label every face keep or flip by the
+  /// reference (`label_by_reference`: a minimum cut between the faces' votes and the price of
+  /// cutting, `CutOptions::cut_cost`), cut along the borders between the labels and flip the
+  /// flip-labelled regions, instead of detecting twisted regions and flipping the smaller side of
+  /// each. The detector needs a core of evidence, a compact region and a short border; a finished
+  /// mesh whose orientation disagrees with the reference in large irregular patches (a
+  /// reconstruction twisted along its whole length) has none of these. `TwistRepairer` (the
+  /// refinement loop) never labels. Default true; false = the detector's regions, as without a
+  /// reference.
+  bool label_by_reference = true;
+  /// At most this many detected regions are repaired per call. Regions; default 16; >= 1.
+  size_t max_repairs = 16;
+  /// Apply the global orientation convention at the end (see the file comment). Default true.
+  bool global_orientation = true;
+  /// Compact the mesh at the end (deleted faces, edges and vertices). Default true.
+  bool garbage_collect = true;
+  CutOptions cuts{};                         ///< where to cut, and which pieces may stand alone
+  RepairExperimentalOptions experimental{};  ///< clean-ups and filters, off in a one-shot repair
+
+  /// The defaults: a one-shot repair of a finished mesh (`repair`, `ef-twist`).
+  static RepairOptions finished_mesh();
+  /// Inside a refinement loop (`gcs::TwistOperationOptions::default_repair()`): the defaults with
+  /// `cuts.max_border_ratio` 0 (no limit: in the loop, cutting scattered regions too gives higher
+  /// orientation consistency on the vault shells, at the price of more components), and at the
+  /// final call `experimental.peel_flaps` 3 with `experimental.peel_from_cuts` (border flaps the
+  /// cuts left) and `experimental.drop_turned_patches` 4 (turned-over slivers and rim flaps of 1-4
+  /// faces over the other layer, with a reference). Figures: bench/results/twist-vaults.md.
+  static RepairOptions in_loop();
 };
 
 /// What one repair did.
@@ -157,7 +205,7 @@ struct RepairReport {
   size_t faces_flipped = 0;            ///< by the repairs (not counting the global orientation)
   size_t faces_visited = 0;            ///< by the alternating fronts, all repairs together
   size_t faces_removed = 0;             ///< all removals (tiny pieces, cut-outs, flaps)
-  size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairOptions::peel_flaps`)
+  size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairExperimentalOptions::peel_flaps`)
   size_t turned_faces_removed = 0;      ///< faces of turned-over border patches removed (`drop_turned_patches`)
   size_t turned_faces_collapsed = 0;    ///< faces of turned-over interior patches collapsed (`drop_turned_patches`)
   size_t turned_faces_straightened = 0; ///< turned-over faces straightened by moving vertices (`drop_turned_patches`)
@@ -193,15 +241,15 @@ struct ReferenceLabelling {
 /// Labels every face keep or flip so that the orientation agrees with the reference normals
 /// wherever that is worth a cut: each face votes with its area (`reference_vote` under
 /// `options.detect`: +1 agrees, -1 disagrees, 0 undecided, e.g. on a wall thinner than
-/// `DetectOptions::thin_wall` mean edges), each interior edge costs `options.cut_cost` x mean
+/// `VoteOptions::thin_wall` mean edges), each interior edge costs `options.cuts.cut_cost` x mean
 /// edge x its length when its two faces get different labels, and a minimum s-t cut (exact,
 /// max-flow) picks the labelling of least total cost. Regions of consistently oriented faces are
 /// thus flipped whole by their area-weighted vote, and the cut runs only where two regions that
-/// disagree must meet: the twist line. Flip regions of fewer than `options.min_component_faces`
+/// disagree must meet: the twist line. Flip regions of fewer than `options.cuts.min_component_faces`
 /// faces that need a cut stay (`regions_too_small`). Does not change the mesh. Cost: one
 /// nearest-point query per face (two on thin walls), then the max-flow over the face graph.
 /// 	hrows edgefront::InvalidInput without `options.detect.reference`, for an empty mesh,
-///         non-finite coordinates or options out of range (`cut_cost`, `min_component_faces`, the
+///         non-finite coordinates or options out of range (`cuts.cut_cost`, `cuts.min_component_faces`, the
 ///         detection options).
 ReferenceLabelling label_by_reference(const edgefront::Mesh& mesh, const RepairOptions& options);
 
@@ -227,7 +275,7 @@ RepairReport orient(edgefront::Mesh& mesh, const RepairOptions& options = {});
 /// Options of `remove_stacked_layers`.
 struct StackedLayerOptions {
   /// How pairs are found (`same_orientation_pairs` with `LayerRule::Stacked`; `reference`,
-  /// `restrict_to`, `face_grid` and `mean_edge_length` are ignored).
+  /// `incremental` and `mean_edge_length` are ignored).
   DetectOptions detect;
   /// Rounds; each round finds the pairs again, removes at most one face per pair (a face removed
   /// can leave its neighbour stacked on the same layer) and flattens pleats. In [1, 16].
@@ -287,8 +335,8 @@ StackedLayerReport remove_stacked_layers(edgefront::Mesh& mesh, const StackedLay
 /// times is cut out (its faces removed) instead of flipped, so the loop can re-grow it.
 class TwistRepairer {
  public:
-  /// \param options the repair's options (`repair_changed` replaces `detect.restrict_to` and
-  ///        `detect.audit_offset` per call and applies no global orientation).
+  /// \param options the repair's options (`repair_changed` replaces `detect.incremental` (`restrict_to`,
+  ///        `audit_offset`, `face_grid`) per call and applies no global orientation).
   /// \param max_retwists how often one place may twist again before it is cut out (>= 0).
   explicit TwistRepairer(RepairOptions options = {}, size_t max_retwists = 2);
 
@@ -327,7 +375,7 @@ class TwistRepairer {
     double radius = 0;
     size_t count = 0;
   };
-  /// A face as it was when last tested (see `RepairOptions::retest_turn_degrees`).
+  /// A face as it was when last tested (see `RepairExperimentalOptions::retest_turn_degrees`).
   struct Snapshot {
     edgefront::Vec3 normal;
     edgefront::Vec3 centre;
