@@ -202,6 +202,9 @@ class Loop {
     for (const Point& p : m_.pos) V.insert(V.end(), p.begin(), p.end());
     for (const Tri& t : m_.faces) F.insert(F.end(), t.begin(), t.end());
     twist::SessionOptions so;
+    // As EdgeFront's own GCS hook sets it (gcs/twist_operation.h): cut scattered regions too, and
+    // at the end peel the flaps the cuts left and drop small turned-over patches.
+    so.repair = twist::RepairOptions::in_loop();
     if (!cloud_.normals.empty()) {
       std::vector<double> P, N;
       for (const Point& p : cloud_.points) P.insert(P.end(), p.begin(), p.end());
@@ -209,12 +212,6 @@ class Loop {
       reference_ = std::make_unique<twist::ReferenceNormals>(twist::reference_from_arrays(P, N));
       so.repair.detect.reference = reference_.get();  // outlives the session (declared before it)
     }
-    // As EdgeFront's own GCS hook sets it (gcs/twist_operation.h): cut scattered regions too, and
-    // at the end peel the flaps the cuts left and drop small turned-over patches.
-    so.repair.cuts.max_border_ratio = 0;
-    so.repair.experimental.peel_flaps = 3;
-    so.repair.experimental.peel_from_cuts = true;
-    so.repair.experimental.drop_turned_patches = 4;
     so.max_retwists = o_.max_retwists;
     // The border operations this loop lacks, done by the session and replayed like the rest.
     so.heal.enabled = o_.heal;
