@@ -4,9 +4,12 @@
 // the shared state is declared in detail/reconstructor_impl.h).
 
 #include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "detail/reconstructor_impl.h"
+#include "edgefront/error.h"
 
 namespace gcs {
 
@@ -36,6 +39,39 @@ std::string to_string(StopReason reason) {
       return "below the target: the operations removed parts again after regrowing";
   }
   return "unknown";
+}
+
+ReconstructOptions ReconstructOptions::scan() { return {}; }
+
+ReconstructOptions ReconstructOptions::thin_shell() {
+  ReconstructOptions o;
+  // With input normals: the missing layer of a wall grows back from its border instead of the
+  // other wall being dented into the gap (bench/results/gcs.md, "skip_unfaced_samples with the
+  // resolution"; bench/results/twist-vaults.md).
+  o.experimental.skip_unfaced_samples = true;
+  // Without normals: the plane fits are undefined or wrongly oriented where the walls are about a
+  // neighbourhood apart; the quadric fits are not (bench/results/gcs.md, "fitted normals").
+  o.input.quadric_normals = true;
+  return o;
+}
+
+ReconstructOptions ReconstructOptions::open_sheet() {
+  ReconstructOptions o;
+  // Without normals: the quadric fits orient an open sheet consistently where the plane fits leave
+  // it in patches (bench/results/gcs.md, "fitted normals": the groin vault).
+  o.input.quadric_normals = true;
+  return o;
+}
+
+std::vector<std::string> ReconstructOptions::preset_names() { return {"scan", "thin_shell", "open_sheet"}; }
+
+ReconstructOptions ReconstructOptions::preset(const std::string& name) {
+  if (name == "scan") return scan();
+  if (name == "thin_shell") return thin_shell();
+  if (name == "open_sheet") return open_sheet();
+  std::string names;
+  for (const std::string& n : preset_names()) names += (names.empty() ? "" : ", ") + n;
+  throw InvalidInput("gcs: unknown options preset '" + name + "' (presets: " + names + ")");
 }
 
 Reconstructor::Reconstructor(edgefront::PointCloud points, const ReconstructOptions& options,

@@ -16,13 +16,27 @@ namespace gcs {
 namespace {
 
 // Holes whose fan fill is refused are retried with rings trimmed only when their border is at most
-// this many mean edge lengths long (ReconstructOptions::border_trim_rings).
+// this many mean edge lengths long (TopologyOptions::border_trim_rings).
 constexpr double kTrimHoleEdges = 10.0;
 // Border loops of at most this many vertices are small holes, closed by a fan around their centroid
 // (a loop one vertex longer is a slit, zipped by fill_slit_holes up to fill_slits_max_vertices).
 constexpr std::size_t kSmallHoleVertices = 8;
 // A hole's fan or a slit's strip must agree with the faces it borders: mean cosine of their normals.
 constexpr double kFillNormalAgreement = 0.5;
+// Faces whose centroid is at least this many mean edge lengths from the nearest sample are also
+// removed when their normal is far from that sample's (BorderParams::min_normal_cos): farther than
+// the chord error of a mesh on a curved surface, a face should lie on the samples' tangent plane.
+constexpr double kNormalGateEdges = 0.3;
+// The border creation removes pieces of fewer faces than this (debris cut off by the removals)
+// unless they lie on a part of the cloud of their own.
+constexpr std::size_t kMinComponentFaces = 8;
+// Between batches the topology pass runs again only once the live vertex count grew by this factor
+// (or on the final call): a pass costs a query per face, a batch adds only a few hundred vertices.
+constexpr double kTopologyRegrowth = 1.1;
+// Operations that removed parts on the final call (e.g. twisted regions cut out) have the loop grow
+// back when the mesh is below this share of the target; at most kRegrowRounds times.
+constexpr double kShrunkShare = 0.9;
+constexpr int kRegrowRounds = 3;
 
 }  // namespace
 
@@ -134,28 +148,28 @@ ChangeSet Reconstructor::Impl::changes_since(std::uint64_t last) const {
 }
 
 bool Reconstructor::Impl::topology_pass(bool force, double ell) {
-  if (!opt.create_borders && !opt.merge_borders) return false;
-  if (live < opt.topology_min_vertices) return false;
-  if (!force && topology_last_live > 0 && static_cast<double>(live) < 1.1 * static_cast<double>(topology_last_live))
+  if (!opt.topology.create_borders && !opt.topology.merge_borders) return false;
+  if (live < opt.topology.min_vertices) return false;
+  if (!force && topology_last_live > 0 && static_cast<double>(live) < kTopologyRegrowth * static_cast<double>(topology_last_live))
     return false;
   const auto t0 = Clock::now();
   topology_last_live = live;
   const double support = support_distance(ell);
   const double bridge = bridge_distance(ell);
   const detail::CloudQuery dist = [this](const Vec3& p) { return cloud_query(p); };
-  const size_t trim_rings = opt.border_trim_rings;
+  const size_t trim_rings = opt.topology.border_trim_rings;
   bool changed = false;
   const auto tally = [&changed](size_t& total, size_t n) {
     total += n;
     changed = changed || n > 0;
   };
-  if (opt.create_borders) {
+  if (opt.topology.create_borders) {
     detail::BorderParams bp;
     bp.max_support_distance = support;
-    bp.max_edge_length = opt.long_edge_factor * ell;
-    bp.min_component_faces = 8;
-    bp.normal_check_distance = normal_gate * ell;
-    bp.film_samples = encloses ? opt.film_samples : 0;
+    bp.max_edge_length = opt.topology.long_edge_factor * ell;
+    bp.min_component_faces = kMinComponentFaces;
+    bp.normal_check_distance = kNormalGateEdges * ell;
+    bp.film_samples = encloses ? opt.topology.film_samples : 0;
     // Both removals spare a piece lying on a part of the cloud of its own (a separate surface).
     const auto sample_part = [this](size_t k) { return query_point_part(k); };
     bp.sample_part = sample_part;
@@ -177,7 +191,7 @@ bool Reconstructor::Impl::topology_pass(bool force, double ell) {
             detail::remove_opposed_faces(mesh, nearest, {.max_distance = support, .sample_part = sample_part}));
     }
   }
-  if (opt.merge_borders) {
+  if (opt.topology.merge_borders) {
     detail::MergeParams mp;
     mp.mean_edge_length = ell;
     mp.max_support_distance = bridge;
@@ -185,9 +199,9 @@ bool Reconstructor::Impl::topology_pass(bool force, double ell) {
     tally(loops_merged, detail::merge_border_loops(mesh, dist, mp));
     // zip_slits zips within and across loops; otherwise torn-off pieces of an open sheet are
     // joined back (join_components: only across components).
-    const bool join = !opt.zip_slits && opt.join_components && !encloses &&
+    const bool join = !opt.experimental.zip_slits && opt.topology.join_components && !encloses &&
                       edgefront::connected_components(mesh).count > 1;
-    if (opt.zip_slits || join) {
+    if (opt.experimental.zip_slits || join) {
       detail::ZipParams zp;
       zp.mean_edge_length = ell;
       zp.max_support_distance = bridge;
@@ -196,10 +210,10 @@ bool Reconstructor::Impl::topology_pass(bool force, double ell) {
       tally(slits_zipped, detail::zip_border_slits(mesh, dist, zp));
     }
   }
-  if (opt.create_borders) {
+  if (opt.topology.create_borders) {
     tally(holes_filled, detail::fill_small_holes(mesh, dist, kSmallHoleVertices, bridge, kFillNormalAgreement, {.rings = trim_rings, .max_loop_length = kTrimHoleEdges * ell}));
-    if (opt.fill_slits_max_vertices > kSmallHoleVertices)
-      tally(holes_filled, detail::fill_slit_holes(mesh, dist, kSmallHoleVertices + 1, opt.fill_slits_max_vertices,
+    if (opt.topology.fill_slits_max_vertices > kSmallHoleVertices)
+      tally(holes_filled, detail::fill_slit_holes(mesh, dist, kSmallHoleVertices + 1, opt.topology.fill_slits_max_vertices,
                                                      bridge, kFillNormalAgreement,
                                                      trim_rings));
   }
@@ -271,8 +285,8 @@ ReconstructResult Reconstructor::Impl::run(const ProgressCallback& progress) {
   };
   if (finished) return make_result(0.0, post);
   const std::uint64_t step_limit =
-      opt.max_steps_per_vertex == 0 ? std::numeric_limits<std::uint64_t>::max()
-                                    : opt.max_steps_per_vertex * static_cast<std::uint64_t>(opt.target_vertices);
+      opt.growth.max_steps_per_vertex == 0 ? std::numeric_limits<std::uint64_t>::max()
+                                    : opt.growth.max_steps_per_vertex * static_cast<std::uint64_t>(opt.target_vertices);
   size_t splits_since_progress = 0;
   auto report = [&]() {
     if (!progress) return true;
@@ -289,8 +303,7 @@ ReconstructResult Reconstructor::Impl::run(const ProgressCallback& progress) {
   // Operations on the final call (e.g. the twist repair cutting out a region) can shrink the
   // mesh below the target: then the loop grows it back and calls them again, a few times.
   // (The final border pass trims a few unsupported triangles: that much is not shrinking.)
-  constexpr int kRegrowRounds = 3;
-  auto shrunk = [&] { return static_cast<double>(live) < 0.9 * static_cast<double>(opt.target_vertices); };
+  auto shrunk = [&] { return static_cast<double>(live) < kShrunkShare * static_cast<double>(opt.target_vertices); };
   for (int round = 0;; ++round) {
   while (live < opt.target_vertices) {
     if (steps >= step_limit) {

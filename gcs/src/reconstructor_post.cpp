@@ -18,6 +18,15 @@ namespace {
 // dihedral angle at least this: about 26 degrees), in at most this many passes over the edges.
 constexpr double kFlipMinDihedralCos = 0.9;
 constexpr int kFlipMaxPasses = 10;
+// The projection, the fit and the crossing resolution move a vertex at most this many mean edge
+// lengths: farther, a vertex would leave its place in the mesh's sampling of the surface.
+constexpr double kMaxMoveEdges = 0.5;
+// The fit ignores samples farther than this many mean edge lengths from the mesh (parts the mesh
+// does not cover), keeps every face within this angle of its direction (degrees; no folds), and
+// uses at most this many samples per vertex (cost: the big clouds use an even stride).
+constexpr double kFitMaxSampleEdges = 1.0;
+constexpr double kFitMaxFaceTurnDeg = 45.0;
+constexpr std::size_t kFitSamplesPerVertex = 2;
 
 }  // namespace
 
@@ -35,25 +44,25 @@ ReconstructResult Reconstructor::Impl::make_result(double seconds, const std::fu
   // Post-processing of the copy only (the loop's own mesh stays as it is).
   const double ell = mean_edge_length();
   report(0);
-  if (opt.project_to_samples) {
-    detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, 0.5 * ell);
+  if (opt.post.project_to_samples) {
+    detail::project_to_samples(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, kMaxMoveEdges * ell);
   }
   report(0.1);
-  if (opt.delaunay_flips) {
+  if (opt.post.delaunay_flips) {
     const auto t_flips = Clock::now();
     detail::delaunay_flips(r.mesh, kFlipMinDihedralCos, kFlipMaxPasses);
     r.seconds_fit += seconds_since(t_flips);
   }
   report(0.2);
-  if (opt.fit_surface) {
+  if (opt.post.fit_surface) {
     const auto t_fit = Clock::now();
     detail::SurfaceFitParams fp;
-    fp.rounds = opt.fit_rounds;
-    fp.smoothness = opt.fit_smoothness;
-    fp.max_move = 0.5 * ell;
-    fp.max_sample_distance = ell;
-    fp.min_face_cos = std::cos(45.0 * std::numbers::pi / 180.0);
-    fp.max_samples = 2 * r.mesh.n_vertices();  // cost: the big clouds (1M points) use an even stride
+    fp.rounds = opt.post.fit_rounds;
+    fp.smoothness = opt.post.fit_smoothness;
+    fp.max_move = kMaxMoveEdges * ell;
+    fp.max_sample_distance = kFitMaxSampleEdges * ell;
+    fp.min_face_cos = std::cos(kFitMaxFaceTurnDeg * std::numbers::pi / 180.0);
+    fp.max_samples = kFitSamplesPerVertex * r.mesh.n_vertices();
     // The samples' normals (input, or fitted and oriented) when the loop uses them: a sample is
     // fitted only by a face that faces its way (not by the other layer of a thin shell).
     fp.oriented_normals = true;
@@ -63,10 +72,10 @@ ReconstructResult Reconstructor::Impl::make_result(double seconds, const std::fu
     r.seconds_fit += seconds_since(t_fit);
   }
   report(0.6);
-  if (opt.stacked_layer_rounds > 0 && r.mesh.n_faces() > 0) {
+  if (opt.post.stacked_layer_rounds > 0 && r.mesh.n_faces() > 0) {
     const auto t_layers = Clock::now();
     twist::StackedLayerOptions so;
-    so.rounds = opt.stacked_layer_rounds;
+    so.rounds = opt.post.stacked_layer_rounds;
     const twist::StackedLayerReport layers = twist::remove_stacked_layers(r.mesh, so);
     r.stacked_faces_found = layers.pairs_before;
     r.stacked_faces_removed = layers.faces_removed;
@@ -75,10 +84,10 @@ ReconstructResult Reconstructor::Impl::make_result(double seconds, const std::fu
     r.seconds_fit += seconds_since(t_layers);
   }
   report(0.7);
-  if (opt.resolve_self_intersections && r.mesh.n_faces() > 0) {
+  if (opt.post.resolve_self_intersections && r.mesh.n_faces() > 0) {
     const auto t_untangle = Clock::now();
     detail::UntangleParams up;
-    up.max_move = 0.5 * ell;
+    up.max_move = kMaxMoveEdges * ell;
     up.fill_support = bridge_distance(ell);  // as the topology pass's hole fills
     const detail::UntangleReport u = detail::untangle(r.mesh, [this](const Vec3& p) { return cloud_query(p); }, up);
     r.crossing_pairs_found = u.pairs_before;

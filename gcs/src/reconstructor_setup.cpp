@@ -22,6 +22,32 @@
 
 namespace gcs {
 
+namespace {
+
+// A missing input normal is the normal of the plane through its point's this many nearest points,
+// oriented like the sum of the this many nearest given normals (fill_missing_normals): enough
+// points for a stable plane at the sampling scale, few enough to stay local.
+constexpr std::size_t kFillPlaneNeighbours = 16;
+constexpr std::size_t kFillOrientNeighbours = 8;
+// Without input normals (and without quadric_normals) a point's normal is the plane through its this
+// many nearest points, undefined unless the plane's smallest eigenvalue is below this share of the
+// middle one (not flat: noise comparable to the spacing, or two walls in one neighbourhood).
+constexpr std::size_t kPlaneFitNeighbours = 20;
+constexpr double kPlaneFitFlatness = 0.05;
+// The sample spacing is the mean distance to the nearest other point over at most this many points.
+constexpr std::size_t kSpacingProbes = 1000;
+// The fitted normals are oriented over the graph of each point's this many nearest
+// (detail::orient_normals).
+constexpr std::size_t kOrientNeighbours = 8;
+// The start mesh: directions thinner than this share of the bounding-box diagonal are padded to it
+// (a planar cloud still gets a solid start), and every direction grows by this share of its extent.
+constexpr double kStartMinExtent = 0.05;
+constexpr double kStartPadding = 0.02;
+// The start tetrahedron's half-extents are this many times the box's (it then contains the box).
+constexpr double kTetrahedronScale = 1.8;
+
+}  // namespace
+
 namespace detail {
 
 void DrawSamples::assign(const std::vector<Vec3>& points, const std::vector<Vec3>* normals) {
@@ -127,9 +153,9 @@ size_t fill_missing_normals(edgefront::PointCloud& c, bool& unusable) {
   std::vector<PointIndex::Neighbor> knn;
   for (const size_t i : missing) {
     const Vec3& p = c.points[i];
-    all.k_nearest(p, 16, knn);
+    all.k_nearest(p, kFillPlaneNeighbours, knn);
     const Eigen::Matrix3d cov = neighbour_scatter(c.points, knn);
-    given.k_nearest(p, 8, knn);
+    given.k_nearest(p, kFillOrientNeighbours, knn);
     Vec3 side(0, 0, 0);
     for (const PointIndex::Neighbor& nb : knn) side += given_normals[nb.index];
     Vec3 n = side;  // degenerate neighbourhood (fewer than 3 points, a line): the neighbours' mean
@@ -151,26 +177,26 @@ void check_options(const ReconstructOptions& o) {
   auto fail = [](const std::string& m) { throw InvalidInput("gcs: " + m); };
   if (o.target_vertices < 4) fail("target_vertices must be at least 4 (got " + std::to_string(o.target_vertices) + ")");
   if (o.target_vertices > 50'000'000) fail("target_vertices above 50,000,000 is not supported");
-  if (o.steps_per_split < 1) fail("steps_per_split must be >= 1");
-  if (!(o.winner_rate > 0 && o.winner_rate <= 1)) fail("winner_rate must be in (0, 1]");
-  if (!(o.neighbor_rate >= 0 && o.neighbor_rate <= 1)) fail("neighbor_rate must be in [0, 1]");
-  if (o.smoothing_iterations < 0 || o.smoothing_iterations > 100) fail("smoothing_iterations must be in [0, 100]");
-  if (!(o.decay_half_life > 0) || !std::isfinite(o.decay_half_life)) fail("decay_half_life must be positive");
-  if (!(o.inactivity_window >= 0) || !std::isfinite(o.inactivity_window)) fail("inactivity_window must be >= 0");
-  if (o.batch_splits < 1) fail("batch_splits must be >= 1");
-  if (!(o.unsupported_distance > 0) || !std::isfinite(o.unsupported_distance)) fail("unsupported_distance must be positive");
-  if (!(o.long_edge_factor > 1) || !std::isfinite(o.long_edge_factor)) fail("long_edge_factor must be > 1");
+  if (o.growth.steps_per_split < 1) fail("growth.steps_per_split must be >= 1");
+  if (!(o.growth.winner_rate > 0 && o.growth.winner_rate <= 1)) fail("growth.winner_rate must be in (0, 1]");
+  if (!(o.growth.neighbor_rate >= 0 && o.growth.neighbor_rate <= 1)) fail("growth.neighbor_rate must be in [0, 1]");
+  if (o.growth.smoothing_iterations < 0 || o.growth.smoothing_iterations > 100) fail("growth.smoothing_iterations must be in [0, 100]");
+  if (!(o.growth.decay_half_life > 0) || !std::isfinite(o.growth.decay_half_life)) fail("growth.decay_half_life must be positive");
+  if (!(o.growth.inactivity_window >= 0) || !std::isfinite(o.growth.inactivity_window)) fail("growth.inactivity_window must be >= 0");
+  if (o.growth.batch_splits < 1) fail("growth.batch_splits must be >= 1");
+  if (!(o.topology.unsupported_distance > 0) || !std::isfinite(o.topology.unsupported_distance)) fail("topology.unsupported_distance must be positive");
+  if (!(o.topology.long_edge_factor > 1) || !std::isfinite(o.topology.long_edge_factor)) fail("topology.long_edge_factor must be > 1");
   if (o.progress_interval < 1) fail("progress_interval must be >= 1");
-  if (o.film_samples > 64) fail("film_samples must be at most 64");
-  if (o.border_trim_rings > 8) fail("border_trim_rings must be at most 8");
-  if (o.max_query_points != 0 && o.max_query_points < o.target_vertices)
-    fail("max_query_points " + std::to_string(o.max_query_points) + " is below target_vertices " +
+  if (o.topology.film_samples > 64) fail("topology.film_samples must be at most 64");
+  if (o.topology.border_trim_rings > 8) fail("topology.border_trim_rings must be at most 8");
+  if (o.input.max_query_points != 0 && o.input.max_query_points < o.target_vertices)
+    fail("input.max_query_points " + std::to_string(o.input.max_query_points) + " is below target_vertices " +
          std::to_string(o.target_vertices) + ": a subsample sparser than the mesh cannot support its faces (0 = automatic)");
-  if (o.fit_rounds < 1 || o.fit_rounds > 20) fail("fit_rounds must be in [1, 20] (got " + std::to_string(o.fit_rounds) + ")");
-  if (!(o.fit_smoothness >= 0) || !std::isfinite(o.fit_smoothness)) fail("fit_smoothness must be finite and >= 0");
-  if (!(o.smooth_noise_ratio >= 0)) fail("smooth_noise_ratio must be >= 0 (infinity turns the smoothing off)");
-  if (o.stacked_layer_rounds < 0 || o.stacked_layer_rounds > 16)
-    fail("stacked_layer_rounds must be in [0, 16] (got " + std::to_string(o.stacked_layer_rounds) + ")");
+  if (o.post.fit_rounds < 1 || o.post.fit_rounds > 20) fail("post.fit_rounds must be in [1, 20] (got " + std::to_string(o.post.fit_rounds) + ")");
+  if (!(o.post.fit_smoothness >= 0) || !std::isfinite(o.post.fit_smoothness)) fail("post.fit_smoothness must be finite and >= 0");
+  if (!(o.input.smooth_noise_ratio >= 0)) fail("input.smooth_noise_ratio must be >= 0 (infinity turns the smoothing off)");
+  if (o.post.stacked_layer_rounds < 0 || o.post.stacked_layer_rounds > 16)
+    fail("post.stacked_layer_rounds must be in [0, 16] (got " + std::to_string(o.post.stacked_layer_rounds) + ")");
 }
 
 }  // namespace
@@ -232,12 +258,12 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
     normals_filled = fill_missing_normals(cloud, normals_unusable);
     if (!normals_unusable) report(Phase::normal_fitting, 1);
   }
-  if (std::isfinite(opt.smooth_noise_ratio) && cloud.size() >= 8) {
+  if (std::isfinite(opt.input.smooth_noise_ratio) && cloud.size() >= 8) {
     report(Phase::noise_estimate, 0);
     const NoiseEstimate noise = estimate_noise(cloud, {.threads = opt.threads});
     noise_ratio = noise.ratio();
     report(Phase::noise_estimate, 0.5);
-    if (noise_ratio > opt.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud, {.threads = opt.threads}) > 0;
+    if (noise_ratio > opt.input.smooth_noise_ratio) cloud_smoothed = smooth_noise(cloud, {.threads = opt.threads}) > 0;
     report(Phase::noise_estimate, 1);
   }
   // Collinear: the second principal extent vanishes.
@@ -255,7 +281,7 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
   // support distance of the topology is measured to the subsample, and the spacing (below) is
   // the subsample's. (Without normals, the normals are fitted to and oriented over all points.)
   const size_t query_limit =
-      opt.max_query_points ? opt.max_query_points
+      opt.input.max_query_points ? opt.input.max_query_points
                            : std::max<size_t>(kAutoQueryPoints, kAutoQueryPerVertex * opt.target_vertices);
   if (cloud.has_normals() && cloud.size() > query_limit) {
     build_subsampled_tree(query_limit);
@@ -267,7 +293,7 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
   // Sample spacing: mean distance to the nearest other (distinct) point over up to 1000 points.
   {
     const std::vector<Vec3>& tp = *query_points;
-    const size_t n = tp.size(), m = std::min<size_t>(n, 1000);
+    const size_t n = tp.size(), m = std::min<size_t>(n, kSpacingProbes);
     double sum = 0;
     size_t cnt = 0;
     for (size_t k = 0; k < m; ++k) {
@@ -284,8 +310,8 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
     sample_spacing = cnt ? sum / static_cast<double>(cnt) : bbox_diagonal * 1e-3;
   }
 
-  oriented = opt.orient_winners && cloud.has_normals();
-  if (opt.orient_winners && !cloud.has_normals()) {
+  oriented = opt.input.orient_winners && cloud.has_normals();
+  if (opt.input.orient_winners && !cloud.has_normals()) {
     report(Phase::normal_fitting, 0);
     constexpr size_t kSteps = 20;  // progress reports while fitting
     for (size_t s = 0; s < kSteps; ++s) {
@@ -293,8 +319,8 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
       report(Phase::normal_fitting, 0.8 * static_cast<double>(s + 1) / kSteps);
     }
     oriented_fitted = fitted_normal;
-    oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, 8,
-                                      opt.quadric_normals ? &fitted_residual : nullptr, opt.quadric_normals);
+    oriented = detail::orient_normals(cloud.points, *tree, oriented_fitted, kOrientNeighbours,
+                                      opt.input.quadric_normals ? &fitted_residual : nullptr, opt.input.quadric_normals);
     report(Phase::normal_fitting, 1);
   }
   if (oriented) {
@@ -315,7 +341,7 @@ void Reconstructor::Impl::init(edgefront::PointCloud points, const ReconstructOp
   }
   update_decay();
   next_collapse_scan = collapse_window();
-  opt.topology_min_vertices = std::min(opt.topology_min_vertices, opt.target_vertices / 2);
+  opt.topology.min_vertices = std::min(opt.topology.min_vertices, opt.target_vertices / 2);
 }
 
 void Reconstructor::Impl::build_subsampled_tree(size_t limit) {
@@ -343,15 +369,15 @@ void Reconstructor::Impl::permute_cloud(const std::vector<size_t>& perm) {
 
 void Reconstructor::Impl::build_start_mesh(Vec3 lo, Vec3 hi) {
   // Pad thin directions (a planar cloud still gets a solid start) and grow by 2%.
-  const double min_extent = 0.05 * bbox_diagonal;
+  const double min_extent = kStartMinExtent * bbox_diagonal;
   for (int a = 0; a < 3; ++a) {
     const double ext = hi[a] - lo[a];
-    const double pad = 0.02 * ext + 0.5 * std::max(0.0, min_extent - ext);
+    const double pad = kStartPadding * ext + 0.5 * std::max(0.0, min_extent - ext);
     lo[a] -= pad;
     hi[a] += pad;
   }
   std::vector<VertexHandle> vh;
-  if (opt.start == StartShape::box) {
+  if (opt.growth.start == StartShape::box) {
     for (int i = 0; i < 8; ++i)
       vh.push_back(mesh.add_vertex(Vec3(i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2])));
     const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
@@ -360,7 +386,7 @@ void Reconstructor::Impl::build_start_mesh(Vec3 lo, Vec3 hi) {
       mesh.add_face(vh[q[0]], vh[q[2]], vh[q[3]]);
     }
   } else {
-    const Vec3 c = (lo + hi) * 0.5, e = (hi - lo) * 0.5 * 1.8;  // the tetrahedron contains the box
+    const Vec3 c = (lo + hi) * 0.5, e = (hi - lo) * 0.5 * kTetrahedronScale;  // the tetrahedron contains the box
     const int s[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
     for (const auto& k : s) vh.push_back(mesh.add_vertex(c + Vec3(k[0] * e[0], k[1] * e[1], k[2] * e[2])));
     // Orientation fixed below by the signed volume.
@@ -390,19 +416,19 @@ double Reconstructor::Impl::mean_edge_length() const {
 
 const Vec3& Reconstructor::Impl::point_normal(size_t i) {
   if (cloud.has_normals()) return cloud.normals[i];
-  if (opt.quadric_normals) {
+  if (opt.input.quadric_normals) {
     if (fitted_normal.empty()) fitted_normal = fit_normals(cloud.points, *tree, {.threads = opt.threads}, &fitted_residual);
     return fitted_normal[i];
   }
   if (fitted_normal.empty()) fitted_normal.assign(cloud.size(), Vec3(0, 0, 0));
   Vec3& n = fitted_normal[i];
   if (n.sqrnorm() > 0 || std::isnan(n[0])) return n;
-  tree->k_nearest(cloud.points[i], 20, knn);
+  tree->k_nearest(cloud.points[i], kPlaneFitNeighbours, knn);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(neighbour_scatter(cloud.points, knn));
   const Eigen::Vector3d e = eig.eigenvectors().col(0);
   const Eigen::Vector3d ev = eig.eigenvalues();
   // Not flat enough (noise comparable to the spacing): no usable normal (marked by a NaN).
-  if (!(ev[0] < 0.05 * ev[1])) {
+  if (!(ev[0] < kPlaneFitFlatness * ev[1])) {
     n = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
     return n;
   }

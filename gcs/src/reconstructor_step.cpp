@@ -12,6 +12,21 @@
 
 namespace gcs {
 
+namespace {
+
+// The valence flips after a split (improve_valences) run at most this many passes over the edges
+// around the two vertices, and flip only edges whose two faces' unit normals have at least this
+// cosine (about 37 degrees: creases stay).
+constexpr int kValencePasses = 3;
+constexpr double kValenceFlipMinCos = 0.8;
+// A collapse is refused when it turns a remaining face by more than about 78 degrees (cosine below
+// this) or leaves it degenerate (twice its area below this share of the squared bounding-box
+// diagonal).
+constexpr double kCollapseMinFaceCos = 0.2;
+constexpr double kCollapseMinArea = 1e-14;
+
+}  // namespace
+
 void Reconstructor::Impl::ensure_sizes() {
   const size_t nv = mesh.n_vertices(), nf = mesh.n_faces();
   if (tau.size() < nv) {
@@ -58,16 +73,16 @@ void Reconstructor::Impl::basic_step() {
   const Vec3& s = draw[si].point;
   int wi = grid.nearest(s);
   EF_CHECK(wi >= 0, "the mesh has no vertex");
-  const bool smooth = opt.neighbor_rate > 0 && opt.smoothing_iterations > 0;
+  const bool smooth = opt.growth.neighbor_rate > 0 && opt.growth.smoothing_iterations > 0;
   // Facing the sample's side once the mesh hugs the cloud (detail/double_layer.h): the nearest
   // vertex wins when its normal agrees with the sample's (the normal summed over the ring just
   // gathered, as detail::vertex_normal_sum would), otherwise detail::oriented_nearest_after picks.
-  const bool facing = oriented && live >= opt.topology_min_vertices;
+  const bool facing = oriented && live >= opt.topology.min_vertices;
   if (smooth || facing) gather_ring(VertexHandle(wi));
   if (facing && !((ring_normal_sum(wi) | draw[si].normal) > 0)) {
-    // Skipping unfaced samples (ReconstructOptions::skip_unfaced_samples), the search goes wider:
+    // Skipping unfaced samples (ExperimentalOptions::skip_unfaced_samples), the search goes wider:
     // the missing layer's border vertices must be found to grow it back.
-    const bool skip = opt.skip_unfaced_samples && cloud.has_normals();
+    const bool skip = opt.experimental.skip_unfaced_samples && cloud.has_normals();
     const int other = detail::oriented_nearest_after(mesh, grid, s, draw[si].normal, wi, skip ? 32 : 8,
                                                      (skip ? 4 : 2) * grid.cell_size());
     if (other == wi && skip) {  // no vertex nearby faces the sample's side
@@ -80,13 +95,13 @@ void Reconstructor::Impl::basic_step() {
     }
   }
   const VertexHandle w(wi);
-  mesh.point(w) += opt.winner_rate * (s - mesh.point(w));
+  mesh.point(w) += opt.growth.winner_rate * (s - mesh.point(w));
   grid.move(wi, mesh.point(w));
   stamp(w);
   if (smooth) {
     // The passes update the mesh positions in place (member by member, as in the paper's loop).
     Vec3* const pos = &mesh.point(VertexHandle(0));
-    for (int it = 0; it < opt.smoothing_iterations; ++it) {
+    for (int it = 0; it < opt.growth.smoothing_iterations; ++it) {
       if (it == 0) {
         for (RingCache::Member& m : ring.members) smooth_member_first(pos, m);
       } else {
@@ -198,9 +213,9 @@ void Reconstructor::Impl::smooth_member(Vec3* pos, const RingCache::Member& m) c
     l2 = s2 * m.inv_k - x2;
   }
   const double d = (l0 * m.n0 + l1 * m.n1 + l2 * m.n2) * m.inv_nn;
-  x[0] = x0 + opt.neighbor_rate * (l0 - d * m.n0);
-  x[1] = x1 + opt.neighbor_rate * (l1 - d * m.n1);
-  x[2] = x2 + opt.neighbor_rate * (l2 - d * m.n2);
+  x[0] = x0 + opt.growth.neighbor_rate * (l0 - d * m.n0);
+  x[1] = x1 + opt.growth.neighbor_rate * (l1 - d * m.n1);
+  x[2] = x2 + opt.growth.neighbor_rate * (l2 - d * m.n2);
 }
 
 void Reconstructor::Impl::smooth_member_first(Vec3* pos, RingCache::Member& m) const {
@@ -275,7 +290,7 @@ void Reconstructor::Impl::improve_valences(VertexHandle v, VertexHandle m) {
     return d * d;
   };
   std::vector<EdgeHandle> edges;
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; pass < kValencePasses; ++pass) {
     edges.clear();
     for (const VertexHandle c : {v, m}) {
       for (auto h : mesh.voh_range(c)) {
@@ -296,7 +311,7 @@ void Reconstructor::Impl::improve_valences(VertexHandle v, VertexHandle m) {
       if (after >= before) continue;
       const Vec3 n0 = face_normal_of(mesh.point(p), mesh.point(q), mesh.point(r)).normalized();
       const Vec3 n1 = face_normal_of(mesh.point(q), mesh.point(p), mesh.point(s)).normalized();
-      if ((n0 | n1) < 0.8) continue;  // keep creases
+      if ((n0 | n1) < kValenceFlipMinCos) continue;  // keep creases
       if (try_flip(h0)) flipped = true;
     }
     if (!flipped) break;
@@ -419,8 +434,8 @@ bool Reconstructor::Impl::collapse_geometry_ok(HalfedgeHandle h) const {
     const Vec3 n_old = face_normal_of(x0, mesh.point(a), mesh.point(b));
     const Vec3 n_new = face_normal_of(x1, mesh.point(a), mesh.point(b));
     const double ln = n_new.norm(), lo = n_old.norm();
-    if (!(ln > 1e-14 * bbox_diagonal * bbox_diagonal) || lo == 0) return false;
-    if ((n_new | n_old) < 0.2 * ln * lo) return false;
+    if (!(ln > kCollapseMinArea * bbox_diagonal * bbox_diagonal) || lo == 0) return false;
+    if ((n_new | n_old) < kCollapseMinFaceCos * ln * lo) return false;
   }
   return true;
 }
@@ -479,9 +494,9 @@ void Reconstructor::Impl::basic_steps(std::uint64_t n) {
 }
 
 void Reconstructor::Impl::grow_until_split() {
-  for (int i = 0; i < opt.steps_per_split; ++i) {
+  for (int i = 0; i < opt.growth.steps_per_split; ++i) {
     basic_step();
-    if (opt.inactivity_window > 0 && steps >= next_collapse_scan) {
+    if (opt.growth.inactivity_window > 0 && steps >= next_collapse_scan) {
       collapse_inactive();
       next_collapse_scan = steps + std::max<std::uint64_t>(1, collapse_window());
     }

@@ -108,14 +108,14 @@ struct Reconstructor::Impl {
   edgefront::PointCloud cloud;  // centred
   Vec3 offset{0, 0, 0};
   double bbox_diagonal = 0;
-  double noise_ratio = 0;  // estimated noise / spacing of the input (ReconstructOptions::smooth_noise_ratio)
+  double noise_ratio = 0;  // estimated noise / spacing of the input (InputOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;
   size_t normals_filled = 0;     // missing input normals fitted (fill_missing_normals)
   bool normals_unusable = false;  // the cloud had normals, none usable
   double sample_spacing = 0;
   // The nearest-sample queries (topology passes, projection, normal fits): a k-d tree over the
   // whole (static, centred) cloud, or for a large cloud with normals over a spatially even
-  // subsample of it (ReconstructOptions::max_query_points), whose points and normals are then
+  // subsample of it (InputOptions::max_query_points), whose points and normals are then
   // kept side by side in tree order (query_points, subsample.normals: no scattered reads in the
   // cloud).
   std::unique_ptr<PointIndex> tree;
@@ -124,9 +124,6 @@ struct Reconstructor::Impl {
   edgefront::PointCloud subsample;
   const std::vector<Vec3>* query_points = nullptr;  // the tree's points: the cloud's or the subsample's
   std::vector<PointIndex::Neighbor> knn;  // query scratch
-  // Faces whose centroid is at least this many mean edge lengths from the nearest sample are
-  // also removed when their normal is far from that sample's (|cos| < 0.35, BorderParams).
-  double normal_gate = 0.3;
   std::vector<Vec3> fitted_normal;  // lazily fitted normals (inputs without normals)
   std::vector<double> fitted_residual;  // with quadric_normals: their fits' residuals (orient_normals' noise)
   bool oriented = false;  // orient_winners with input normals or orientable fitted ones (double_layer.h)
@@ -180,7 +177,7 @@ struct Reconstructor::Impl {
   // see reorder_if_due) then touch far fewer cache lines. The samples are drawn uniformly by index,
   // so the draws keep their distribution. Small clouds fit in the cache and keep their order.
   static constexpr size_t kSpatialSortMinPoints = 65536;
-  // ReconstructOptions::max_query_points = 0: max(kAutoQueryPoints, kAutoQueryPerVertex * target).
+  // InputOptions::max_query_points = 0: max(kAutoQueryPoints, kAutoQueryPerVertex * target).
   static constexpr size_t kAutoQueryPoints = 100000, kAutoQueryPerVertex = 5;
   // The tree over a spatially even subsample of at most `limit` points: the cloud in a coarse
   // Morton order (cheaper than sort_cloud_spatially's, as good for the surface fit's walk over
@@ -205,10 +202,10 @@ struct Reconstructor::Impl {
     tau[v] = -1.0;
   }
   void update_decay() {
-    decay = std::pow(0.5, 1.0 / (opt.decay_half_life * static_cast<double>(std::max<size_t>(live, 1))));
+    decay = std::pow(0.5, 1.0 / (opt.growth.decay_half_life * static_cast<double>(std::max<size_t>(live, 1))));
   }
   std::uint64_t collapse_window() const {
-    return static_cast<std::uint64_t>(std::ceil(opt.inactivity_window * static_cast<double>(live)));
+    return static_cast<std::uint64_t>(std::ceil(opt.growth.inactivity_window * static_cast<double>(live)));
   }
   void renormalize();
   void stamp(VertexHandle v) { vstamp[v.idx()] = clock; }
@@ -364,21 +361,22 @@ struct Reconstructor::Impl {
   ChangeSet changes_since(std::uint64_t last) const;
 
   // A face farther than this from every sample is unsupported (ell: the mean edge length).
-  double support_distance(double ell) const { return opt.unsupported_distance * std::max(ell, sample_spacing); }
+  double support_distance(double ell) const { return opt.topology.unsupported_distance * std::max(ell, sample_spacing); }
   // Faces added across a border (loop merges, slit zips, hole fills) may lie up to 1.5 times as
   // far from the samples as a face may before it is removed: a hysteresis, so that the strip
   // across a sparsely sampled stretch is not refused by the test that tore it open.
-  double bridge_distance(double ell) const { return 1.5 * support_distance(ell); }
+  static constexpr double kBridgeSlack = 1.5;
+  double bridge_distance(double ell) const { return kBridgeSlack * support_distance(ell); }
 
   // `ell`: mean_edge_length() of the mesh as it is. Returns false when the pass was not due (the
   // mesh is then unchanged).
   bool topology_pass(bool force, double ell);
 
-  // Splits per batch at the current size (ReconstructOptions::batch_growth_vertices).
+  // Splits per batch at the current size (GrowthOptions::batch_growth_vertices).
   size_t batch_size() const {
-    const size_t g = opt.batch_growth_vertices;
-    if (g == 0 || live <= g) return opt.batch_splits;
-    return static_cast<size_t>(std::ceil(static_cast<double>(opt.batch_splits) * static_cast<double>(live) /
+    const size_t g = opt.growth.batch_growth_vertices;
+    if (g == 0 || live <= g) return opt.growth.batch_splits;
+    return static_cast<size_t>(std::ceil(static_cast<double>(opt.growth.batch_splits) * static_cast<double>(live) /
                                          static_cast<double>(g)));
   }
 
