@@ -275,6 +275,8 @@ struct ReconstructOptions {
   /// Thin closed shells (walls about a mesh edge apart, e.g. a vault's two faces): the winner
   /// search skips samples no nearby vertex faces (ExperimentalOptions::skip_unfaced_samples; with
   /// input normals) and clouds without normals get quadric normals (InputOptions::quadric_normals).
+  /// Better coverage and orientation on most shells; it does not close them and can add border
+  /// loops (figures: docs/reconstruction.md, "Options and presets").
   static ReconstructOptions thin_shell();
   /// Open sheets without normals (a vault's single surface, a terrain patch scanned without
   /// normals): quadric normals (InputOptions::quadric_normals); with input normals the same as scan().
@@ -292,7 +294,7 @@ struct ReconstructOptions {
 enum class StopReason {
   target_reached,  ///< the mesh has target_vertices live vertices
   cancelled,       ///< the progress callback returned false
-  step_limit,      ///< max_steps_per_vertex * target_vertices basic steps were done
+  step_limit,      ///< GrowthOptions::max_steps_per_vertex * target_vertices basic steps were done
   shrunk_by_operations  ///< the target was reached, but the operations' final calls removed parts
                         ///< (e.g. twisted regions cut out) and 3 rounds of regrowing left the mesh
                         ///< below 90% of the target
