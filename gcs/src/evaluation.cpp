@@ -1,28 +1,30 @@
 #include "gcs/evaluation.h"
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <iomanip>
-#include <limits>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
-#include "detail/self_intersection.h"
-#include "detail/triangle_closest.h"
+#include "detail/evaluation_common.h"
 #include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
-#include "edgefront/parallel.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
 
 namespace gcs {
+
+using detail::eval::Box;
+using detail::eval::mesh_triangles;
+using detail::eval::Triangle;
+using detail::eval::TriangleBvh;
+using detail::eval::validity_of;
+
 namespace {
 
 using edgefront::FaceHandle;
@@ -33,7 +35,6 @@ using edgefront::PointIndex;
 using edgefront::Vec3;
 
 constexpr std::size_t kMaxSamples = 100000000;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool finite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
@@ -52,6 +53,10 @@ void check_options(const EvaluationOptions& o) {
   }
 }
 
+}  // namespace
+
+namespace detail::eval {
+
 void check_mesh_coordinates(const Mesh& mesh, const char* what) {
   for (const auto v : mesh.vertices()) {
     if (mesh.status(v).deleted()) continue;
@@ -62,6 +67,12 @@ void check_mesh_coordinates(const Mesh& mesh, const char* what) {
   }
   edgefront::check_coordinate_range(mesh, std::string("evaluation: ") + what);
 }
+
+}  // namespace detail::eval
+
+namespace {
+
+using detail::eval::check_mesh_coordinates;
 
 void check_cloud(const PointCloud& cloud) {
   if (cloud.empty()) throw InvalidInput("evaluation: the ground-truth point set is empty");
@@ -82,212 +93,6 @@ void check_cloud(const PointCloud& cloud) {
                          std::to_string(i));
     }
   }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Geometry
-
-struct Box {
-  Vec3 lo = Vec3(kInf, kInf, kInf);
-  Vec3 hi = Vec3(-kInf, -kInf, -kInf);
-  void add(const Vec3& p) {
-    lo.minimize(p);
-    hi.maximize(p);
-  }
-  void add(const Box& b) {
-    lo.minimize(b.lo);
-    hi.maximize(b.hi);
-  }
-  bool overlaps(const Box& b) const {
-    return lo[0] <= b.hi[0] && b.lo[0] <= hi[0] && lo[1] <= b.hi[1] && b.lo[1] <= hi[1] && lo[2] <= b.hi[2] &&
-           b.lo[2] <= hi[2];
-  }
-  double dist2(const Vec3& p) const {
-    double d = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double e = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
-      d += e * e;
-    }
-    return d;
-  }
-};
-
-struct Triangle {
-  std::array<Vec3, 3> p;
-  std::array<int, 3> v = {-1, -1, -1};  // vertex indices (for shared-vertex tests)
-  Box box() const {
-    Box b;
-    for (const Vec3& q : p) b.add(q);
-    return b;
-  }
-  Vec3 n = Vec3(0, 0, 0);  // unit normal; zero for a degenerate triangle (set by finish())
-  void finish() {
-    const Vec3 c = (p[1] - p[0]) % (p[2] - p[0]);
-    const double len = c.norm();
-    n = len > 0.0 ? c / len : Vec3(0, 0, 0);
-  }
-  const Vec3& unit_normal() const { return n; }
-};
-
-using detail::closest_on_triangle;
-
-// ---------------------------------------------------------------------------------------------
-// Bounding-volume hierarchy over triangles: nearest-triangle queries and box-overlap queries.
-
-class TriangleBvh {
- public:
-  explicit TriangleBvh(std::vector<Triangle> triangles) : tris_(std::move(triangles)) {
-    EF_CHECK(!tris_.empty(), "BVH over no triangles");
-    order_.resize(tris_.size());
-    centroids_.resize(tris_.size());
-    boxes_.resize(tris_.size());
-    for (std::size_t i = 0; i < tris_.size(); ++i) {
-      order_[i] = static_cast<int>(i);
-      centroids_[i] = (tris_[i].p[0] + tris_[i].p[1] + tris_[i].p[2]) / 3.0;
-      boxes_[i] = tris_[i].box();
-    }
-    nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
-    build(0, static_cast<int>(tris_.size()));
-  }
-
-  const std::vector<Triangle>& triangles() const { return tris_; }
-  const Box& box(int tri) const { return boxes_[static_cast<std::size_t>(tri)]; }
-
-  struct Hit {
-    double dist2 = kInf;
-    int tri = -1;
-  };
-
-  /// Nearest triangle to `x` (exact point-to-triangle distance).
-  Hit nearest(const Vec3& x) const {
-    Hit best;
-    std::array<std::pair<int, double>, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = {0, nodes_[0].box.dist2(x)};
-    while (top > 0) {
-      const auto [id, d2] = stack[static_cast<std::size_t>(--top)];
-      if (d2 >= best.dist2) continue;
-      const Node& node = nodes_[static_cast<std::size_t>(id)];
-      if (node.left < 0) {
-        for (int i = node.begin; i < node.end; ++i) {
-          const int t = order_[static_cast<std::size_t>(i)];
-          const Triangle& tri = tris_[static_cast<std::size_t>(t)];
-          const double e2 = (closest_on_triangle(x, tri.p[0], tri.p[1], tri.p[2]) - x).sqrnorm();
-          if (e2 < best.dist2 || (e2 == best.dist2 && t < best.tri)) best = {e2, t};
-        }
-        continue;
-      }
-      const double dl = nodes_[static_cast<std::size_t>(node.left)].box.dist2(x);
-      const double dr = nodes_[static_cast<std::size_t>(node.right)].box.dist2(x);
-      EF_CHECK(top + 2 <= static_cast<int>(stack.size()), "BVH deeper than its traversal stack");
-      if (dl <= dr) {
-        stack[static_cast<std::size_t>(top++)] = {node.right, dr};
-        stack[static_cast<std::size_t>(top++)] = {node.left, dl};
-      } else {
-        stack[static_cast<std::size_t>(top++)] = {node.left, dl};
-        stack[static_cast<std::size_t>(top++)] = {node.right, dr};
-      }
-    }
-    return best;
-  }
-
-  /// Number of triangles; `in_order(k)` is the k-th triangle in the hierarchy's leaf order
-  /// (spatially coherent).
-  int size() const { return static_cast<int>(order_.size()); }
-  int in_order(int k) const { return order_[static_cast<std::size_t>(k)]; }
-
-  /// Calls f(tri) for each triangle at leaf-order position >= `first` whose box overlaps `query`.
-  template <class F>
-  void for_each_overlapping(const Box& query, int first, F&& f) const {
-    std::array<int, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (node.end <= first || !node.box.overlaps(query)) continue;
-      if (node.left < 0) {
-        for (int i = std::max(node.begin, first); i < node.end; ++i) {
-          const int t = order_[static_cast<std::size_t>(i)];
-          if (boxes_[static_cast<std::size_t>(t)].overlaps(query)) f(t);
-        }
-        continue;
-      }
-      EF_CHECK(top + 2 <= static_cast<int>(stack.size()), "BVH deeper than its traversal stack");
-      stack[static_cast<std::size_t>(top++)] = node.left;
-      stack[static_cast<std::size_t>(top++)] = node.right;
-    }
-  }
-
- private:
-  static constexpr int kLeafSize = 4;
-  struct Node {
-    Box box;
-    int left = -1, right = -1;  // children; -1 for a leaf
-    int begin = 0, end = 0;     // range of order_ below the node
-  };
-
-  // Median split on the longest axis of the centroids' box; depth <= log2(n) + 1.
-  int build(int begin, int end) {
-    const int id = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Box box, cbox;
-    for (int i = begin; i < end; ++i) {
-      const int t = order_[static_cast<std::size_t>(i)];
-      box.add(boxes_[static_cast<std::size_t>(t)]);
-      cbox.add(centroids_[static_cast<std::size_t>(t)]);
-    }
-    nodes_[static_cast<std::size_t>(id)].box = box;
-    if (end - begin <= kLeafSize) {
-      nodes_[static_cast<std::size_t>(id)].begin = begin;
-      nodes_[static_cast<std::size_t>(id)].end = end;
-      return id;
-    }
-    const Vec3 ext = cbox.hi - cbox.lo;
-    const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : (ext[1] >= ext[2] ? 1 : 2);
-    const int mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
-      const double ca = centroids_[static_cast<std::size_t>(a)][axis],
-                   cb = centroids_[static_cast<std::size_t>(b)][axis];
-      return ca < cb || (ca == cb && a < b);
-    });
-    const int left = build(begin, mid);
-    const int right = build(mid, end);
-    Node& node = nodes_[static_cast<std::size_t>(id)];
-    node.left = left;
-    node.right = right;
-    node.begin = begin;
-    node.end = end;
-    return id;
-  }
-
-  std::vector<Triangle> tris_;
-  std::vector<int> order_;
-  std::vector<Vec3> centroids_;
-  std::vector<Box> boxes_;
-  std::vector<Node> nodes_;
-};
-
-// Live faces of the mesh as triangles; `face_of[i]` is the face index of triangle i.
-std::vector<Triangle> mesh_triangles(const Mesh& mesh, std::vector<int>* face_of = nullptr) {
-  std::vector<Triangle> tris;
-  tris.reserve(mesh.n_faces());
-  for (const auto f : mesh.faces()) {
-    if (mesh.status(f).deleted()) continue;
-    Triangle t;
-    int k = 0;
-    for (const auto v : mesh.fv_range(f)) {
-      if (k < 3) {
-        t.p[static_cast<std::size_t>(k)] = mesh.point(v);
-        t.v[static_cast<std::size_t>(k)] = v.idx();
-      }
-      ++k;
-    }
-    EF_CHECK(k == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
-    t.finish();
-    tris.push_back(t);
-    if (face_of) face_of->push_back(f.idx());
-  }
-  return tris;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -408,186 +213,6 @@ OrientationConsistency orientation_of(const Mesh& mesh, const std::vector<int>& 
   return o;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Self-intersections
-
-// Tolerances of the intersection predicates for a pair of triangles: lengths below `len` and
-// (doubled) areas below `area` count as zero. Relative to the size and position of the pair, so
-// that exactly planar or rounding-level coplanar configurations are handled as coplanar.
-struct Tolerance {
-  double len = 0, area = 0;
-};
-
-Tolerance tolerance_of(const Triangle& t1, const Triangle& t2) {
-  double extent = 0, magnitude = 0;
-  for (const Triangle* t : {&t1, &t2}) {
-    for (int i = 0; i < 3; ++i) {
-      extent = std::max(
-          extent, (t->p[static_cast<std::size_t>(i)] - t->p[static_cast<std::size_t>((i + 1) % 3)]).norm());
-      magnitude = std::max(magnitude, t->p[static_cast<std::size_t>(i)].max_abs());
-    }
-  }
-  Tolerance tol;
-  tol.len = 1e-12 * (extent + magnitude);
-  tol.area = tol.len * extent;
-  return tol;
-}
-
-// 2D helpers on the plane projection that drops axis `drop`.
-struct P2 {
-  double x, y;
-};
-P2 project(const Vec3& p, int drop) {
-  const int i = drop == 0 ? 1 : 0, j = drop == 2 ? 1 : 2;
-  return {p[i], p[j]};
-}
-double orient2(const P2& a, const P2& b, const P2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-int sign(double v, double tol) { return v > tol ? 1 : (v < -tol ? -1 : 0); }
-
-bool point_in_triangle_2d(const P2& p, const P2& a, const P2& b, const P2& c, double tol) {
-  const double area = orient2(a, b, c);
-  const double s = area >= 0 ? 1.0 : -1.0;  // make the triangle counter-clockwise
-  return s * orient2(a, b, p) >= -tol && s * orient2(b, c, p) >= -tol && s * orient2(c, a, p) >= -tol;
-}
-
-bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b, double tol) {
-  const int o1 = sign(orient2(p, q, a), tol), o2 = sign(orient2(p, q, b), tol);
-  const int o3 = sign(orient2(a, b, p), tol), o4 = sign(orient2(a, b, q), tol);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  auto on_segment = [&](const P2& u, const P2& v, const P2& w, int o) {  // w on segment uv (collinear)
-    return o == 0 && std::min(u.x, v.x) - tol <= w.x && w.x <= std::max(u.x, v.x) + tol &&
-           std::min(u.y, v.y) - tol <= w.y && w.y <= std::max(u.y, v.y) + tol;
-  };
-  // Touching or collinear overlap: an endpoint on the other segment. `tol` is an area here; the
-  // box slack uses it as a length too, which is only more permissive at rounding level.
-  return on_segment(p, q, a, o1) || on_segment(p, q, b, o2) || on_segment(a, b, p, o3) ||
-         on_segment(a, b, q, o4);
-}
-
-int dominant_axis(const Vec3& n) {
-  const double ax = std::abs(n[0]), ay = std::abs(n[1]), az = std::abs(n[2]);
-  return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
-}
-
-// Does the closed segment pq meet the closed triangle t?
-bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Triangle& t, const Tolerance& tol) {
-  const Vec3& n = t.unit_normal();
-  if (n.sqrnorm() == 0.0) return false;  // degenerate triangles are not tested
-  const double dp = n | (p - t.p[0]), dq = n | (q - t.p[0]);
-  const int drop = dominant_axis(n);
-  const P2 a = project(t.p[0], drop), b = project(t.p[1], drop), c = project(t.p[2], drop);
-  const int sp = sign(dp, tol.len), sq = sign(dq, tol.len);
-  if (sp == 0 && sq == 0) {  // coplanar
-    const P2 p2 = project(p, drop), q2 = project(q, drop);
-    return point_in_triangle_2d(p2, a, b, c, tol.area) || point_in_triangle_2d(q2, a, b, c, tol.area) ||
-           segments_intersect_2d(p2, q2, a, b, tol.area) || segments_intersect_2d(p2, q2, b, c, tol.area) ||
-           segments_intersect_2d(p2, q2, c, a, tol.area);
-  }
-  if (sp * sq > 0) return false;  // both strictly on one side
-  Vec3 x;
-  if (sp == 0) {
-    x = p;
-  } else if (sq == 0) {
-    x = q;
-  } else {
-    x = p + (dp / (dp - dq)) * (q - p);
-  }
-  return point_in_triangle_2d(project(x, drop), a, b, c, tol.area);
-}
-
-// Do two faces intersect beyond what they share?
-bool faces_intersect(const Triangle& t1, const Triangle& t2) {
-  const Tolerance tol = tolerance_of(t1, t2);
-  std::array<int, 3> pos2 = {-1, -1, -1};  // for each corner of t1: the matching corner of t2
-  int shared = 0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      if (t1.v[static_cast<std::size_t>(i)] == t2.v[static_cast<std::size_t>(j)]) {
-        pos2[static_cast<std::size_t>(i)] = j;
-        ++shared;
-      }
-    }
-  }
-  if (shared == 3) return true;  // the same vertex triple: they overlap completely
-  if (shared == 2) {
-    // Intersect beyond the shared edge only when coplanar and folded onto each other.
-    int i1 = 0;  // t1's corner not shared
-    while (pos2[static_cast<std::size_t>(i1)] >= 0) ++i1;
-    int i2 = 0;  // t2's corner not shared
-    while (i2 == pos2[0] || i2 == pos2[1] || i2 == pos2[2]) ++i2;
-    const Vec3& u = t1.p[static_cast<std::size_t>((i1 + 1) % 3)];
-    const Vec3& w = t1.p[static_cast<std::size_t>((i1 + 2) % 3)];
-    const Vec3& a = t1.p[static_cast<std::size_t>(i1)];
-    const Vec3& b = t2.p[static_cast<std::size_t>(i2)];
-    const Vec3& n1 = t1.unit_normal();
-    if (n1.sqrnorm() == 0.0 || t2.unit_normal().sqrnorm() == 0.0) return false;
-    if (std::abs(n1 | (b - u)) > tol.len) return false;  // not coplanar: they meet only on the edge
-    return (((w - u) % (a - u)) | ((w - u) % (b - u))) > tol.area * tol.area;
-  }
-  if (shared == 1) {
-    // Both contain the shared corner s; they meet elsewhere iff the side of one opposite s meets
-    // the other triangle.
-    int i1 = 0;
-    while (pos2[static_cast<std::size_t>(i1)] < 0) ++i1;
-    const int i2 = pos2[static_cast<std::size_t>(i1)];
-    return segment_meets_triangle(t1.p[static_cast<std::size_t>((i1 + 1) % 3)],
-                                  t1.p[static_cast<std::size_t>((i1 + 2) % 3)], t2, tol) ||
-           segment_meets_triangle(t2.p[static_cast<std::size_t>((i2 + 1) % 3)],
-                                  t2.p[static_cast<std::size_t>((i2 + 2) % 3)], t1, tol);
-  }
-  // No shared vertex: two closed triangles meet iff a side of one meets the other.
-  for (int i = 0; i < 3; ++i) {
-    if (segment_meets_triangle(t1.p[static_cast<std::size_t>(i)], t1.p[static_cast<std::size_t>((i + 1) % 3)],
-                               t2, tol))
-      return true;
-    if (segment_meets_triangle(t2.p[static_cast<std::size_t>(i)], t2.p[static_cast<std::size_t>((i + 1) % 3)],
-                               t1, tol))
-      return true;
-  }
-  return false;
-}
-
-// Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
-// in leaf order).
-// On `threads` threads (contiguous chunks of the leaf order, the pairs joined in chunk order: the
-// same list for any count).
-std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr,
-                                        unsigned threads = 1) {
-  const std::vector<Triangle>& tris = bvh.triangles();
-  const std::size_t n = static_cast<std::size_t>(bvh.size());
-  const unsigned chunks = edgefront::threads_for(n, threads);
-  std::vector<std::size_t> chunk_count(chunks, 0);
-  std::vector<std::vector<std::pair<int, int>>> chunk_pairs(chunks);
-  // Each pair once: triangle k (leaf order) against the overlapping ones after it.
-  edgefront::parallel_for(n, threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
-    for (int k = static_cast<int>(begin); k < static_cast<int>(end); ++k) {
-      const Triangle& a = tris[static_cast<std::size_t>(bvh.in_order(k))];
-      if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
-      bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
-        const Triangle& b = tris[static_cast<std::size_t>(j)];
-        if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
-          ++chunk_count[chunk];
-          if (pairs) chunk_pairs[chunk].emplace_back(bvh.in_order(k), j);
-        }
-      });
-    }
-  });
-  std::size_t count = 0;
-  for (unsigned c = 0; c < chunks; ++c) {
-    count += chunk_count[c];
-    if (pairs) pairs->insert(pairs->end(), chunk_pairs[c].begin(), chunk_pairs[c].end());
-  }
-  return count;
-}
-
-// ---------------------------------------------------------------------------------------------
-
-double angle_deg(const Vec3& a, const Vec3& b) {
-  return std::atan2((a % b).norm(), a | b) * (180.0 / 3.14159265358979323846);
-}
-
 Box bbox_of(const std::vector<Vec3>& pts) {
   Box b;
   for (const Vec3& p : pts) b.add(p);
@@ -607,105 +232,6 @@ GroundTruth GroundTruth::from_mesh(edgefront::Mesh mesh) {
 }
 
 bool GroundTruth::has_normals() const { return is_mesh() || points().has_normals(); }
-
-std::size_t count_self_intersections(const Mesh& mesh) {
-  check_mesh_coordinates(mesh, "the mesh");
-  std::vector<Triangle> tris = mesh_triangles(mesh);
-  if (tris.empty()) return 0;
-  return count_self_intersections_of(TriangleBvh(std::move(tris)));
-}
-
-namespace detail {
-
-std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Mesh& mesh) {
-  check_mesh_coordinates(mesh, "the mesh");
-  std::vector<int> face_of;
-  std::vector<Triangle> tris = mesh_triangles(mesh, &face_of);
-  std::vector<std::pair<int, int>> pairs;
-  if (tris.empty()) return pairs;
-  count_self_intersections_of(TriangleBvh(std::move(tris)), &pairs);
-  for (auto& [a, b] : pairs) {
-    a = face_of[static_cast<std::size_t>(a)];
-    b = face_of[static_cast<std::size_t>(b)];
-    if (a > b) std::swap(a, b);
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
-}
-
-}  // namespace detail
-
-namespace {
-
-// Validity of `mesh`; `bvh` (over the mesh's live faces) is reused when given.
-MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* bvh, unsigned threads = 1) {
-  const edgefront::MeshStats st = edgefront::compute_stats(mesh);
-  MeshValidity m;
-  m.vertices = st.vertices;
-  m.edges = st.edges;
-  m.faces = st.faces;
-  m.nonmanifold_edges = 0;
-  m.edge_manifold = true;
-  m.nonmanifold_vertices = st.nonmanifold_vertices;
-  m.vertex_manifold = st.nonmanifold_vertices == 0;
-  m.components = st.components;
-  m.border_loops = st.border_loops;
-  m.closed = st.border_loops == 0;
-  m.euler_characteristic = st.euler_characteristic;
-  for (const auto& c : st.per_component) {
-    m.component_genus.push_back(c.genus);
-    m.genus += c.genus;
-  }
-  m.isolated_vertices = st.isolated_vertices;
-  m.degenerate_faces = st.degenerate_faces;
-  m.duplicate_faces = st.duplicate_faces;
-  m.valence_histogram = st.valence_histogram;
-
-  std::vector<Triangle> own;
-  if (!bvh) own = mesh_triangles(mesh);
-  const std::vector<Triangle>& tris = bvh ? bvh->triangles() : own;
-  std::vector<double> min_angles;
-  min_angles.reserve(tris.size());
-  std::size_t below10 = 0, below30 = 0;
-  for (const Triangle& t : tris) {
-    m.area += 0.5 * ((t.p[1] - t.p[0]) % (t.p[2] - t.p[0])).norm();
-    double a = kInf;
-    for (int i = 0; i < 3; ++i) {
-      const Vec3& p = t.p[static_cast<std::size_t>(i)];
-      const Vec3 e1 = t.p[static_cast<std::size_t>((i + 1) % 3)] - p,
-                 e2 = t.p[static_cast<std::size_t>((i + 2) % 3)] - p;
-      // A zero-length side makes the face degenerate: its smallest angle is 0.
-      a = std::min(a, e1.sqrnorm() > 0.0 && e2.sqrnorm() > 0.0 ? angle_deg(e1, e2) : 0.0);
-    }
-    min_angles.push_back(a);
-    below10 += a < 10.0 ? 1 : 0;
-    below30 += a < 30.0 ? 1 : 0;
-  }
-  if (!min_angles.empty()) {
-    const double n = static_cast<double>(min_angles.size());
-    m.faces_min_angle_below_10 = static_cast<double>(below10) / n;
-    m.faces_min_angle_below_30 = static_cast<double>(below30) / n;
-    m.min_angle_deg = *std::min_element(min_angles.begin(), min_angles.end());
-    std::sort(min_angles.begin(), min_angles.end());
-    const std::size_t k = min_angles.size();
-    m.median_min_angle_deg = k % 2 ? min_angles[k / 2] : 0.5 * (min_angles[k / 2 - 1] + min_angles[k / 2]);
-  }
-  if (count_self) {
-    if (bvh) {
-      m.self_intersecting_pairs = count_self_intersections_of(*bvh, nullptr, threads);
-    } else {
-      m.self_intersecting_pairs = own.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(own)), nullptr, threads);
-    }
-  }
-  return m;
-}
-
-}  // namespace
-
-MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
-  check_mesh_coordinates(mesh, "the mesh");
-  return validity_of(mesh, count_self, nullptr);
-}
 
 namespace {
 
@@ -838,183 +364,6 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
   }
   e.validity = validity_of(result, options.self_intersections, &result_bvh, options.threads);
   return e;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Output
-
-namespace {
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::array<char, 64> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
-}
-
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
-
-std::string distance_json(const OneSidedDistance& d, double diag) {
-  std::ostringstream os;
-  os << "{\"count\": " << d.count << ", \"mean\": " << num(d.mean) << ", \"rms\": " << num(d.rms)
-     << ", \"median\": " << num(d.median) << ", \"p95\": " << num(d.p95) << ", \"max\": " << num(d.max)
-     << ", \"mean_percent\": " << num(100 * d.mean / diag) << ", \"p95_percent\": " << num(100 * d.p95 / diag)
-     << ", \"max_percent\": " << num(100 * d.max / diag) << "}";
-  return os.str();
-}
-
-}  // namespace
-
-std::string format_evaluation(const Evaluation& e) {
-  std::ostringstream os;
-  auto dist = [&](const char* label, double v) {
-    os << label << fixed(v, 6) << "  (" << fixed(e.scale(v), 4) << "% of bbox diagonal)\n";
-  };
-  os << "ground truth:            " << (e.ground_truth_is_mesh ? "mesh, " : "point set, ")
-     << e.ground_truth_points << (e.ground_truth_is_mesh ? " samples" : " points") << ", bbox diagonal "
-     << fixed(e.gt_bbox_diagonal, 6) << "\n";
-  os << "result samples:          " << e.result_to_gt.count << "; distance to a mesh: "
-     << (e.exact_surface_distance ? "exact, to its surface" : "to its nearest sample") << "\n";
-  dist("chamfer-L1:              ", e.chamfer_l1);
-  dist("  result -> gt mean:     ", e.result_to_gt.mean);
-  dist("  gt -> result mean:     ", e.gt_to_result.mean);
-  dist("hausdorff:               ", e.hausdorff);
-  dist("  result -> gt max:      ", e.result_to_gt.max);
-  dist("  gt -> result max:      ", e.gt_to_result.max);
-  dist("hausdorff 95%:           ", e.hausdorff_p95);
-  for (const FScore& f : e.fscores) {
-    os << "F-score @ " << fixed(100 * f.threshold_fraction, 2) << "%:          " << fixed(f.fscore, 4)
-       << "  (precision " << fixed(f.precision, 4) << ", recall " << fixed(f.recall, 4) << ", threshold "
-       << fixed(f.threshold, 6) << ")\n";
-  }
-  if (e.normal_consistency) {
-    os << "normal consistency:      " << fixed(*e.normal_consistency, 4) << "  (mean |n.n_gt|)\n";
-  } else {
-    os << "normal consistency:      n/a (ground truth without normals)\n";
-  }
-  if (e.orientation) {
-    std::size_t with_samples = 0, flipped = 0;
-    for (const auto& c : e.orientation->components) {
-      with_samples += c.samples > 0 ? 1 : 0;
-      flipped += c.samples > 0 && c.flipped ? 1 : 0;
-    }
-    os << "orientation consistency: " << fixed(e.orientation->raw, 4) << " as is, "
-       << fixed(e.orientation->per_component, 4) << " with the better sign per component (" << flipped
-       << " of " << with_samples << " components better flipped)\n";
-  } else {
-    os << "orientation consistency: n/a (ground truth without normals)\n";
-  }
-  const MeshValidity& m = e.validity;
-  os << "mesh:                    " << m.vertices << " vertices, " << m.edges << " edges, " << m.faces
-     << " faces, area " << fixed(m.area, 6) << "\n";
-  os << "manifold:                edges " << (m.edge_manifold ? "yes" : "no") << ", vertices "
-     << (m.vertex_manifold ? "yes" : "no") << " (" << m.nonmanifold_vertices << " non-manifold)";
-  if (m.faces_dropped_when_read > 0) {
-    os << "; but the file had " << m.faces_dropped_when_read
-       << " more faces that made it non-manifold (dropped on reading)";
-  }
-  os << "\n";
-  os << "components:              " << m.components << ", border loops " << m.border_loops
-     << (m.closed ? " (closed)" : "") << ", isolated vertices " << m.isolated_vertices << "\n";
-  os << "euler / genus:           " << m.euler_characteristic << " / " << m.genus;
-  if (m.component_genus.size() > 1) {
-    os << "  (per component:";
-    for (std::size_t i = 0; i < m.component_genus.size() && i < 10; ++i) os << " " << m.component_genus[i];
-    if (m.component_genus.size() > 10) os << " ...";
-    os << ")";
-  }
-  os << "\n";
-  os << "self-intersecting pairs: "
-     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("not computed"))
-     << "\n";
-  os << "degenerate / duplicate:  " << m.degenerate_faces << " / " << m.duplicate_faces << " faces\n";
-  os << "min angle:               " << fixed(m.min_angle_deg, 2) << " deg, median of per-face minimum "
-     << fixed(m.median_min_angle_deg, 2) << " deg; " << fixed(100 * m.faces_min_angle_below_10, 2)
-     << "% of faces < 10 deg, " << fixed(100 * m.faces_min_angle_below_30, 2) << "% < 30 deg\n";
-  os << "valence histogram:      ";
-  std::size_t total = 0;
-  for (const std::size_t c : m.valence_histogram) total += c;
-  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k) {
-    if (m.valence_histogram[k] == 0) continue;
-    os << " " << k << ":" << m.valence_histogram[k] << " ("
-       << fixed(100.0 * static_cast<double>(m.valence_histogram[k]) / static_cast<double>(total), 1) << "%)";
-  }
-  os << "\n";
-  return os.str();
-}
-
-std::string evaluation_to_json(const Evaluation& e) {
-  std::ostringstream os;
-  const double diag = e.gt_bbox_diagonal;
-  os << "{\"ground_truth\": {\"kind\": \"" << (e.ground_truth_is_mesh ? "mesh" : "points")
-     << "\", \"points\": " << e.ground_truth_points << ", \"bbox_diagonal\": " << num(diag) << "},\n";
-  os << " \"result_samples\": " << e.result_to_gt.count << ", \"distance_to_mesh\": \""
-     << (e.exact_surface_distance ? "surface" : "nearest_sample") << "\",\n";
-  os << " \"chamfer_l1\": " << num(e.chamfer_l1) << ", \"chamfer_l1_percent\": " << num(e.scale(e.chamfer_l1))
-     << ",\n";
-  os << " \"hausdorff\": " << num(e.hausdorff) << ", \"hausdorff_percent\": " << num(e.scale(e.hausdorff))
-     << ",\n";
-  os << " \"hausdorff_p95\": " << num(e.hausdorff_p95)
-     << ", \"hausdorff_p95_percent\": " << num(e.scale(e.hausdorff_p95)) << ",\n";
-  os << " \"result_to_gt\": " << distance_json(e.result_to_gt, diag) << ",\n";
-  os << " \"gt_to_result\": " << distance_json(e.gt_to_result, diag) << ",\n";
-  os << " \"fscores\": [";
-  for (std::size_t i = 0; i < e.fscores.size(); ++i) {
-    const FScore& f = e.fscores[i];
-    os << (i ? ", " : "") << "{\"threshold_fraction\": " << num(f.threshold_fraction)
-       << ", \"threshold\": " << num(f.threshold) << ", \"precision\": " << num(f.precision)
-       << ", \"recall\": " << num(f.recall) << ", \"fscore\": " << num(f.fscore) << "}";
-  }
-  os << "],\n";
-  os << " \"normal_consistency\": " << (e.normal_consistency ? num(*e.normal_consistency) : "null") << ",\n";
-  os << " \"orientation_consistency\": ";
-  if (e.orientation) {
-    os << "{\"raw\": " << num(e.orientation->raw)
-       << ", \"per_component\": " << num(e.orientation->per_component) << ", \"components\": [";
-    bool first = true;
-    for (std::size_t c = 0; c < e.orientation->components.size(); ++c) {
-      const ComponentOrientation& co = e.orientation->components[c];
-      if (co.faces == 0) continue;
-      os << (first ? "" : ", ") << "{\"component\": " << c << ", \"faces\": " << co.faces
-         << ", \"samples\": " << co.samples << ", \"area_share\": " << num(co.area_share)
-         << ", \"agreeing\": " << num(co.agreeing) << ", \"flipped\": " << (co.flipped ? "true" : "false")
-         << "}";
-      first = false;
-    }
-    os << "]}";
-  } else {
-    os << "null";
-  }
-  os << ",\n";
-  const MeshValidity& m = e.validity;
-  os << " \"mesh\": {\"vertices\": " << m.vertices << ", \"edges\": " << m.edges << ", \"faces\": " << m.faces
-     << ", \"area\": " << num(m.area) << ", \"edge_manifold\": " << (m.edge_manifold ? "true" : "false")
-     << ", \"nonmanifold_edges\": " << m.nonmanifold_edges
-     << ", \"vertex_manifold\": " << (m.vertex_manifold ? "true" : "false")
-     << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
-     << ", \"faces_dropped_when_read\": " << m.faces_dropped_when_read
-     << ",\n  \"components\": " << m.components << ", \"border_loops\": " << m.border_loops
-     << ", \"closed\": " << (m.closed ? "true" : "false")
-     << ", \"euler_characteristic\": " << m.euler_characteristic << ", \"genus\": " << num(m.genus)
-     << ", \"component_genus\": [";
-  for (std::size_t i = 0; i < m.component_genus.size(); ++i)
-    os << (i ? ", " : "") << num(m.component_genus[i]);
-  os << "],\n  \"isolated_vertices\": " << m.isolated_vertices
-     << ", \"degenerate_faces\": " << m.degenerate_faces << ", \"duplicate_faces\": " << m.duplicate_faces
-     << ", \"self_intersecting_pairs\": "
-     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("null"))
-     << ",\n  \"min_angle_deg\": " << num(m.min_angle_deg)
-     << ", \"median_min_angle_deg\": " << num(m.median_min_angle_deg)
-     << ", \"faces_min_angle_below_10\": " << num(m.faces_min_angle_below_10)
-     << ", \"faces_min_angle_below_30\": " << num(m.faces_min_angle_below_30) << ", \"valence_histogram\": [";
-  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k)
-    os << (k ? ", " : "") << m.valence_histogram[k];
-  os << "]}}\n";
-  return os.str();
 }
 
 }  // namespace gcs
