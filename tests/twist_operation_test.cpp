@@ -75,7 +75,7 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   gcs::ReconstructOptions ro;
   ro.target_vertices = 400;
   ro.seed = 3;
-  ro.orient_winners = false;  // with oriented winners (the default) plain GCS does not twist here
+  ro.input.orient_winners = false;  // with oriented winners (the default) plain GCS does not twist here
   gcs::Reconstructor plain(cloud, ro);
   const double without = twist::orientation_consistency(plain.run().mesh, truth);
   gcs::Reconstructor repaired(cloud, ro);
@@ -205,7 +205,7 @@ TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {
   const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", {});
   for (int rounds : {-1, 17}) {
     gcs::ReconstructOptions ro;
-    ro.stacked_layer_rounds = rounds;
+    ro.post.stacked_layer_rounds = rounds;
     try {
       gcs::Reconstructor rec(cloud, ro);
       FAIL() << "no exception for " << rounds;
