@@ -38,13 +38,13 @@
 /// "coverage" is the share of the exact samples with a vertex, edge midpoint or face centroid of
 /// the result within 2% of the bounding-box diagonal: consistency alone does not show a result
 /// that lost most of its surface (a repair that shreds the shell lets the loop delete the pieces).
-/// `--thin-wall E` sets `DetectOptions::thin_wall` (0 = off: the nearest normal decides on walls
+/// `--thin-wall E` sets `VoteOptions::thin_wall` (0 = off: the nearest normal decides on walls
 /// thinner than the faces too).
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
-/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairOptions::peel_flaps`),
+/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairExperimentalOptions::peel_flaps`),
 /// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
-/// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
+/// (`RepairExperimentalOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
 /// `--stacked-rounds N` the rounds of the reconstructor's last post-processing step, the removal of
 /// small stacked double layers at borders (`PostProcessOptions::stacked_layer_rounds`, 0 = off;
 /// column "stacked before the removal / removed / pleats flattened": the faces with a stacked

@@ -326,7 +326,7 @@ TEST(TwistScattered, ScatteredEvidenceIsLeftAloneInsteadOfShreddingTheSurface) {
   o.detect.reference = &ref;
   o.label_by_reference = false;  // the detector's regions: its border-ratio guard is tested here
   // Reference points with opposed normals side by side read as a wall of thickness 0: by default
-  // (DetectOptions::thin_wall) such rejections are no evidence, and nothing is found at all.
+  // (VoteOptions::thin_wall) such rejections are no evidence, and nothing is found at all.
   Mesh untouched = sphere;
   EXPECT_EQ(twist::repair(untouched, o).regions_found, 0u);
   o.detect.vote.thin_wall = 0;  // the border-ratio guard is what is tested below

@@ -555,7 +555,7 @@ void test_whole_mesh(const Mesh& mesh, const DetectOptions& options, Detector& d
   for (FaceHandle f : mesh.faces()) pass.run_test(det, f);
 }
 
-/// Step 1 in incremental mode: the candidates (`DetectOptions::restrict_to`) and an audit sample,
+/// Step 1 in incremental mode: the candidates (`IncrementalOptions::restrict_to`) and an audit sample,
 /// the faces right behind them, and the faces grown around flagged ones.
 void test_candidates(const Mesh& mesh, const DetectOptions& options, Detector& det, PassEvidence& pass) {
   std::vector<FaceHandle> candidates = *options.incremental.restrict_to;

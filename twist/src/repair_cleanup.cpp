@@ -113,7 +113,7 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
   return removed;
 }
 
-/// Removes border flaps (see `RepairOptions::peel_flaps`): faces with a vertex on the border
+/// Removes border flaps (see `RepairExperimentalOptions::peel_flaps`): faces with a vertex on the border
 /// that have a same-orientation partner (`same_orientation_pairs`), in up to `peel_flaps`
 /// rounds, and the tiny pieces that leaves. Returns the number of faces removed. Pairs are looked
 /// for only around the faces that could be flaps (`same_orientation_pairs` with `restrict_to`).
@@ -240,7 +240,7 @@ bool straighten_face(Mesh& mesh, FaceHandle f, const MoveTest& test) {
   return smooth_until(mesh, around, 3, test(around));
 }
 
-/// Removes or collapses small turned-over patches (see `RepairOptions::drop_turned_patches`).
+/// Removes or collapses small turned-over patches (see `RepairExperimentalOptions::drop_turned_patches`).
 /// Runs after the global orientation (the reference verdicts are those of the final sides).
 /// Pairs are looked for only around the faces the reference rejects (`same_orientation_pairs`
 /// with `restrict_to`): the reference's verdict costs a nearest-point query, a pair test a
