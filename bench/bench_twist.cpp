@@ -42,7 +42,8 @@
 /// thinner than the faces too).
 /// `--rejoin` / `--no-rejoin` turn the border re-join after repairs on / off
 /// (`TwistOperationOptions::rejoin_borders`, default off; the session-5 vault table used `--rejoin`),
-/// `--peel N` sets the rounds of border-flap peeling of the final call (`RepairExperimentalOptions::peel_flaps`),
+/// `--peel N` sets the rounds of border-flap peeling of the final call
+/// (`RepairExperimentalOptions::peel_flaps`),
 /// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
 /// (`RepairExperimentalOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
 /// `--stacked-rounds N` the rounds of the reconstructor's last post-processing step, the removal of

@@ -32,7 +32,8 @@ static_assert(!std::is_constructible_v<edgefront::TwinRing, Mesh&&>);
 
 // Options holding a pointer to a caller's object borrow it, and say so.
 static_assert(std::is_same_v<decltype(twist::DetectOptions::reference), edgefront::Borrowed<const twist::ReferenceNormals>>);
-static_assert(std::is_same_v<decltype(twist::IncrementalOptions::face_grid), edgefront::Borrowed<const twist::FaceGrid>>);
+static_assert(std::is_same_v<decltype(twist::IncrementalOptions::face_grid),
+                             edgefront::Borrowed<const twist::FaceGrid>>);
 static_assert(std::is_same_v<decltype(edgefront::render::Scene::mesh), edgefront::Borrowed<const Mesh>>);
 
 TEST(Lifetime, BorrowedReadsLikeThePointer) {

@@ -52,7 +52,8 @@ void expect_repaired(twist::TwistedShape s, const std::string& what) {
   // it is removed, never left as a tiny component; nothing else is lost.
   EXPECT_LT(r.faces_removed, twist::RepairOptions{}.cuts.min_component_faces) << what;
   EXPECT_EQ(s.mesh.n_faces(), faces - r.faces_removed) << what << ": no face lost but tiny pieces";
-  EXPECT_GE(smallest_component_faces(s.mesh), twist::RepairOptions{}.cuts.min_component_faces) << what << ": no tiny component";
+  EXPECT_GE(smallest_component_faces(s.mesh), twist::RepairOptions{}.cuts.min_component_faces)
+      << what << ": no tiny component";
   EXPECT_GT(r.faces_flipped, 0u) << what;
   EXPECT_LE(2 * r.faces_flipped, faces) << what << ": at most half flipped";
   EXPECT_LE(r.faces_visited, 2 * r.faces_flipped) << what << ": at most twice the flipped side visited";

@@ -31,8 +31,10 @@ ReferenceNormals reference_from_arrays(const VertexArrayView& points, const Vert
 }
 
 ArrayDetection detect_arrays(const VertexArrayView& vertices, const FaceArrayView& faces, const DetectOptions& options) {
-  if (options.incremental.restrict_to) throw InvalidInput("twist::detect_arrays: restrict_to names mesh faces; it is not for arrays");
-  if (options.incremental.face_grid) throw InvalidInput("twist::detect_arrays: a face grid belongs to a mesh; it is not for arrays");
+  if (options.incremental.restrict_to)
+    throw InvalidInput("twist::detect_arrays: restrict_to names mesh faces; it is not for arrays");
+  if (options.incremental.face_grid)
+    throw InvalidInput("twist::detect_arrays: a face grid belongs to a mesh; it is not for arrays");
   const edgefront::ArrayMesh converted = edgefront::mesh_from_arrays(vertices, faces);
   const DetectResult found = detect_regions(converted.mesh, options);
   ArrayDetection out;
@@ -49,8 +51,10 @@ ArrayDetection detect_arrays(const VertexArrayView& vertices, const FaceArrayVie
 }
 
 ArrayRepair repair_arrays(const VertexArrayView& vertices, const FaceArrayView& faces, const RepairOptions& options) {
-  if (options.detect.incremental.restrict_to) throw InvalidInput("twist::repair_arrays: restrict_to names mesh faces; it is not for arrays");
-  if (options.detect.incremental.face_grid) throw InvalidInput("twist::repair_arrays: a face grid belongs to a mesh; it is not for arrays");
+  if (options.detect.incremental.restrict_to)
+    throw InvalidInput("twist::repair_arrays: restrict_to names mesh faces; it is not for arrays");
+  if (options.detect.incremental.face_grid)
+    throw InvalidInput("twist::repair_arrays: a face grid belongs to a mesh; it is not for arrays");
   edgefront::ArrayMesh converted = edgefront::mesh_from_arrays(vertices, faces);
   detail::HostMirror host = detail::host_of_conversion(vertices, faces, converted);
   RepairOptions o = options;

@@ -50,18 +50,27 @@ void check_range(bool ok, const std::string& what) {
 
 void validate_options(const Mesh& mesh, const DetectOptions& o) {
   check_range(std::isfinite(o.radius) && o.radius >= 0, "radius must be finite and >= 0 (0 = automatic)");
-  check_range(std::isfinite(o.experimental.surface_factor) && o.experimental.surface_factor >= 1, "experimental.surface_factor must be finite and >= 1");
-  check_range(o.experimental.parallel_cos >= 0 && o.experimental.parallel_cos <= 1, "experimental.parallel_cos must lie in [0, 1]");
-  check_range(o.experimental.facing_cos > 0 && o.experimental.facing_cos <= 1, "experimental.facing_cos must lie in (0, 1]");
-  check_range(o.experimental.fold_cos >= -1 && o.experimental.fold_cos <= 0, "experimental.fold_cos must lie in [-1, 0]");
-  check_range(o.regions.grow_levels >= 1 && o.regions.grow_levels <= 64, "regions.grow_levels must lie in [1, 64]");
+  check_range(std::isfinite(o.experimental.surface_factor) && o.experimental.surface_factor >= 1,
+              "experimental.surface_factor must be finite and >= 1");
+  check_range(o.experimental.parallel_cos >= 0 && o.experimental.parallel_cos <= 1,
+              "experimental.parallel_cos must lie in [0, 1]");
+  check_range(o.experimental.facing_cos > 0 && o.experimental.facing_cos <= 1,
+              "experimental.facing_cos must lie in (0, 1]");
+  check_range(o.experimental.fold_cos >= -1 && o.experimental.fold_cos <= 0,
+              "experimental.fold_cos must lie in [-1, 0]");
+  check_range(o.regions.grow_levels >= 1 && o.regions.grow_levels <= 64,
+              "regions.grow_levels must lie in [1, 64]");
   check_range(o.regions.min_flagged_faces >= 1, "regions.min_flagged_faces must be >= 1");
-  check_range(o.regions.min_flagged_share >= 0 && o.regions.min_flagged_share <= 1, "regions.min_flagged_share must lie in [0, 1]");
-  check_range(o.vote.reference_cos >= -1 && o.vote.reference_cos <= 1, "vote.reference_cos must lie in [-1, 1]");
-  check_range(o.experimental.reference_side_weight == 0 || (o.experimental.reference_side_weight >= 1 && o.experimental.reference_side_weight <= 100),
+  check_range(o.regions.min_flagged_share >= 0 && o.regions.min_flagged_share <= 1,
+              "regions.min_flagged_share must lie in [0, 1]");
+  check_range(o.vote.reference_cos >= -1 && o.vote.reference_cos <= 1,
+              "vote.reference_cos must lie in [-1, 1]");
+  check_range(o.experimental.reference_side_weight == 0 ||
+                  (o.experimental.reference_side_weight >= 1 && o.experimental.reference_side_weight <= 100),
               "experimental.reference_side_weight must be 0 or lie in [1, 100]");
   check_range(std::isfinite(o.mean_edge_length) && o.mean_edge_length >= 0, "mean_edge_length must be finite and >= 0");
-  check_range(o.experimental.reference_margin >= 1 && o.experimental.reference_margin <= 100, "experimental.reference_margin must lie in [1, 100]");
+  check_range(o.experimental.reference_margin >= 1 && o.experimental.reference_margin <= 100,
+              "experimental.reference_margin must lie in [1, 100]");
   check_range(o.vote.thin_wall >= 0 && o.vote.thin_wall <= 4, "vote.thin_wall must lie in [0, 4]");
   if (o.incremental.restrict_to) {
     for (FaceHandle f : *o.incremental.restrict_to) {
@@ -78,7 +87,12 @@ class Detector {
  public:
   /// `quick`: no layer is looked for in front of a face the reference confirms (see `test`).
   Detector(const Mesh& mesh, const DetectOptions& o, bool quick)
-      : quick_(quick), collect_behind_(o.incremental.restrict_to.has_value()), mesh_(mesh), o_(o), mdf_(mesh), grid_(o.incremental.face_grid) {
+      : quick_(quick),
+        collect_behind_(o.incremental.restrict_to.has_value()),
+        mesh_(mesh),
+        o_(o),
+        mdf_(mesh),
+        grid_(o.incremental.face_grid) {
     if (!grid_) {
       // Full mode (or no incremental index given): a k-d tree over every live face's centroid.
       geo_.resize(mesh.n_faces());
@@ -221,8 +235,8 @@ class Detector {
       if (g == f) continue;
       const Vec3 d = center(g) - cf;
       const double dist = d.norm();
-      if (dist > 0 && dist <= radius_ && -OpenMesh::dot(nf, d) >= o_.experimental.facing_cos * dist && OpenMesh::dot(nf, normal(g)) <= -o_.experimental.parallel_cos &&
-          !shares_vertex(f, g)) {
+      if (dist > 0 && dist <= radius_ && -OpenMesh::dot(nf, d) >= o_.experimental.facing_cos * dist &&
+          OpenMesh::dot(nf, normal(g)) <= -o_.experimental.parallel_cos && !shares_vertex(f, g)) {
         return true;
       }
     }
@@ -299,7 +313,8 @@ class Detector {
                          (same_orientation_only ? cos_ng : std::abs(cos_ng)) >= o_.experimental.parallel_cos;
       // Behind f with the same orientation: g may point at f's back, so its evidence changed with f.
       const bool behind = !layer && collect_behind_ && side > 0 && !same_orientation_only &&
-                          -along >= o_.experimental.facing_cos * dist && cos_ng >= o_.experimental.parallel_cos;
+                          -along >= o_.experimental.facing_cos * dist &&
+                          cos_ng >= o_.experimental.parallel_cos;
       if (!layer && !behind) continue;
       if (shares_vertex(f, g)) continue;
       if (layer && stacked && !stacked_on(f, g)) continue;
@@ -319,7 +334,9 @@ class Detector {
     near_flag_.assign(layers_.size(), 0);
     unresolved_ = layers_.size();
     // A layer is near when the surface distance to one of its vertices is within this limit.
-    const auto limit_of = [&](size_t i) { return o_.experimental.surface_factor * layers_[i].first + mean_edge_; };
+    const auto limit_of = [&](size_t i) {
+      return o_.experimental.surface_factor * layers_[i].first + mean_edge_;
+    };
     for (size_t i = 0; i < layers_.size(); ++i) {
       reach = std::max(reach, limit_of(i));
       for (int v : geo(layers_[i].second).vertices) cand_of_vertex_[v].emplace_back(i, limit_of(i));
@@ -454,7 +471,8 @@ class Detector {
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal,
                    double mean_edge_length) {
   if (options.experimental.reference_side_weight > 0) {
-    return reference.judge(centre, normal, 16, options.experimental.reference_side_weight, options.experimental.reference_margin);
+    return reference.judge(centre, normal, 16, options.experimental.reference_side_weight,
+                           options.experimental.reference_margin);
   }
   const double c = OpenMesh::dot(normal, reference.nearest_normal(centre));
   if (c < options.vote.reference_cos) {
@@ -662,10 +680,11 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   PassEvidence pass;
   // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
   constexpr std::size_t kFacesPerThread = 1000;
-  const unsigned threads =
-      options.incremental.restrict_to ? 1u
-                          : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),
-                                                                        std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
+  const unsigned threads = options.incremental.restrict_to
+                               ? 1u
+                               : static_cast<unsigned>(std::min<std::size_t>(
+                                     edgefront::resolve_threads(options.threads),
+                                     std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
   if (!options.incremental.restrict_to && threads > 1) {
     test_whole_mesh_parallel(mesh, options, quick, threads, det, pass);
   } else if (!options.incremental.restrict_to) {
@@ -683,7 +702,8 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   if (quick || (options.regions.require_orientation_evidence && !has_core)) return result;
 
   // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
-  const std::vector<edgefront::FrontLoop> loops = detail::grow_front(mesh, pass.order, options.regions.grow_levels);
+  const std::vector<edgefront::FrontLoop> loops =
+      detail::grow_front(mesh, pass.order, options.regions.grow_levels);
   // 3. Regions: the surface behind the front, connected without crossing it.
   std::unordered_map<int, int> region_of;
   std::vector<TwistRegion> regions = detail::regions_behind_front(mesh, pass.order, pass.flagged, loops, region_of);
@@ -700,7 +720,8 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
   };
   for (auto& r : regions) {
     const bool enough = r.flagged_faces >= options.regions.min_flagged_faces &&
-                        static_cast<double>(r.flagged_faces) >= options.regions.min_flagged_share * static_cast<double>(r.faces.size());
+                        static_cast<double>(r.flagged_faces) >=
+                            options.regions.min_flagged_share * static_cast<double>(r.faces.size());
     if (enough && orientation_evidence(r)) result.regions.push_back(std::move(r));
   }
   std::stable_sort(result.regions.begin(), result.regions.end(), [](const TwistRegion& a, const TwistRegion& b) {
@@ -713,7 +734,8 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
 
 DetectResult detect_regions(const Mesh& mesh, const DetectOptions& options) {
   bool has_core = false;
-  if (options.reference && options.experimental.reference_side_weight == 0 && options.regions.require_orientation_evidence) {
+  if (options.reference && options.experimental.reference_side_weight == 0 &&
+      options.regions.require_orientation_evidence) {
     // With a reference judging by the nearest normal, a core needs reference evidence, which does
     // not depend on layers: a first pass that looks for no layer in front of the faces the
     // reference confirms (two right parts of a surface facing each other across a narrow gap

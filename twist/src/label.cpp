@@ -128,8 +128,10 @@ class MaxFlow {
 ReferenceLabelling label_by_reference(const Mesh& mesh, const RepairOptions& o) {
   detail::check_mesh(mesh, "twist::label_by_reference");
   if (!o.detect.reference) throw InvalidInput("twist::label_by_reference: no reference normals (options.detect.reference)");
-  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100)) throw InvalidInput("twist::label_by_reference: option cuts.cut_cost must lie in [0, 100]");
-  if (o.cuts.min_component_faces < 1) throw InvalidInput("twist::label_by_reference: option cuts.min_component_faces must be >= 1");
+  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100))
+    throw InvalidInput("twist::label_by_reference: option cuts.cut_cost must lie in [0, 100]");
+  if (o.cuts.min_component_faces < 1)
+    throw InvalidInput("twist::label_by_reference: option cuts.min_component_faces must be >= 1");
   DetectOptions d = o.detect;
   d.incremental.restrict_to.reset();
   d.incremental.face_grid = nullptr;

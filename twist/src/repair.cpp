@@ -265,7 +265,8 @@ bool region_is_most_of_its_component(const Mesh& mesh, const TwistRegion& region
 
 void validate_repair_options(const RepairOptions& o) {
   if (o.max_repairs < 1) throw InvalidInput("twist::repair: option max_repairs must be >= 1");
-  if (o.cuts.min_component_faces < 1) throw InvalidInput("twist::repair: option cuts.min_component_faces must be >= 1");
+  if (o.cuts.min_component_faces < 1)
+    throw InvalidInput("twist::repair: option cuts.min_component_faces must be >= 1");
   if (!(o.cuts.max_border_ratio >= 0) || !std::isfinite(o.cuts.max_border_ratio)) {
     throw InvalidInput("twist::repair: option cuts.max_border_ratio must be finite and >= 0");
   }
@@ -275,12 +276,15 @@ void validate_repair_options(const RepairOptions& o) {
   if (!(o.cuts.min_cut_piece_share >= 0 && o.cuts.min_cut_piece_share <= 1)) {
     throw InvalidInput("twist::repair: option cuts.min_cut_piece_share must lie in [0, 1]");
   }
-  if (o.experimental.peel_flaps < 0 || o.experimental.peel_flaps > 16) throw InvalidInput("twist::repair: option experimental.peel_flaps must lie in [0, 16]");
-  if (o.experimental.drop_turned_patches > 64) throw InvalidInput("twist::repair: option experimental.drop_turned_patches must lie in [0, 64]");
+  if (o.experimental.peel_flaps < 0 || o.experimental.peel_flaps > 16)
+    throw InvalidInput("twist::repair: option experimental.peel_flaps must lie in [0, 16]");
+  if (o.experimental.drop_turned_patches > 64)
+    throw InvalidInput("twist::repair: option experimental.drop_turned_patches must lie in [0, 64]");
   if (!(o.experimental.retest_move >= 0) || !std::isfinite(o.experimental.retest_move)) {
     throw InvalidInput("twist::repair: option experimental.retest_move must be finite and >= 0");
   }
-  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100)) throw InvalidInput("twist::repair: option cuts.cut_cost must lie in [0, 100]");
+  if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100))
+    throw InvalidInput("twist::repair: option cuts.cut_cost must lie in [0, 100]");
 }
 
 }  // namespace
@@ -341,7 +345,8 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
         for (size_t i = 0; i < region.border.size(); ++i) {
           if (!region.border_on_mesh_border[i]) border_edges += region.border[i].size();
         }
-        if (static_cast<double>(border_edges) > o.cuts.max_border_ratio * std::sqrt(static_cast<double>(region.faces.size())) + 16) {
+        if (static_cast<double>(border_edges) >
+            o.cuts.max_border_ratio * std::sqrt(static_cast<double>(region.faces.size())) + 16) {
           ++report.regions_scattered;
           continue;
         }
@@ -387,7 +392,8 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
     }
   }
   if (grid) grid->update_new(mesh);
-  if (!incremental && o.cuts.min_cut_piece_share > 0) report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
+  if (!incremental && o.cuts.min_cut_piece_share > 0)
+    report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
   if (!incremental && o.experimental.peel_flaps > 0) {
     const size_t peeled = peel_flaps(mesh, o, dups);
     report.flap_faces_removed += peeled;
@@ -495,10 +501,11 @@ RepairOptions RepairOptions::finished_mesh() { return RepairOptions{}; }
 
 RepairOptions RepairOptions::in_loop() {
   RepairOptions o;
-  o.cuts.max_border_ratio = 0;  // no limit: the loop cuts scattered regions too
-  o.experimental.peel_flaps = 3;  // the final call peels border flaps (double layers) off the result
+  o.cuts.max_border_ratio = 0;           // no limit: the loop cuts scattered regions too
+  o.experimental.peel_flaps = 3;         // the final call peels border flaps (double layers) off the result
   o.experimental.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
-  o.experimental.drop_turned_patches = 4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
+  o.experimental.drop_turned_patches =
+      4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
   return o;
 }
 

@@ -95,7 +95,8 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
   std::vector<size_t> face_count(labels.count, 0);
   for (FaceHandle f : mesh.faces()) ++face_count[label_of(f)];
   const size_t largest = face_count.empty() ? 0 : *std::max_element(face_count.begin(), face_count.end());
-  const double limit = std::max(static_cast<double>(o.cuts.min_component_faces), o.cuts.min_cut_piece_share * static_cast<double>(largest));
+  const double limit = std::max(static_cast<double>(o.cuts.min_component_faces),
+                                o.cuts.min_cut_piece_share * static_cast<double>(largest));
   std::vector<char> doomed(labels.count, 0);
   for (const auto& [copy, original] : dups) {
     for (VertexHandle v : {copy, original}) {
@@ -246,7 +247,9 @@ bool straighten_face(Mesh& mesh, FaceHandle f, const MoveTest& test) {
 /// with `restrict_to`): the reference's verdict costs a nearest-point query, a pair test a
 /// bounded front.
 void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
-  if (!o.detect.reference || o.experimental.drop_turned_patches == 0 || mesh.faces().begin() == mesh.faces().end()) return;
+  if (!o.detect.reference || o.experimental.drop_turned_patches == 0 ||
+      mesh.faces().begin() == mesh.faces().end())
+    return;
   DetectOptions d = o.detect;
   d.incremental.restrict_to.reset();
   d.incremental.face_grid = nullptr;

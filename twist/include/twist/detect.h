@@ -7,26 +7,26 @@
 /// Evidence, per face f (all semi-local):
 /// - **Reference**: with reference normals, f's normal disagrees with the nearest oriented point.
 /// - **Facing layer**: another face g lies *in front of* f (on the side f's normal points to)
-///   within `radius`, roughly parallel (|n_f·n_g| >= `DetectExperimentalOptions::parallel_cos`), and is *far along the
-///   surface*: a Minimal Distance Front from f's centroid, bounded by `max_distance`, does not
-///   reach g within `DetectExperimentalOptions::surface_factor` times their distance. On a correctly oriented thin closed
-///   structure every face has the material, not another layer of the same surface, right behind
-///   it and empty space in front: layers of one thin wall are back to back. A face whose normal
+///   within `radius`, roughly parallel (|n_f·n_g| >= `experimental.parallel_cos`), and is *far
+///   along the surface*: a Minimal Distance Front from f's centroid, bounded by `max_distance`,
+///   does not reach g within `experimental.surface_factor` times their distance. On a correctly
+///   oriented thin closed structure every face has the material, not another layer of the same
+///   surface, right behind it and empty space in front: layers of one thin wall are back to back. A face whose normal
 ///   points at another layer is twisted: either both layers face each other (a wall turned inside
 ///   out: both flagged) or both point the same way (two layers with the same orientation: only
 ///   the one pointing at the other is flagged). Convention and limit: two distinct surface parts
 ///   facing each other across a gap narrower than `radius` (a hairpin's arms) look like an
 ///   inverted wall; pass reference normals for such inputs (they then decide the side, see
 ///   `RegionOptions::require_orientation_evidence`) or lower `radius`.
-/// - **Folded edge**: an edge whose two faces fold onto each other (n_f·n_g <= `DetectExperimentalOptions::fold_cos`,
-///   dihedral angle near 0).
+/// - **Folded edge**: an edge whose two faces fold onto each other
+///   (n_f·n_g <= `experimental.fold_cos`, dihedral angle near 0).
 /// - **Self-intersection**: f intersects a face it shares no vertex with.
 ///
 /// Flagged faces are grown into regions with a Minimal Edge Front started at their vertices and
-/// run `RegionOptions::grow_levels` levels (this also closes small gaps between flagged patches); a region is
-/// the surface behind the front, its border the front's sealed loops. Pieces of the rest that a
-/// region encloses (bounded by one of its several loops) and that are smaller than the region
-/// join it (hole filling, explored with a budget of the region's size); the largest piece stays
+/// run `regions.grow_levels` levels (this also closes small gaps between flagged patches); a
+/// region is the surface behind the front, its border the front's sealed loops. Pieces of the
+/// rest that a region encloses (bounded by one of its several loops) and that are smaller than
+/// the region join it (hole filling, explored with a budget of the region's size); the largest piece stays
 /// outside.
 
 #include <array>
@@ -297,7 +297,8 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
 
 /// Which partners make a same-orientation pair (see `same_orientation_pairs`).
 enum class LayerRule {
-  /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >= `DetectExperimentalOptions::facing_cos`·|d|
+  /// g's centroid lies within `radius` in front of f or behind it: |n_f·d| >=
+  /// `DetectExperimentalOptions::facing_cos`·|d|
   /// for d = c_g - c_f (the first rule). It also counts two faces of one wall side by
   /// side across a hole or a border gap, and two faces bevelled over a rim corner (two walls
   /// meeting at a right angle), when their normals tilt enough: both may be oriented right.
@@ -313,14 +314,14 @@ enum class LayerRule {
 };
 
 /// Faces that have a partner close in space (centroids within `radius`, in front or behind:
-/// |n_f·d| >= `DetectExperimentalOptions::facing_cos`·|d|), far along the surface (as for facing layers) and with the same
-/// orientation (n_f·n_g >= `DetectExperimentalOptions::parallel_cos`): the signature of a twist the issue asks to rule out.
-/// `rule` sharpens which partners count (see `LayerRule`; the repair's flap peeling and turned
-/// patch dropping use `Facing`). Uses the geometry only (`reference` is ignored). With
-/// `IncrementalOptions::restrict_to`, only the pairs in which the face or its partner is one of those faces are
-/// returned (the same pairs the whole scan gives for them; only those faces and the faces within
-/// the layer radius of them are tested, so a small set costs little). Throws as `detect`, and
-/// InvalidInput for a `rule` that is no `LayerRule`.
+/// |n_f·d| >= `DetectExperimentalOptions::facing_cos`·|d|), far along the surface (as for facing layers) and
+/// with the same orientation (n_f·n_g >= `DetectExperimentalOptions::parallel_cos`): the signature of a twist
+/// the issue asks to rule out. `rule` sharpens which partners count (see `LayerRule`; the repair's flap
+/// peeling and turned patch dropping use `Facing`). Uses the geometry only (`reference` is ignored). With
+/// `IncrementalOptions::restrict_to`, only the pairs in which the face or its partner is one of those faces
+/// are returned (the same pairs the whole scan gives for them; only those faces and the faces within the
+/// layer radius of them are tested, so a small set costs little). Throws as `detect`, and InvalidInput for a
+/// `rule` that is no `LayerRule`.
 size_t count_same_orientation_layers(const edgefront::Mesh& mesh, const DetectOptions& options = {},
                                      LayerRule rule = LayerRule::Facing);
 

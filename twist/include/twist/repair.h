@@ -205,7 +205,8 @@ struct RepairReport {
   size_t faces_flipped = 0;            ///< by the repairs (not counting the global orientation)
   size_t faces_visited = 0;            ///< by the alternating fronts, all repairs together
   size_t faces_removed = 0;             ///< all removals (tiny pieces, cut-outs, flaps)
-  size_t flap_faces_removed = 0;        ///< border flaps peeled at the end (see `RepairExperimentalOptions::peel_flaps`)
+  size_t flap_faces_removed =
+      0;  ///< border flaps peeled at the end (see `RepairExperimentalOptions::peel_flaps`)
   size_t turned_faces_removed = 0;      ///< faces of turned-over border patches removed (`drop_turned_patches`)
   size_t turned_faces_collapsed = 0;    ///< faces of turned-over interior patches collapsed (`drop_turned_patches`)
   size_t turned_faces_straightened = 0; ///< turned-over faces straightened by moving vertices (`drop_turned_patches`)
