@@ -500,12 +500,18 @@ RepairReport repair(Mesh& mesh, const RepairOptions& options) {
 RepairOptions RepairOptions::finished_mesh() { return RepairOptions{}; }
 
 RepairOptions RepairOptions::in_loop() {
+  // Rounds of border-flap peeling at the final call (one ring each). The value the GCS hook was
+  // measured with on the vault shells (bench/results/twist-vaults.md, which reports no other count).
+  constexpr int kLoopPeelRounds = 3;
+  // Largest turned-over patch the final call drops: slivers and rim flaps of 1-4 faces, each of
+  // which makes every face of the other layer within the radius a same-orientation pair; bigger
+  // groups are the detector's business (bench/results/twist-vaults.md).
+  constexpr size_t kLoopTurnedPatchFaces = 4;
   RepairOptions o;
-  o.cuts.max_border_ratio = 0;           // no limit: the loop cuts scattered regions too
-  o.experimental.peel_flaps = 3;         // the final call peels border flaps (double layers) off the result
-  o.experimental.peel_from_cuts = true;  // only those the cuts left (a run without a cut keeps its mesh)
-  o.experimental.drop_turned_patches =
-      4;  // turned-over slivers and rim flaps of 1-4 faces over the other layer
+  o.cuts.max_border_ratio = 0;  // no limit: in the loop, scattered regions are cut too
+  o.experimental.peel_flaps = kLoopPeelRounds;
+  o.experimental.peel_from_cuts = true;  // only flaps the cuts left (a run without a cut keeps its mesh)
+  o.experimental.drop_turned_patches = kLoopTurnedPatchFaces;
   return o;
 }
 
