@@ -322,15 +322,16 @@ TEST(TwistDetect, BadInputThrowsNamingTheProblem) {
   };
   bad([](twist::DetectOptions& o) { o.radius = -1; }, "radius");
   bad([](twist::DetectOptions& o) { o.radius = std::numeric_limits<double>::quiet_NaN(); }, "radius");
-  bad([](twist::DetectOptions& o) { o.experimental.surface_factor = 0.5; }, "surface_factor");
-  bad([](twist::DetectOptions& o) { o.regions.grow_levels = 0; }, "grow_levels");
-  bad([](twist::DetectOptions& o) { o.experimental.fold_cos = 0.5; }, "fold_cos");
-  bad([](twist::DetectOptions& o) { o.experimental.facing_cos = 0; }, "facing_cos");
+  bad([](twist::DetectOptions& o) { o.experimental.surface_factor = 0.5; }, "experimental.surface_factor");
+  bad([](twist::DetectOptions& o) { o.regions.grow_levels = 0; }, "regions.grow_levels");
+  bad([](twist::DetectOptions& o) { o.experimental.fold_cos = 0.5; }, "experimental.fold_cos");
+  bad([](twist::DetectOptions& o) { o.experimental.facing_cos = 0; }, "experimental.facing_cos");
+  bad([](twist::DetectOptions& o) { o.vote.thin_wall = 5; }, "vote.thin_wall");
   bad(
       [](twist::DetectOptions& o) {
         o.incremental.restrict_to = std::vector<FaceHandle>{FaceHandle(100000)};
       },
-      "restrict_to");
+      "incremental.restrict_to");
   m.set_point(edgefront::VertexHandle(3), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   EXPECT_THROW(twist::detect(m), InvalidInput);
 

@@ -834,9 +834,24 @@ TEST(TwistRepair, BadInputThrowsNamingTheProblem) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("max_repairs"), std::string::npos) << e.what();
   }
+  // A grouped option is named with its group, as the caller writes it.
+  auto expect_named = [&](const twist::RepairOptions& bad, const std::string& name) {
+    try {
+      twist::repair(m, bad);
+      ADD_FAILURE() << "no exception for " << name;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  o = {};
+  o.cuts.min_component_faces = 0;
+  expect_named(o, "cuts.min_component_faces");
+  o = {};
+  o.experimental.peel_flaps = 17;
+  expect_named(o, "experimental.peel_flaps");
   o = {};
   o.detect.regions.grow_levels = 100;
-  EXPECT_THROW(twist::repair(m, o), InvalidInput);
+  expect_named(o, "regions.grow_levels");
   EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0)}, {}), InvalidInput);
   EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 3}}), InvalidInput);
   EXPECT_THROW(twist::orient_soup({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 1}}), InvalidInput);
