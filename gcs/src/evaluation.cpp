@@ -15,12 +15,13 @@
 #include <vector>
 
 #include "detail/self_intersection.h"
-#include "detail/triangle_closest.h"
 #include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
+#include "edgefront/geometry.h"
 #include "edgefront/parallel.h"
 #include "edgefront/mesh_stats.h"
 #include "edgefront/point_index.h"
+#include "edgefront/triangle_bvh.h"
 
 namespace gcs {
 namespace {
@@ -85,187 +86,11 @@ void check_cloud(const PointCloud& cloud) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Geometry
+// Geometry: the shared kernel (edgefront/geometry.h, edgefront/triangle_bvh.h)
 
-struct Box {
-  Vec3 lo = Vec3(kInf, kInf, kInf);
-  Vec3 hi = Vec3(-kInf, -kInf, -kInf);
-  void add(const Vec3& p) {
-    lo.minimize(p);
-    hi.maximize(p);
-  }
-  void add(const Box& b) {
-    lo.minimize(b.lo);
-    hi.maximize(b.hi);
-  }
-  bool overlaps(const Box& b) const {
-    return lo[0] <= b.hi[0] && b.lo[0] <= hi[0] && lo[1] <= b.hi[1] && b.lo[1] <= hi[1] && lo[2] <= b.hi[2] &&
-           b.lo[2] <= hi[2];
-  }
-  double dist2(const Vec3& p) const {
-    double d = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double e = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
-      d += e * e;
-    }
-    return d;
-  }
-};
-
-struct Triangle {
-  std::array<Vec3, 3> p;
-  std::array<int, 3> v = {-1, -1, -1};  // vertex indices (for shared-vertex tests)
-  Box box() const {
-    Box b;
-    for (const Vec3& q : p) b.add(q);
-    return b;
-  }
-  Vec3 n = Vec3(0, 0, 0);  // unit normal; zero for a degenerate triangle (set by finish())
-  void finish() {
-    const Vec3 c = (p[1] - p[0]) % (p[2] - p[0]);
-    const double len = c.norm();
-    n = len > 0.0 ? c / len : Vec3(0, 0, 0);
-  }
-  const Vec3& unit_normal() const { return n; }
-};
-
-using detail::closest_on_triangle;
-
-// ---------------------------------------------------------------------------------------------
-// Bounding-volume hierarchy over triangles: nearest-triangle queries and box-overlap queries.
-
-class TriangleBvh {
- public:
-  explicit TriangleBvh(std::vector<Triangle> triangles) : tris_(std::move(triangles)) {
-    EF_CHECK(!tris_.empty(), "BVH over no triangles");
-    order_.resize(tris_.size());
-    centroids_.resize(tris_.size());
-    boxes_.resize(tris_.size());
-    for (std::size_t i = 0; i < tris_.size(); ++i) {
-      order_[i] = static_cast<int>(i);
-      centroids_[i] = (tris_[i].p[0] + tris_[i].p[1] + tris_[i].p[2]) / 3.0;
-      boxes_[i] = tris_[i].box();
-    }
-    nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
-    build(0, static_cast<int>(tris_.size()));
-  }
-
-  const std::vector<Triangle>& triangles() const { return tris_; }
-  const Box& box(int tri) const { return boxes_[static_cast<std::size_t>(tri)]; }
-
-  struct Hit {
-    double dist2 = kInf;
-    int tri = -1;
-  };
-
-  /// Nearest triangle to `x` (exact point-to-triangle distance).
-  Hit nearest(const Vec3& x) const {
-    Hit best;
-    std::array<std::pair<int, double>, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = {0, nodes_[0].box.dist2(x)};
-    while (top > 0) {
-      const auto [id, d2] = stack[static_cast<std::size_t>(--top)];
-      if (d2 >= best.dist2) continue;
-      const Node& node = nodes_[static_cast<std::size_t>(id)];
-      if (node.left < 0) {
-        for (int i = node.begin; i < node.end; ++i) {
-          const int t = order_[static_cast<std::size_t>(i)];
-          const Triangle& tri = tris_[static_cast<std::size_t>(t)];
-          const double e2 = (closest_on_triangle(x, tri.p[0], tri.p[1], tri.p[2]) - x).sqrnorm();
-          if (e2 < best.dist2 || (e2 == best.dist2 && t < best.tri)) best = {e2, t};
-        }
-        continue;
-      }
-      const double dl = nodes_[static_cast<std::size_t>(node.left)].box.dist2(x);
-      const double dr = nodes_[static_cast<std::size_t>(node.right)].box.dist2(x);
-      EF_CHECK(top + 2 <= static_cast<int>(stack.size()), "BVH deeper than its traversal stack");
-      if (dl <= dr) {
-        stack[static_cast<std::size_t>(top++)] = {node.right, dr};
-        stack[static_cast<std::size_t>(top++)] = {node.left, dl};
-      } else {
-        stack[static_cast<std::size_t>(top++)] = {node.left, dl};
-        stack[static_cast<std::size_t>(top++)] = {node.right, dr};
-      }
-    }
-    return best;
-  }
-
-  /// Number of triangles; `in_order(k)` is the k-th triangle in the hierarchy's leaf order
-  /// (spatially coherent).
-  int size() const { return static_cast<int>(order_.size()); }
-  int in_order(int k) const { return order_[static_cast<std::size_t>(k)]; }
-
-  /// Calls f(tri) for each triangle at leaf-order position >= `first` whose box overlaps `query`.
-  template <class F>
-  void for_each_overlapping(const Box& query, int first, F&& f) const {
-    std::array<int, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (node.end <= first || !node.box.overlaps(query)) continue;
-      if (node.left < 0) {
-        for (int i = std::max(node.begin, first); i < node.end; ++i) {
-          const int t = order_[static_cast<std::size_t>(i)];
-          if (boxes_[static_cast<std::size_t>(t)].overlaps(query)) f(t);
-        }
-        continue;
-      }
-      EF_CHECK(top + 2 <= static_cast<int>(stack.size()), "BVH deeper than its traversal stack");
-      stack[static_cast<std::size_t>(top++)] = node.left;
-      stack[static_cast<std::size_t>(top++)] = node.right;
-    }
-  }
-
- private:
-  static constexpr int kLeafSize = 4;
-  struct Node {
-    Box box;
-    int left = -1, right = -1;  // children; -1 for a leaf
-    int begin = 0, end = 0;     // range of order_ below the node
-  };
-
-  // Median split on the longest axis of the centroids' box; depth <= log2(n) + 1.
-  int build(int begin, int end) {
-    const int id = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Box box, cbox;
-    for (int i = begin; i < end; ++i) {
-      const int t = order_[static_cast<std::size_t>(i)];
-      box.add(boxes_[static_cast<std::size_t>(t)]);
-      cbox.add(centroids_[static_cast<std::size_t>(t)]);
-    }
-    nodes_[static_cast<std::size_t>(id)].box = box;
-    if (end - begin <= kLeafSize) {
-      nodes_[static_cast<std::size_t>(id)].begin = begin;
-      nodes_[static_cast<std::size_t>(id)].end = end;
-      return id;
-    }
-    const Vec3 ext = cbox.hi - cbox.lo;
-    const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : (ext[1] >= ext[2] ? 1 : 2);
-    const int mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
-      const double ca = centroids_[static_cast<std::size_t>(a)][axis],
-                   cb = centroids_[static_cast<std::size_t>(b)][axis];
-      return ca < cb || (ca == cb && a < b);
-    });
-    const int left = build(begin, mid);
-    const int right = build(mid, end);
-    Node& node = nodes_[static_cast<std::size_t>(id)];
-    node.left = left;
-    node.right = right;
-    node.begin = begin;
-    node.end = end;
-    return id;
-  }
-
-  std::vector<Triangle> tris_;
-  std::vector<int> order_;
-  std::vector<Vec3> centroids_;
-  std::vector<Box> boxes_;
-  std::vector<Node> nodes_;
-};
+using Box = edgefront::AlignedBox;
+using edgefront::Triangle;
+using edgefront::TriangleBvh;
 
 // Live faces of the mesh as triangles; `face_of[i]` is the face index of triangle i.
 std::vector<Triangle> mesh_triangles(const Mesh& mesh, std::vector<int>* face_of = nullptr) {
@@ -273,18 +98,7 @@ std::vector<Triangle> mesh_triangles(const Mesh& mesh, std::vector<int>* face_of
   tris.reserve(mesh.n_faces());
   for (const auto f : mesh.faces()) {
     if (mesh.status(f).deleted()) continue;
-    Triangle t;
-    int k = 0;
-    for (const auto v : mesh.fv_range(f)) {
-      if (k < 3) {
-        t.p[static_cast<std::size_t>(k)] = mesh.point(v);
-        t.v[static_cast<std::size_t>(k)] = v.idx();
-      }
-      ++k;
-    }
-    EF_CHECK(k == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
-    t.finish();
-    tris.push_back(t);
+    tris.push_back(edgefront::face_triangle(mesh, f));
     if (face_of) face_of->push_back(f.idx());
   }
   return tris;
@@ -411,144 +225,6 @@ OrientationConsistency orientation_of(const Mesh& mesh, const std::vector<int>& 
 // ---------------------------------------------------------------------------------------------
 // Self-intersections
 
-// Tolerances of the intersection predicates for a pair of triangles: lengths below `len` and
-// (doubled) areas below `area` count as zero. Relative to the size and position of the pair, so
-// that exactly planar or rounding-level coplanar configurations are handled as coplanar.
-struct Tolerance {
-  double len = 0, area = 0;
-};
-
-Tolerance tolerance_of(const Triangle& t1, const Triangle& t2) {
-  double extent = 0, magnitude = 0;
-  for (const Triangle* t : {&t1, &t2}) {
-    for (int i = 0; i < 3; ++i) {
-      extent = std::max(
-          extent, (t->p[static_cast<std::size_t>(i)] - t->p[static_cast<std::size_t>((i + 1) % 3)]).norm());
-      magnitude = std::max(magnitude, t->p[static_cast<std::size_t>(i)].max_abs());
-    }
-  }
-  Tolerance tol;
-  tol.len = 1e-12 * (extent + magnitude);
-  tol.area = tol.len * extent;
-  return tol;
-}
-
-// 2D helpers on the plane projection that drops axis `drop`.
-struct P2 {
-  double x, y;
-};
-P2 project(const Vec3& p, int drop) {
-  const int i = drop == 0 ? 1 : 0, j = drop == 2 ? 1 : 2;
-  return {p[i], p[j]};
-}
-double orient2(const P2& a, const P2& b, const P2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-int sign(double v, double tol) { return v > tol ? 1 : (v < -tol ? -1 : 0); }
-
-bool point_in_triangle_2d(const P2& p, const P2& a, const P2& b, const P2& c, double tol) {
-  const double area = orient2(a, b, c);
-  const double s = area >= 0 ? 1.0 : -1.0;  // make the triangle counter-clockwise
-  return s * orient2(a, b, p) >= -tol && s * orient2(b, c, p) >= -tol && s * orient2(c, a, p) >= -tol;
-}
-
-bool segments_intersect_2d(const P2& p, const P2& q, const P2& a, const P2& b, double tol) {
-  const int o1 = sign(orient2(p, q, a), tol), o2 = sign(orient2(p, q, b), tol);
-  const int o3 = sign(orient2(a, b, p), tol), o4 = sign(orient2(a, b, q), tol);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  auto on_segment = [&](const P2& u, const P2& v, const P2& w, int o) {  // w on segment uv (collinear)
-    return o == 0 && std::min(u.x, v.x) - tol <= w.x && w.x <= std::max(u.x, v.x) + tol &&
-           std::min(u.y, v.y) - tol <= w.y && w.y <= std::max(u.y, v.y) + tol;
-  };
-  // Touching or collinear overlap: an endpoint on the other segment. `tol` is an area here; the
-  // box slack uses it as a length too, which is only more permissive at rounding level.
-  return on_segment(p, q, a, o1) || on_segment(p, q, b, o2) || on_segment(a, b, p, o3) ||
-         on_segment(a, b, q, o4);
-}
-
-int dominant_axis(const Vec3& n) {
-  const double ax = std::abs(n[0]), ay = std::abs(n[1]), az = std::abs(n[2]);
-  return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
-}
-
-// Does the closed segment pq meet the closed triangle t?
-bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Triangle& t, const Tolerance& tol) {
-  const Vec3& n = t.unit_normal();
-  if (n.sqrnorm() == 0.0) return false;  // degenerate triangles are not tested
-  const double dp = n | (p - t.p[0]), dq = n | (q - t.p[0]);
-  const int drop = dominant_axis(n);
-  const P2 a = project(t.p[0], drop), b = project(t.p[1], drop), c = project(t.p[2], drop);
-  const int sp = sign(dp, tol.len), sq = sign(dq, tol.len);
-  if (sp == 0 && sq == 0) {  // coplanar
-    const P2 p2 = project(p, drop), q2 = project(q, drop);
-    return point_in_triangle_2d(p2, a, b, c, tol.area) || point_in_triangle_2d(q2, a, b, c, tol.area) ||
-           segments_intersect_2d(p2, q2, a, b, tol.area) || segments_intersect_2d(p2, q2, b, c, tol.area) ||
-           segments_intersect_2d(p2, q2, c, a, tol.area);
-  }
-  if (sp * sq > 0) return false;  // both strictly on one side
-  Vec3 x;
-  if (sp == 0) {
-    x = p;
-  } else if (sq == 0) {
-    x = q;
-  } else {
-    x = p + (dp / (dp - dq)) * (q - p);
-  }
-  return point_in_triangle_2d(project(x, drop), a, b, c, tol.area);
-}
-
-// Do two faces intersect beyond what they share?
-bool faces_intersect(const Triangle& t1, const Triangle& t2) {
-  const Tolerance tol = tolerance_of(t1, t2);
-  std::array<int, 3> pos2 = {-1, -1, -1};  // for each corner of t1: the matching corner of t2
-  int shared = 0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      if (t1.v[static_cast<std::size_t>(i)] == t2.v[static_cast<std::size_t>(j)]) {
-        pos2[static_cast<std::size_t>(i)] = j;
-        ++shared;
-      }
-    }
-  }
-  if (shared == 3) return true;  // the same vertex triple: they overlap completely
-  if (shared == 2) {
-    // Intersect beyond the shared edge only when coplanar and folded onto each other.
-    int i1 = 0;  // t1's corner not shared
-    while (pos2[static_cast<std::size_t>(i1)] >= 0) ++i1;
-    int i2 = 0;  // t2's corner not shared
-    while (i2 == pos2[0] || i2 == pos2[1] || i2 == pos2[2]) ++i2;
-    const Vec3& u = t1.p[static_cast<std::size_t>((i1 + 1) % 3)];
-    const Vec3& w = t1.p[static_cast<std::size_t>((i1 + 2) % 3)];
-    const Vec3& a = t1.p[static_cast<std::size_t>(i1)];
-    const Vec3& b = t2.p[static_cast<std::size_t>(i2)];
-    const Vec3& n1 = t1.unit_normal();
-    if (n1.sqrnorm() == 0.0 || t2.unit_normal().sqrnorm() == 0.0) return false;
-    if (std::abs(n1 | (b - u)) > tol.len) return false;  // not coplanar: they meet only on the edge
-    return (((w - u) % (a - u)) | ((w - u) % (b - u))) > tol.area * tol.area;
-  }
-  if (shared == 1) {
-    // Both contain the shared corner s; they meet elsewhere iff the side of one opposite s meets
-    // the other triangle.
-    int i1 = 0;
-    while (pos2[static_cast<std::size_t>(i1)] < 0) ++i1;
-    const int i2 = pos2[static_cast<std::size_t>(i1)];
-    return segment_meets_triangle(t1.p[static_cast<std::size_t>((i1 + 1) % 3)],
-                                  t1.p[static_cast<std::size_t>((i1 + 2) % 3)], t2, tol) ||
-           segment_meets_triangle(t2.p[static_cast<std::size_t>((i2 + 1) % 3)],
-                                  t2.p[static_cast<std::size_t>((i2 + 2) % 3)], t1, tol);
-  }
-  // No shared vertex: two closed triangles meet iff a side of one meets the other.
-  for (int i = 0; i < 3; ++i) {
-    if (segment_meets_triangle(t1.p[static_cast<std::size_t>(i)], t1.p[static_cast<std::size_t>((i + 1) % 3)],
-                               t2, tol))
-      return true;
-    if (segment_meets_triangle(t2.p[static_cast<std::size_t>(i)], t2.p[static_cast<std::size_t>((i + 1) % 3)],
-                               t1, tol))
-      return true;
-  }
-  return false;
-}
-
 // Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
 // in leaf order).
 // On `threads` threads (contiguous chunks of the leaf order, the pairs joined in chunk order: the
@@ -567,7 +243,7 @@ std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std:
       if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
       bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
         const Triangle& b = tris[static_cast<std::size_t>(j)];
-        if (b.unit_normal().sqrnorm() != 0.0 && faces_intersect(a, b)) {
+        if (b.unit_normal().sqrnorm() != 0.0 && edgefront::triangles_intersect(a, b)) {
           ++chunk_count[chunk];
           if (pairs) chunk_pairs[chunk].emplace_back(bvh.in_order(k), j);
         }

@@ -14,6 +14,7 @@
 
 #include "detail/geometry.h"
 #include "edgefront/error.h"
+#include "edgefront/geometry.h"
 #include "edgefront/minimal_distance_front.h"
 #include "edgefront/minimal_edge_front.h"
 #include "edgefront/parallel.h"
@@ -485,8 +486,10 @@ class Detector {
       // Every corner lies within the longest edge of its centroid: a centroid farther than that
       // from the other's plane puts the whole triangle on one side.
       if (std::abs(OpenMesh::dot(normal(f), d)) > lg || std::abs(OpenMesh::dot(gg.normal, d)) > lf) continue;
-      if (shares_vertex(f, g)) continue;
-      if (detail::triangles_intersect(points(f), points(g))) {
+      // The kernel's test, with the vertex ids: a pair sharing a vertex or an edge counts when it
+      // meets beyond what it shares (as gcs::count_self_intersections counts it).
+      if (edgefront::triangles_intersect(edgefront::Triangle(points(f), geo(f).vertices),
+                                         edgefront::Triangle(points(g), gg.vertices))) {
         si_partner_.emplace(f.idx(), g.idx());
         si_partner_.emplace(g.idx(), f.idx());
         if (si_log) si_log->emplace_back(f.idx(), g.idx());

@@ -19,6 +19,7 @@
 #include "detail/geometry.h"
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/union_find.h"
 
 namespace twist {
 
@@ -36,22 +37,7 @@ using DupList = std::vector<std::pair<VertexHandle, VertexHandle>>;
 /// Decides, for a region about to be repaired, whether it is cut out instead (re-twist guard).
 using CutOutRule = std::function<bool(const Mesh&, const TwistRegion&)>;
 
-class UnionFind {
- public:
-  explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), size_t{0}); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<size_t> parent_;
-};
+using edgefront::UnionFind;
 
 bool region_is_live(const Mesh& mesh, const TwistRegion& r) {
   for (FaceHandle f : r.faces) {

@@ -210,7 +210,9 @@ Evaluation evaluate(const edgefront::Mesh& result, const GroundTruth& gt,
 /// Orientation consistency of `mesh` against an oriented point set (for instance analytic
 /// samples from edgefront::shapes::sample): area-uniform samples of the mesh, each compared with
 /// the normal of its nearest ground-truth point. Same method and options (samples, seed) as
-/// `evaluate`, without the rest of the evaluation.
+/// `evaluate`, without the rest of the evaluation. The measure to judge a reconstruction with;
+/// twist::face_orientation_agreement (twist/reference_normals.h) is the cheaper, deterministic
+/// one-vote-per-face share that estimates `raw` without sampling (what ef-twist prints).
 /// \throw edgefront::InvalidInput as `evaluate`, and when `oriented_gt` has no normals.
 OrientationConsistency orientation_consistency(const edgefront::Mesh& mesh,
                                                const edgefront::PointCloud& oriented_gt,
