@@ -222,7 +222,9 @@ TEST(ConnectionPath, PolylinePointsAreGeodesicSourcesAsTheyAre) {
   // The whole polyline as one source set: zero along it.
   const DistanceField along = geodesic_distance(mesh, all);
   for (const PathPoint& q : p.polyline) {
-    if (q.vertex.is_valid()) EXPECT_NEAR(along.distance[static_cast<size_t>(q.vertex.idx())], 0.0, 1e-12);
+    if (q.vertex.is_valid()) {
+      EXPECT_NEAR(along.distance[static_cast<size_t>(q.vertex.idx())], 0.0, 1e-12);
+    }
   }
 }
 

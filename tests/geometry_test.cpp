@@ -180,6 +180,12 @@ Mesh two_face_mesh(const Case& c) {
   for (std::size_t k = 0; k < 3; ++k) fb[k] = vertex(c.ib[k], c.b[k]);
   EF_CHECK(m.add_face(fa[0], fa[1], fa[2]).is_valid(), c.name + ": face a refused");
   EF_CHECK(m.add_face(fb[0], fb[1], fb[2]).is_valid(), c.name + ": face b refused");
+  if (c.ib[0] == c.ia[0] && c.ib[1] != c.ia[1] && c.ib[1] != c.ia[2]) {
+    // Sharing only the first corner: a pinched vertex, which the detector's fronts refuse. A
+    // bridge face (shared corner, a's last, b's second) makes it one fan; it meets a and b only
+    // along their shared edges, never coplanar in these cases, so it adds no pair.
+    EF_CHECK(m.add_face(fa[0], fa[2], fb[1]).is_valid(), c.name + ": bridge face refused");
+  }
   return m;
 }
 
@@ -189,6 +195,10 @@ bool twist_finds_self_intersection(const Mesh& m) {
   o.require_orientation_evidence = false;  // report the pair's faces as they are
   o.min_flagged_share = 0.0;
   o.min_flagged_faces = 1;
+  // Only the self-intersection evidence: a face keeps the first evidence found, so layers and
+  // folds (tested before it) are narrowed to exactly parallel and exactly folded faces.
+  o.parallel_cos = 1.0;
+  o.fold_cos = -1.0;
   const twist::DetectResult r = twist::detect_regions(m, o);
   for (const twist::TwistRegion& region : r.regions) {
     for (const twist::Evidence& e : region.evidence) {

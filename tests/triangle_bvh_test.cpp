@@ -64,7 +64,7 @@ TEST(TriangleBvh, OverlappingPairsMatchBruteForceEachPairOnce) {
   std::set<std::pair<int, int>> expected, found;
   for (std::size_t i = 0; i < tris.size(); ++i) {
     for (std::size_t j = i + 1; j < tris.size(); ++j) {
-      if (tris[i].box().overlaps(tris[j].box())) expected.emplace(static_cast<int>(i), static_cast<int>(j));
+      if (tris[i].contact_box().overlaps(tris[j].contact_box())) expected.emplace(static_cast<int>(i), static_cast<int>(j));
     }
   }
   std::size_t visits = 0;

@@ -30,6 +30,19 @@ AlignedBox Triangle::box() const {
   return b;
 }
 
+AlignedBox Triangle::contact_box() const {
+  double longest = 0, magnitude = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    longest = std::max(longest, (p[i] - p[(i + 1) % 3]).norm());
+    magnitude = std::max(magnitude, p[i].max_abs());
+  }
+  const double grow = kIntersectionTolerance * (longest + magnitude) * (1.0 + longest);
+  AlignedBox b = box();
+  b.lo -= Vec3(grow);
+  b.hi += Vec3(grow);
+  return b;
+}
+
 Triangle face_triangle(const Mesh& mesh, FaceHandle f) {
   std::array<Vec3, 3> p;
   std::array<int, 3> v = {-1, -1, -1};

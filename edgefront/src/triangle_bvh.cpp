@@ -14,7 +14,7 @@ TriangleBvh::TriangleBvh(std::vector<Triangle> triangles) : tris_(std::move(tria
   for (std::size_t i = 0; i < tris_.size(); ++i) {
     order_[i] = static_cast<int>(i);
     centroids_[i] = (tris_[i].p[0] + tris_[i].p[1] + tris_[i].p[2]) / 3.0;
-    boxes_[i] = tris_[i].box();
+    boxes_[i] = tris_[i].contact_box();
   }
   nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
   build(0, static_cast<int>(tris_.size()));

@@ -167,15 +167,17 @@ class PySolver {
     return to_numpy(std::move(l));
   }
 
+  // One path query (the GIL released, the solver's path buffers locked).
+  edgefront::PathArrays find_path(int a, int b, bool polyline) {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    edgefront::ConnectionPathOptions o;
+    o.polyline = polyline;
+    return solver_.connection_path(a, b, o);
+  }
+
   py::tuple path(int a, int b, bool polyline) {
-    edgefront::PathArrays p;
-    {
-      py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(mutex_);
-      edgefront::ConnectionPathOptions o;
-      o.polyline = polyline;
-      p = solver_.connection_path(a, b, o);
-    }
+    edgefront::PathArrays p = find_path(a, b, polyline);
     if (p.status == edgefront::PathStatus::NoPath) {
       return py::make_tuple(to_numpy_rows(std::vector<double>()), kInf);
     }
@@ -185,14 +187,7 @@ class PySolver {
 
   // The geodesic polyline's points as surface points: (faces, barycentric), a `sources` argument.
   py::tuple path_sources(int a, int b) {
-    edgefront::PathArrays p;
-    {
-      py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(mutex_);
-      edgefront::ConnectionPathOptions o;
-      o.polyline = true;
-      p = solver_.connection_path(a, b, o);
-    }
+    edgefront::PathArrays p = find_path(a, b, true);
     if (p.status == edgefront::PathStatus::NoPath) {
       p.face.clear();
       p.barycentric.clear();

@@ -45,6 +45,7 @@ struct Triangle {
   std::array<int, 3> v = {-1, -1, -1};  ///< vertex ids of the corners (mesh vertex indices); < 0: none
   Vec3 n = Vec3(0, 0, 0);               ///< unit normal of `p` (right-hand rule); zero when degenerate
 
+  /// A triangle with all corners at the origin and no ids (degenerate); assign it a real one.
   Triangle() = default;
   /// The triangle with corners `corners` and vertex ids `ids`; computes the unit normal.
   explicit Triangle(const std::array<Vec3, 3>& corners, const std::array<int, 3>& ids = {-1, -1, -1});
@@ -55,6 +56,11 @@ struct Triangle {
   bool degenerate() const { return n.sqrnorm() == 0.0; }
   /// The bounding box of the corners.
   AlignedBox box() const;
+  /// The bounding box grown by this triangle's share of the tolerance of `triangles_intersect`
+  /// (kIntersectionTolerance x (L + M) x (1 + L), L its longest side, M its largest coordinate
+  /// magnitude; the test's area tolerance is a length times L): two triangles the test finds
+  /// intersecting, touching within the tolerance included, have overlapping contact boxes.
+  AlignedBox contact_box() const;
 };
 
 /// The live face `f` of `mesh` as a Triangle (corners in `fv_range` order, vertex ids = vertex

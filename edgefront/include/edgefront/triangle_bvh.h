@@ -15,8 +15,9 @@
 
 namespace edgefront {
 
-/// A static hierarchy of axis-aligned boxes over a list of triangles: median splits on the
-/// longest axis of the centroids' box, up to kLeafSize triangles per leaf, depth <= log2(n) + 1.
+/// A static hierarchy of axis-aligned boxes over a list of triangles (each triangle's
+/// `contact_box`): median splits on the longest axis of the centroids' box, up to kLeafSize
+/// triangles per leaf, depth <= log2(n) + 1.
 /// Built once, then queried from any number of threads (the queries do not modify it).
 class TriangleBvh {
  public:
@@ -26,7 +27,8 @@ class TriangleBvh {
 
   /// The triangles, as given.
   const std::vector<Triangle>& triangles() const { return tris_; }
-  /// The bounding box of triangle `tri` (an index into triangles()).
+  /// The box the hierarchy holds for triangle `tri` (an index into triangles()): its
+  /// `Triangle::contact_box`, so that box overlaps find every pair `triangles_intersect` accepts.
   const AlignedBox& box(int tri) const { return boxes_[static_cast<std::size_t>(tri)]; }
 
   /// The answer of `nearest`.
