@@ -1,6 +1,6 @@
-// Tests of edgefront/geometry.h (the one triangle-triangle test, its tolerance, the closest point
-// of a triangle) and that its two users, the twist detector and gcs::count_self_intersections,
-// agree on a set of cases.
+// Tests of edgefront/geometry.h (the one triangle-triangle test, its tolerance and contact kinds,
+// the closest point of a triangle) and that its two users, the twist detector and
+// gcs::count_self_intersections, agree on a set of cases.
 
 #include <gtest/gtest.h>
 
@@ -19,6 +19,8 @@ namespace {
 
 using edgefront::Mesh;
 using edgefront::Triangle;
+using edgefront::triangle_contact;
+using edgefront::TriangleContact;
 using edgefront::triangles_intersect;
 using edgefront::Vec3;
 
@@ -30,7 +32,7 @@ struct Case {
   std::string name;
   Corners a, b;
   Ids ia, ib;
-  bool intersect;  // the expected verdict
+  TriangleContact contact;  // the expected verdict
 };
 
 // The reference triangle in the plane z = 0: (0,0,0), (2,0,0), (0,2,0); ids 0, 1, 2.
@@ -41,51 +43,53 @@ std::vector<Case> cases() {
   std::vector<Case> c;
   // A vertical triangle whose lower side pierces the base's interior.
   c.push_back({"crossing", kBase, {Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1), Vec3(0.5, 1.5, 0.5)}, kBaseIds, {3, 4, 5},
-               true});
+               TriangleContact::Crossing});
   // A vertical triangle standing on the base: its lowest corner touches the base's interior.
   c.push_back({"touching at a vertex", kBase, {Vec3(0.5, 0.5, 0), Vec3(0.5, 0.0, 1), Vec3(0.5, 1.0, 1)}, kBaseIds,
-               {3, 4, 5}, true});
+               {3, 4, 5}, TriangleContact::Touching});
   // The same, lifted a little: a near miss by 1e-6 (far above the tolerance of about 1e-12).
   c.push_back({"near miss", kBase, {Vec3(0.5, 0.5, 1e-6), Vec3(0.5, 0.0, 1), Vec3(0.5, 1.0, 1)}, kBaseIds, {3, 4, 5},
-               false});
+               TriangleContact::Apart});
   // Lifted by less than the tolerance (1e-12 of the pair's size): touching within rounding.
   c.push_back({"within the tolerance", kBase, {Vec3(0.5, 0.5, 1e-14), Vec3(0.5, 0.0, 1), Vec3(0.5, 1.0, 1)}, kBaseIds,
-               {3, 4, 5}, true});
+               {3, 4, 5}, TriangleContact::Touching});
   // A second sheet's corner touching the base's corner, not shared (different vertices).
   c.push_back({"touching corners, not shared", kBase, {Vec3(0, 0, 0), Vec3(-1, 0, 1), Vec3(0, -1, 1)}, kBaseIds,
-               {3, 4, 5}, true});
+               {3, 4, 5}, TriangleContact::Touching});
   // The same corner as a shared vertex: they meet only there.
   c.push_back({"sharing a vertex only", kBase, {Vec3(0, 0, 0), Vec3(-1, 0, 1), Vec3(0, -1, 1)}, kBaseIds, {0, 4, 5},
-               false});
+               TriangleContact::Apart});
   // Sharing a vertex, and the side opposite it crosses the base's interior.
   c.push_back({"sharing a vertex, crossing", kBase, {Vec3(0, 0, 0), Vec3(1, 1, -1), Vec3(1, 0.2, 1)}, kBaseIds,
-               {0, 4, 5}, true});
+               {0, 4, 5}, TriangleContact::Crossing});
   // Sharing an edge at a right angle (a crease).
   c.push_back({"sharing an edge, creased", kBase, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 1)}, kBaseIds, {1, 0, 5},
-               false});
+               TriangleContact::Apart});
   // Sharing an edge, coplanar, on opposite sides (a flat pair of neighbours).
   c.push_back({"sharing an edge, flat", kBase, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, -1, 0)}, kBaseIds, {1, 0, 5},
-               false});
+               TriangleContact::Apart});
   // Sharing an edge, coplanar, folded onto each other (the free corners on the same side).
   c.push_back({"sharing an edge, folded flat", kBase, {Vec3(2, 0, 0), Vec3(0, 0, 0), Vec3(1, 0.5, 0)}, kBaseIds,
-               {1, 0, 5}, true});
+               {1, 0, 5}, TriangleContact::Touching});
   // Coplanar, overlapping, no shared vertex.
   c.push_back({"coplanar overlap", kBase, {Vec3(0.5, 0.5, 0), Vec3(3, 0.5, 0), Vec3(0.5, 3, 0)}, kBaseIds, {3, 4, 5},
-               true});
+               TriangleContact::Touching});
   // Coplanar, apart.
-  c.push_back({"coplanar apart", kBase, {Vec3(3, 3, 0), Vec3(5, 3, 0), Vec3(3, 5, 0)}, kBaseIds, {3, 4, 5}, false});
+  c.push_back({"coplanar apart", kBase, {Vec3(3, 3, 0), Vec3(5, 3, 0), Vec3(3, 5, 0)}, kBaseIds, {3, 4, 5}, TriangleContact::Apart});
   // Parallel planes, one above the other.
-  c.push_back({"parallel apart", kBase, {Vec3(0, 0, 1), Vec3(2, 0, 1), Vec3(0, 2, 1)}, kBaseIds, {3, 4, 5}, false});
+  c.push_back({"parallel apart", kBase, {Vec3(0, 0, 1), Vec3(2, 0, 1), Vec3(0, 2, 1)}, kBaseIds, {3, 4, 5}, TriangleContact::Apart});
   // The same vertex triple twice.
-  c.push_back({"the same face twice", kBase, kBase, kBaseIds, kBaseIds, true});
+  c.push_back({"the same face twice", kBase, kBase, kBaseIds, kBaseIds, TriangleContact::Touching});
   return c;
 }
 
-TEST(Geometry, TrianglesIntersectGivesTheExpectedVerdictInBothArgumentOrders) {
+TEST(Geometry, TriangleContactGivesTheExpectedVerdictInBothArgumentOrders) {
   for (const Case& c : cases()) {
     const Triangle a(c.a, c.ia), b(c.b, c.ib);
-    EXPECT_EQ(triangles_intersect(a, b), c.intersect) << c.name;
-    EXPECT_EQ(triangles_intersect(b, a), c.intersect) << c.name << " (swapped)";
+    EXPECT_EQ(triangle_contact(a, b), c.contact) << c.name;
+    EXPECT_EQ(triangle_contact(b, a), c.contact) << c.name << " (swapped)";
+    EXPECT_EQ(triangles_intersect(a, b), c.contact != TriangleContact::Apart) << c.name;
+    EXPECT_EQ(triangles_intersect(b, a), c.contact != TriangleContact::Apart) << c.name << " (swapped)";
   }
 }
 
@@ -96,7 +100,7 @@ TEST(Geometry, VerdictsDoNotDependOnScaleOrPosition) {
     if (c.name == "within the tolerance") continue;
     Corners a = c.a, b = c.b;
     for (Vec3* p : {&a[0], &a[1], &a[2], &b[0], &b[1], &b[2]}) *p = *p * 1e3 + Vec3(1e4, -2e4, 5e3);
-    EXPECT_EQ(triangles_intersect(Triangle(a, c.ia), Triangle(b, c.ib)), c.intersect) << c.name;
+    EXPECT_EQ(triangle_contact(Triangle(a, c.ia), Triangle(b, c.ib)), c.contact) << c.name;
   }
 }
 
@@ -222,8 +226,9 @@ TEST(Geometry, TheTwistDetectorAndTheEvaluationAgreeOnPairsSharingNoVertex) {
   for (const Case& c : cases()) {
     if (share_a_vertex(c)) continue;  // the detector asks only about pairs sharing no vertex
     const Mesh m = two_face_mesh(c);
-    EXPECT_EQ(gcs::count_self_intersections(m) > 0, c.intersect) << c.name;
-    EXPECT_EQ(twist_finds_self_intersection(m), c.intersect) << c.name;
+    // The evaluation counts every contact, the detector the crossings: one test, one verdict.
+    EXPECT_EQ(gcs::count_self_intersections(m) > 0, c.contact != TriangleContact::Apart) << c.name;
+    EXPECT_EQ(twist_finds_self_intersection(m), c.contact == TriangleContact::Crossing) << c.name;
     ++compared;
   }
   EXPECT_EQ(compared, 8);  // crossing, touching (2) and within the tolerance, near miss, coplanar (2), parallel
@@ -233,7 +238,7 @@ TEST(Geometry, TheEvaluationJudgesPairsSharingAVertexOrAnEdgeByTheKernel) {
   for (const Case& c : cases()) {
     // The same face twice is no mesh (OpenMesh refuses it): kernel level only (test above).
     if (!share_a_vertex(c) || c.name == "the same face twice") continue;
-    EXPECT_EQ(gcs::count_self_intersections(two_face_mesh(c)) > 0, c.intersect) << c.name;
+    EXPECT_EQ(gcs::count_self_intersections(two_face_mesh(c)) > 0, c.contact != TriangleContact::Apart) << c.name;
   }
 }
 

@@ -184,23 +184,73 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Triangle& t, con
   return point_in_triangle_2d(project(x, drop), a, b, c, tol.area);
 }
 
-}  // namespace
+// Does the segment pq pass through the interior of t: its ends strictly on opposite sides of t's
+// plane, and the point where it meets the plane strictly inside t (beyond the tolerances)?
+bool segment_crosses_interior(const Vec3& p, const Vec3& q, const Triangle& t, const Tolerance& tol) {
+  const Vec3& n = t.unit_normal();
+  if (n.sqrnorm() == 0.0) return false;
+  const double dp = n | (p - t.p[0]), dq = n | (q - t.p[0]);
+  if (sign(dp, tol.len) * sign(dq, tol.len) >= 0) return false;
+  const int drop = dominant_axis(n);
+  const P2 a = project(t.p[0], drop), b = project(t.p[1], drop), c = project(t.p[2], drop);
+  const P2 x = project(p + (dp / (dp - dq)) * (q - p), drop);
+  const double s = orient2(a, b, c) >= 0 ? 1.0 : -1.0;  // make the triangle counter-clockwise
+  return s * orient2(a, b, x) > tol.area && s * orient2(b, c, x) > tol.area && s * orient2(c, a, x) > tol.area;
+}
 
-bool triangles_intersect(const Triangle& t1, const Triangle& t2) {
-  if (t1.degenerate() || t2.degenerate()) return false;
-  const Tolerance tol = tolerance_of(t1, t2);
-  std::array<int, 3> pos2 = {-1, -1, -1};  // for each corner of t1: the matching corner of t2
+// The corners two triangles share: for each corner of t1 the matching corner of t2 (or -1).
+struct Sharing {
+  std::array<int, 3> pos2 = {-1, -1, -1};
   int shared = 0;
+};
+
+Sharing sharing_of(const Triangle& t1, const Triangle& t2) {
+  Sharing s;
   for (std::size_t i = 0; i < 3; ++i) {
     if (t1.v[i] < 0) continue;  // no id: shared with nothing
     for (std::size_t j = 0; j < 3; ++j) {
       if (t1.v[i] == t2.v[j]) {
-        pos2[i] = static_cast<int>(j);
-        ++shared;
+        s.pos2[i] = static_cast<int>(j);
+        ++s.shared;
         break;
       }
     }
   }
+  return s;
+}
+
+}  // namespace
+
+TriangleContact triangle_contact(const Triangle& t1, const Triangle& t2) {
+  if (!triangles_intersect(t1, t2)) return TriangleContact::Apart;
+  const Tolerance tol = tolerance_of(t1, t2);
+  const Sharing sh = sharing_of(t1, t2);
+  // Two shared corners or three: coplanar (folded flat, or the same face), so no side crosses.
+  if (sh.shared >= 2) return TriangleContact::Touching;
+  if (sh.shared == 1) {
+    // A side from the shared corner starts on the other's plane: only the opposite sides can cross.
+    std::size_t i1 = 0;
+    while (sh.pos2[i1] < 0) ++i1;
+    const std::size_t i2 = static_cast<std::size_t>(sh.pos2[i1]);
+    const bool crossing = segment_crosses_interior(t1.p[(i1 + 1) % 3], t1.p[(i1 + 2) % 3], t2, tol) ||
+                          segment_crosses_interior(t2.p[(i2 + 1) % 3], t2.p[(i2 + 2) % 3], t1, tol);
+    return crossing ? TriangleContact::Crossing : TriangleContact::Touching;
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (segment_crosses_interior(t1.p[i], t1.p[(i + 1) % 3], t2, tol) ||
+        segment_crosses_interior(t2.p[i], t2.p[(i + 1) % 3], t1, tol)) {
+      return TriangleContact::Crossing;
+    }
+  }
+  return TriangleContact::Touching;
+}
+
+bool triangles_intersect(const Triangle& t1, const Triangle& t2) {
+  if (t1.degenerate() || t2.degenerate()) return false;
+  const Tolerance tol = tolerance_of(t1, t2);
+  const Sharing sh = sharing_of(t1, t2);
+  const std::array<int, 3>& pos2 = sh.pos2;  // for each corner of t1: the matching corner of t2
+  const int shared = sh.shared;
   if (shared == 3) return true;  // the same vertex triple: they overlap completely
   if (shared == 2) {
     // Intersect beyond the shared edge only when coplanar and folded onto each other.

@@ -489,9 +489,10 @@ class Detector {
       // Pairs sharing a vertex are left to the fold test (tested before); testing them too (the
       // kernel's test handles them, as gcs::count_self_intersections does) lowered the twist
       // operation's result on TwistOperation.EndToEndVaultShellFromABox from >= 0.94 to 0.92.
+      // Crossings only: faces touching along an unwelded seam (a repair's cut) are no twist.
       if (shares_vertex(f, g)) continue;
-      if (edgefront::triangles_intersect(edgefront::Triangle(points(f), geo(f).vertices),
-                                         edgefront::Triangle(points(g), gg.vertices))) {
+      if (edgefront::triangle_contact(edgefront::Triangle(points(f), geo(f).vertices),
+                                      edgefront::Triangle(points(g), gg.vertices)) == edgefront::TriangleContact::Crossing) {
         si_partner_.emplace(f.idx(), g.idx());
         si_partner_.emplace(g.idx(), f.idx());
         if (si_log) si_log->emplace_back(f.idx(), g.idx());

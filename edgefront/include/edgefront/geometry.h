@@ -93,4 +93,20 @@ bool triangles_intersect(const Triangle& a, const Triangle& b);
 /// side + largest coordinate magnitude) of the pair are zero.
 inline constexpr double kIntersectionTolerance = 1e-12;
 
+/// How two triangles meet, beyond the vertices they share (`triangle_contact`).
+enum class TriangleContact {
+  Apart,     ///< they do not meet beyond their shared vertices
+  Touching,  ///< they meet, but no side of one passes through the other's interior: a corner or a
+             ///< side on the other (within the tolerance), or coplanar overlap or folding
+  Crossing,  ///< a side of one passes through the interior of the other (a transversal crossing)
+};
+
+/// The kind of contact of two triangles, with the tolerance and sharing rules of
+/// `triangles_intersect` (which is `triangle_contact(a, b) != TriangleContact::Apart`). A side
+/// crosses when its ends lie on opposite sides of the other's plane by more than the tolerance
+/// and it meets the plane inside the other triangle by more than the tolerance from every side.
+/// The evaluation counts every contact (a touching surface is not embedded); the twist detector
+/// counts crossings (touching along an unwelded seam is no twist).
+TriangleContact triangle_contact(const Triangle& a, const Triangle& b);
+
 }  // namespace edgefront
