@@ -4,6 +4,9 @@
 #include <array>
 #include <utility>
 
+#include "detail/triangle_predicates.h"
+#include "edgefront/parallel.h"
+
 namespace edgefront {
 
 TriangleBvh::TriangleBvh(std::vector<Triangle> triangles) : tris_(std::move(triangles)) {
@@ -50,6 +53,34 @@ TriangleBvh::Hit TriangleBvh::nearest(const Vec3& x) const {
     }
   }
   return best;
+}
+
+std::size_t TriangleBvh::intersecting_pairs(std::vector<std::pair<int, int>>* pairs, unsigned threads) const {
+  const std::size_t n = order_.size();
+  const unsigned chunks = threads_for(n, threads);
+  std::vector<std::size_t> chunk_count(chunks, 0);
+  std::vector<std::vector<std::pair<int, int>>> chunk_pairs(chunks);
+  // Each pair once: triangle k (leaf order) against the overlapping ones after it.
+  parallel_for(n, threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
+    for (int k = static_cast<int>(begin); k < static_cast<int>(end); ++k) {
+      const int ia = in_order(k);
+      const Triangle& a = tris_[static_cast<std::size_t>(ia)];
+      if (a.degenerate()) continue;
+      for_each_overlapping(box(ia), k + 1, [&](int j) {
+        const Triangle& b = tris_[static_cast<std::size_t>(j)];
+        if (!b.degenerate() && detail::triangles_meet(a, b)) {
+          ++chunk_count[chunk];
+          if (pairs) chunk_pairs[chunk].emplace_back(ia, j);
+        }
+      });
+    }
+  });
+  std::size_t count = 0;
+  for (unsigned c = 0; c < chunks; ++c) {
+    count += chunk_count[c];
+    if (pairs) pairs->insert(pairs->end(), chunk_pairs[c].begin(), chunk_pairs[c].end());
+  }
+  return count;
 }
 
 int TriangleBvh::build(int begin, int end) {

@@ -231,31 +231,7 @@ OrientationConsistency orientation_of(const Mesh& mesh, const std::vector<int>& 
 // same list for any count).
 std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr,
                                         unsigned threads = 1) {
-  const std::vector<Triangle>& tris = bvh.triangles();
-  const std::size_t n = static_cast<std::size_t>(bvh.size());
-  const unsigned chunks = edgefront::threads_for(n, threads);
-  std::vector<std::size_t> chunk_count(chunks, 0);
-  std::vector<std::vector<std::pair<int, int>>> chunk_pairs(chunks);
-  // Each pair once: triangle k (leaf order) against the overlapping ones after it.
-  edgefront::parallel_for(n, threads, [&](std::size_t begin, std::size_t end, unsigned chunk) {
-    for (int k = static_cast<int>(begin); k < static_cast<int>(end); ++k) {
-      const Triangle& a = tris[static_cast<std::size_t>(bvh.in_order(k))];
-      if (a.unit_normal().sqrnorm() == 0.0) continue;  // degenerate faces are counted elsewhere
-      bvh.for_each_overlapping(bvh.box(bvh.in_order(k)), k + 1, [&](int j) {
-        const Triangle& b = tris[static_cast<std::size_t>(j)];
-        if (b.unit_normal().sqrnorm() != 0.0 && edgefront::triangles_intersect(a, b)) {
-          ++chunk_count[chunk];
-          if (pairs) chunk_pairs[chunk].emplace_back(bvh.in_order(k), j);
-        }
-      });
-    }
-  });
-  std::size_t count = 0;
-  for (unsigned c = 0; c < chunks; ++c) {
-    count += chunk_count[c];
-    if (pairs) pairs->insert(pairs->end(), chunk_pairs[c].begin(), chunk_pairs[c].end());
-  }
-  return count;
+  return bvh.intersecting_pairs(pairs, threads);
 }
 
 // ---------------------------------------------------------------------------------------------

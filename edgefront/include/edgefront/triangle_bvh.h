@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "edgefront/error.h"
@@ -68,6 +69,13 @@ class TriangleBvh {
       stack[static_cast<std::size_t>(top++)] = node.right;
     }
   }
+
+  /// The pairs of triangles that `triangles_intersect` accepts (degenerate triangles skipped),
+  /// each pair once: the number, and with `pairs` the list as (i, j) indices into triangles(), i
+  /// before j in leaf order. On `threads` threads (0: all cores; contiguous chunks of the leaf
+  /// order, joined in chunk order), the same list for any count.
+  /// \throws edgefront::InvalidInput for more than kMaxThreads threads (edgefront/parallel.h).
+  std::size_t intersecting_pairs(std::vector<std::pair<int, int>>* pairs = nullptr, unsigned threads = 1) const;
 
   /// Most triangles per leaf.
   static constexpr int kLeafSize = 4;
