@@ -32,13 +32,12 @@ AlignedBox Triangle::box() const {
 }
 
 AlignedBox Triangle::contact_box() const {
-  double longest = 0, magnitude = 0;
-  for (std::size_t i = 0; i < 3; ++i) {
-    longest = std::max(longest, (p[i] - p[(i + 1) % 3]).norm());
-    magnitude = std::max(magnitude, p[i].max_abs());
-  }
-  const double grow = kIntersectionTolerance * (longest + magnitude) * (1.0 + longest);
   AlignedBox b = box();
+  // Bounds from the box (one square root): the diagonal >= the longest side, and the largest
+  // magnitude of its corners >= the largest coordinate magnitude of the triangle's corners.
+  const double diagonal = (b.hi - b.lo).norm();
+  const double magnitude = std::max(b.lo.max_abs(), b.hi.max_abs());
+  const double grow = kIntersectionTolerance * (diagonal + magnitude) * (1.0 + diagonal);
   b.lo -= Vec3(grow);
   b.hi += Vec3(grow);
   return b;

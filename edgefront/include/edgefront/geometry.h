@@ -56,10 +56,11 @@ struct Triangle {
   bool degenerate() const { return n.sqrnorm() == 0.0; }
   /// The bounding box of the corners.
   AlignedBox box() const;
-  /// The bounding box grown by this triangle's share of the tolerance of `triangles_intersect`
-  /// (kIntersectionTolerance x (L + M) x (1 + L), L its longest side, M its largest coordinate
-  /// magnitude; the test's area tolerance is a length times L): two triangles the test finds
-  /// intersecting, touching within the tolerance included, have overlapping contact boxes.
+  /// The bounding box grown by at least this triangle's share of the tolerance of
+  /// `triangles_intersect`: kIntersectionTolerance x (D + M) x (1 + D), D the box's diagonal (>=
+  /// the longest side), M its largest coordinate magnitude (the test's area tolerance is a length
+  /// times a side). Two triangles the test finds intersecting, touching within the tolerance
+  /// included, have overlapping contact boxes.
   AlignedBox contact_box() const;
 };
 
