@@ -1,6 +1,6 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
-///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--no-borders] [--no-orient-winners] [--quadric-normals]
+///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--preset NAME] [--no-twist] [--no-borders] [--no-orient-winners] [--quadric-normals]
 ///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
 ///                   [--no-delaunay-flips] [--keep-crossings]
@@ -49,9 +49,14 @@ int main(int argc, char** argv) {
   CLI::App app{"Reconstruct a triangle mesh from a point cloud (.xyz, .ply, .off, .obj) with growing cell structures.",
                "gcs-reconstruct"};
   std::string input, output;
-  gcs::ReconstructOptions options;
-  std::size_t vertices = options.target_vertices;
-  std::uint64_t seed = options.seed;
+  const gcs::ReconstructOptions defaults;
+  std::size_t vertices = defaults.target_vertices;
+  std::uint64_t seed = defaults.seed;
+  std::string preset = "scan";
+  unsigned threads = defaults.threads;
+  int fit_rounds = defaults.post.fit_rounds;
+  double fit_smoothness = defaults.post.fit_smoothness;
+  bool quadric_normals = false, skip_unfaced = false;
   bool no_twist = false;
   bool quiet = false;
   bool no_borders = false;
@@ -63,6 +68,13 @@ int main(int argc, char** argv) {
       "--vertices", vertices, "target vertex count (default: 5000, or the number of distinct points when the cloud has fewer)")
       ->check(edgefront::apps::integer_range(4, 50000000));
   edgefront::apps::add_seed_option(app, "--seed", seed, "random seed; the same seed gives the same mesh");
+  std::string preset_names;
+  for (const std::string& n : gcs::ReconstructOptions::preset_names()) preset_names += (preset_names.empty() ? "" : ", ") + n;
+  app.add_option("--preset", preset,
+                 "options preset (" + preset_names +
+                     "; default scan): thin_shell for thin closed shells (walls about a mesh edge apart), "
+                     "open_sheet for open surfaces without normals; the flags below apply on top of it")
+      ->check(CLI::IsMember(gcs::ReconstructOptions::preset_names()));
   app.add_flag("--no-twist", no_twist, "disable the twist repair operation (on by default; off with --no-borders)");
   app.add_flag("--no-borders", no_borders,
                "keep the surface closed: no border creation and no loop merging (for closed objects; thin closed "
@@ -77,14 +89,15 @@ int main(int argc, char** argv) {
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
                "side and to remove faces facing against it (on by default; it keeps open and planar clouds from "
                "ending as a torn double layer)");
-  app.add_flag("--quadric-normals", options.quadric_normals,
+  app.add_flag("--quadric-normals", quadric_normals,
                "a cloud without normals: fit them by a quadric at each point (defined wherever the surface has "
                "a normal at the sampling scale) instead of a plane through 20 neighbours that must be flat (off by "
-               "default: on CGAL's models the loop's border tests then open more holes)");
-  app.add_flag("--skip-unfaced-samples", options.skip_unfaced_samples,
+               "default: on CGAL's models the loop's border tests then open more holes; on in the thin_shell and "
+               "open_sheet presets)");
+  app.add_flag("--skip-unfaced-samples", skip_unfaced,
                "thin closed shells with input normals: a sample that no vertex nearby faces is skipped instead of "
                "pulling the other wall's vertex (better coverage and Chamfer on vault shells, but not closed, and "
-               "sometimes more self-intersections; off by default)");
+               "sometimes more self-intersections; off by default, on in the thin_shell preset)");
   bool ignore_normals = false;
   app.add_flag("--ignore-normals", ignore_normals,
                "reconstruct from the points alone, as if the file had no normals (they are not read; normals are "
@@ -97,9 +110,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-fit", no_fit,
                "do not fit the result to the samples (on by default: each vertex is moved along its normal so "
                "that the samples lie on the mesh's triangles, without turning faces or adding self-intersections)");
-  app.add_option("--fit-rounds", options.fit_rounds, "rounds of the surface fit, 1-20 (default 3)")
+  CLI::Option* fit_rounds_option = app.add_option("--fit-rounds", fit_rounds, "rounds of the surface fit, 1-20 (default 3)")
       ->check(edgefront::apps::integer_range(1, 20));
-  app.add_option("--fit-smoothness", options.fit_smoothness,
+  CLI::Option* fit_smoothness_option = app.add_option("--fit-smoothness", fit_smoothness,
                  "smoothness weight of the surface fit, >= 0 (default 0.1; larger fits less)")
       ->check(edgefront::apps::real_range(0.0, 1e9));
   bool no_flips = false;
@@ -111,7 +124,7 @@ int main(int argc, char** argv) {
                "do not resolve self-intersecting face pairs of the result (by default the crossing faces' vertices "
                "are smoothed, and faces still crossing are cut out and their small holes filled; thin shells)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
-  edgefront::apps::add_threads_option(app, options.threads);
+  edgefront::apps::add_threads_option(app, threads);
   edgefront::apps::PngOutput png(app);
   std::string snapshots;
   std::size_t snapshot_every = 0;
@@ -139,15 +152,22 @@ int main(int argc, char** argv) {
       }
       vertices = std::min(vertices, distinct_points);
     }
+    // The preset, then the flags on top of it (a flag only ever switches away from the default).
+    gcs::ReconstructOptions options = gcs::ReconstructOptions::preset(preset);
     options.target_vertices = vertices;
     options.seed = seed;
+    options.threads = threads;
     options.progress_interval = 50;
-    options.create_borders = options.merge_borders = !no_borders;
-    options.orient_winners = !no_orient;
-    options.fit_surface = !no_fit;
-    if (keep_noise) options.smooth_noise_ratio = std::numeric_limits<double>::infinity();
-    options.delaunay_flips = !no_flips;
-    options.resolve_self_intersections = !keep_crossings;
+    if (no_borders) options.topology.create_borders = options.topology.merge_borders = false;
+    if (no_orient) options.input.orient_winners = false;
+    if (quadric_normals) options.input.quadric_normals = true;
+    if (skip_unfaced) options.experimental.skip_unfaced_samples = true;
+    if (keep_noise) options.input.smooth_noise_ratio = std::numeric_limits<double>::infinity();
+    if (no_fit) options.post.fit_surface = false;
+    if (fit_rounds_option->count() > 0) options.post.fit_rounds = fit_rounds;
+    if (fit_smoothness_option->count() > 0) options.post.fit_smoothness = fit_smoothness;
+    if (no_flips) options.post.delaunay_flips = false;
+    if (keep_crossings) options.post.resolve_self_intersections = false;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");

@@ -22,10 +22,10 @@
 //    grows to N, then times F * N further basic steps at that size (no splits, no collapses;
 //    F = --step-factor, default 100).
 // 7. (--case fit only) kitten.xyz at 5K vertices, seeds 1..N (default 8), the result with and
-//    without the surface fit (ReconstructOptions::fit_surface), judged by gcs::evaluate against the
+//    without the surface fit (PostProcessOptions::fit_surface), judged by gcs::evaluate against the
 //    5,210 points (as gcs-eval: exact distances, 100K samples, seed 1); with --reference DIR also
 //    DIR/kitten-advancing-front.off and DIR/kitten-poisson.off (bench/cgal_reconstruct_reference).
-// --quadric-normals sets ReconstructOptions::quadric_normals (clouds without normals: the nested
+// --quadric-normals sets InputOptions::quadric_normals (clouds without normals: the nested
 // spheres' second block). --twist registers the twist repair (gcs::TwistOperation, default options) as gcs-reconstruct
 // does without --no-twist (the cases above run without it), and prints the time spent in it.
 // --quick divides the synthetic targets by 10 (for a smoke run); --case runs one case; --points P
@@ -117,16 +117,16 @@ void print_mesh(const char* label, const gcs::ReconstructResult& r) {
   std::fflush(stdout);
 }
 
-bool g_fit = true;  // ReconstructOptions::fit_surface
+bool g_fit = true;  // PostProcessOptions::fit_surface
 bool g_twist = false;  // --twist: the twist repair registered as in gcs-reconstruct
-bool g_quadric = false;  // --quadric-normals: ReconstructOptions::quadric_normals
+bool g_quadric = false;  // --quadric-normals: InputOptions::quadric_normals
 
 gcs::ReconstructResult run(const edgefront::PointCloud& cloud, size_t target) {
   gcs::ReconstructOptions o;
-  o.fit_surface = g_fit;
-  o.quadric_normals = g_quadric;
+  o.post.fit_surface = g_fit;
+  o.input.quadric_normals = g_quadric;
   o.target_vertices = target;
-  if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
+  if (g_smoothing >= 0) o.growth.smoothing_iterations = g_smoothing;
   o.seed = g_seed;
   const double c0 = cpu_seconds();
   gcs::Reconstructor rec(cloud, o);
@@ -350,7 +350,7 @@ int main(int argc, char** argv) {
       const size_t n = vertices ? vertices : 10000;
       gcs::ReconstructOptions o;
       o.target_vertices = n;
-      if (g_smoothing >= 0) o.smoothing_iterations = g_smoothing;
+      if (g_smoothing >= 0) o.growth.smoothing_iterations = g_smoothing;
       gcs::Reconstructor rec(big, o);
       rec.run();
       const std::uint64_t steps = std::max<std::uint64_t>(1, step_factor) * static_cast<std::uint64_t>(n);

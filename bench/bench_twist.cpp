@@ -31,8 +31,8 @@
 /// orientation: `twist::count_same_orientation_layers`, "stacked / facing" under the two
 /// `twist::LayerRule`s), border loops and components, the regions
 /// repaired, and the share of the run spent in the twist operation.
-/// `--quadric-normals` sets `ReconstructOptions::quadric_normals` (with `--no-normals`).
-/// `--no-orient-winners` runs GCS with `ReconstructOptions::orient_winners` off (plain winners, as
+/// `--quadric-normals` sets `InputOptions::quadric_normals` (with `--no-normals`).
+/// `--no-orient-winners` runs GCS with `InputOptions::orient_winners` off (plain winners, as
 /// in the published loop): with oriented samples the oriented winner search keeps most runs from
 /// twisting at all, so this is the setting that shows what the repair does on a twisted GCS.
 /// "coverage" is the share of the exact samples with a vertex, edge midpoint or face centroid of
@@ -46,16 +46,16 @@
 /// `--turned N` the largest turned-over patch the final call removes, collapses or straightens
 /// (`RepairOptions::drop_turned_patches`, 0 = off; column "turned dropped"),
 /// `--stacked-rounds N` the rounds of the reconstructor's last post-processing step, the removal of
-/// small stacked double layers at borders (`ReconstructOptions::stacked_layer_rounds`, 0 = off;
+/// small stacked double layers at borders (`PostProcessOptions::stacked_layer_rounds`, 0 = off;
 /// column "stacked before the removal / removed / pleats flattened": the faces with a stacked
 /// partner it found on the post-processed mesh, before it changed anything (0 when it did not
 /// scan: off, or no border), the faces it removed and the pleats it smoothed flat, for the plain
 /// and the repair run); "self-int. pairs": the result's self-intersecting face pairs
 /// (`gcs::count_self_intersections`, as gcs-eval counts them), plain and repair run, and for the
-/// repair run what the last post-processing step (`ReconstructOptions::resolve_self_intersections`)
+/// repair run what the last post-processing step (`PostProcessOptions::resolve_self_intersections`)
 /// found and did: pairs found / vertices smoothed / faces cut out, and its share of the run's wall
 /// time. `--keep-crossings` turns it off. `--skip-unfaced-samples` sets
-/// `ReconstructOptions::skip_unfaced_samples` (off by default).
+/// `ExperimentalOptions::skip_unfaced_samples` (off by default).
 /// Diagnostics (stderr): `--explain 1|2` says where the same-orientation face pairs of each result
 /// lie (2: one line per pair), `--trace` logs faces, area and components before and after every
 /// twist call, `--dump PREFIX` writes every result as PREFIX-shape-thickness-sSEED-{plain,repair}.off,
@@ -394,8 +394,8 @@ int main(int argc, char** argv) {
   int peel = -1, turned = -1, stacked_rounds = -1;
   std::string dump;
   bool post = true;  // the reconstructor's projection and surface fit of the returned mesh
-  bool resolve_crossings = true;  // ReconstructOptions::resolve_self_intersections
-  bool skip_unfaced = false;      // ReconstructOptions::skip_unfaced_samples
+  bool resolve_crossings = true;  // PostProcessOptions::resolve_self_intersections
+  bool skip_unfaced = false;      // ExperimentalOptions::skip_unfaced_samples
   bool normals = true, regrow = false, local = true, retest_all = false, orient_winners = true, quadric = false;
   double edge_per_thickness = 0;
   std::string only, cloud_path, explain_mesh;
@@ -518,12 +518,12 @@ int main(int argc, char** argv) {
       gcs::ReconstructOptions ro;
       ro.target_vertices = case_vertices;
       ro.seed = seed;
-      ro.orient_winners = orient_winners;
-      ro.quadric_normals = quadric;
-      ro.project_to_samples = ro.fit_surface = post;
-      ro.resolve_self_intersections = resolve_crossings;
-      ro.skip_unfaced_samples = skip_unfaced;
-      if (stacked_rounds >= 0) ro.stacked_layer_rounds = stacked_rounds;
+      ro.input.orient_winners = orient_winners;
+      ro.input.quadric_normals = quadric;
+      ro.post.project_to_samples = ro.post.fit_surface = post;
+      ro.post.resolve_self_intersections = resolve_crossings;
+      ro.experimental.skip_unfaced_samples = skip_unfaced;
+      if (stacked_rounds >= 0) ro.post.stacked_layer_rounds = stacked_rounds;
       Consistency cons[2];
       double cover[2] = {0, 0};
       gcs::OrientationConsistency eval[2];

@@ -2,10 +2,12 @@
 # scripts/bench-foreign.sh: the foreign GCS host (examples/foreign_gcs) on closed vault shells,
 # without and with EdgeFront's twist repair (issue 23's measurement).
 #
-#   scripts/bench-foreign.sh [--first S] [--seeds N] [--vertices V] [--points P] [--thickness T] [--build DIR] [--out DIR]
+#   scripts/bench-foreign.sh [--first S] [--seeds N] [--vertices V] [--points P] [--thickness T] [--modes "M ..."] [--build DIR] [--out DIR]
 #
 # Defaults: seeds 1-10 (--first S --seeds N: seeds S .. S+N-1), 3000 vertices, 20000 oriented points, t/R 0.2 (R = 1). Per seed: a cloud
-# from ef-shapes (seed S), foreign-gcs with --no-twist and with the repair (seed S), each result
+# from ef-shapes (seed S), foreign-gcs in each mode (seed S): plain (--no-twist), repair, heal
+# (the repair with the session's border heal, --heal), heal2 (the heal zipping within 2 mean edges,
+# --heal --heal-gap 2); default modes "plain repair heal". Each result
 # judged by gcs-eval against a denser sample of the same shape (200000 points, seed 1000 + S):
 # orientation consistency "raw" (share of the area whose normal agrees with the nearest
 # ground-truth normal, no sign forgiven), "per component" (each component with its better sign),
@@ -13,7 +15,7 @@
 # Prints a Markdown table (one row per run) and a summary; the meshes stay in --out.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-FIRST=1 SEEDS=10 VERTICES=3000 POINTS=20000 THICKNESS=0.2 BUILD=$ROOT/build OUT=${TMPDIR:-/tmp}/bench-foreign
+MODES="plain repair heal" FIRST=1 SEEDS=10 VERTICES=3000 POINTS=20000 THICKNESS=0.2 BUILD=$ROOT/build OUT=${TMPDIR:-/tmp}/bench-foreign
 while (($#)); do
   case $1 in
     --first) FIRST=$2; shift 2 ;;
@@ -21,11 +23,15 @@ while (($#)); do
     --vertices) VERTICES=$2; shift 2 ;;
     --points) POINTS=$2; shift 2 ;;
     --thickness) THICKNESS=$2; shift 2 ;;
+    --modes) MODES=$2; shift 2 ;;
     --build) BUILD=$2; shift 2 ;;
     --out) OUT=$2; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "bench-foreign.sh: unknown argument $1" >&2; exit 2 ;;
   esac
+done
+for mode in $MODES; do
+  case $mode in plain|repair|heal|heal2) ;; *) echo "bench-foreign.sh: unknown mode $mode (plain, repair, heal, heal2)" >&2; exit 2 ;; esac
 done
 FOREIGN=$BUILD/examples/foreign_gcs/foreign-gcs
 SHAPES=$BUILD/apps/ef-shapes
@@ -43,12 +49,17 @@ for ((s = FIRST; s < FIRST + SEEDS; ++s)); do
   cloud=$OUT/cloud-$s.xyz gt=$OUT/gt-$s.xyz
   [[ -s $cloud ]] || "$SHAPES" vault-shell --points "$POINTS" --thickness "$THICKNESS" --seed "$s" -o "$cloud" 2>/dev/null
   [[ -s $gt ]] || "$SHAPES" vault-shell --points 200000 --thickness "$THICKNESS" --seed $((1000 + s)) -o "$gt" 2>/dev/null
-  for mode in plain repair; do
+  for mode in $MODES; do
     mesh=$OUT/$mode-$s.off
     flags=()
-    [[ $mode == plain ]] && flags=(--no-twist)
+    case $mode in
+      plain) flags=(--no-twist) ;;
+      repair) ;;
+      heal) flags=(--heal) ;;
+      heal2) flags=(--heal --heal-gap 2) ;;
+    esac
     start=$(date +%s.%N)
-    log=$("$FOREIGN" "$cloud" -o "$mesh" --vertices "$VERTICES" --seed "$s" "${flags[@]}" 2>&1)
+    log=$("$FOREIGN" "$cloud" -o "$mesh" --vertices "$VERTICES" --seed "$s" ${flags[@]+"${flags[@]}"} 2>&1)
     wall=$(echo "$(date +%s.%N) - $start" | bc)
     "$EVAL" "$mesh" "$gt" --json --no-self-intersections >"$OUT/$mode-$s.json"
     echo "$log" >"$OUT/$mode-$s.log"
@@ -67,7 +78,7 @@ done | tee "$OUT/table.md"
 "$PY" - "$OUT/table.md" <<'PY'
 import sys
 rows = [l.split("|")[1:-1] for l in open(sys.argv[1]) if l.startswith("| ") and not l.startswith("| seed")]
-for mode in ("plain", "repair"):
+for mode in ("plain", "repair", "heal", "heal2"):
     r = [[c.strip() for c in x] for x in rows if x[1].strip() == mode]
     if not r: continue
     raw = [float(x[2]) for x in r]; comp = [int(x[4]) for x in r]

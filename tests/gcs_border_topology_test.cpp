@@ -157,9 +157,9 @@ TEST(GcsZipSlits, TheLoopStaysValidWithSlitZippingOn) {
   so.points = 3000;
   gcs::ReconstructOptions o;
   o.target_vertices = 400;
-  o.batch_splits = 50;
+  o.growth.batch_splits = 50;
   o.progress_interval = 50;
-  o.zip_slits = true;
+  o.experimental.zip_slits = true;
   gcs::Reconstructor r(edgefront::shapes::sample("hemisphere", so), o);
   const gcs::ReconstructResult res = r.run([&](const gcs::Progress&) {
     EXPECT_NO_THROW(r.validate());
@@ -345,7 +345,7 @@ TEST(GcsJoinComponents, ASmallPlanarCloudEndsAsOneSheet) {
   o.target_vertices = 300;
   o.seed = 2;
   for (const bool join : {false, true}) {
-    o.join_components = join;
+    o.topology.join_components = join;
     Mesh m = gcs::reconstruct(edgefront::shapes::sample("grid", so), o).mesh;
     const edgefront::MeshStats s = edgefront::compute_stats(m);
     EXPECT_EQ(s.nonmanifold_vertices, 0u);

@@ -46,6 +46,24 @@ TEST_F(GcsCli, WritesTheMeshAndASummary) {
   EXPECT_GT(s.faces, 400u);
 }
 
+TEST_F(GcsCli, PresetScanIsTheDefaultOthersChangeTheMeshUnknownIsAUsageError) {
+  const fs::path plain = dir_ / "plain.off", scan = dir_ / "scan.off", bare = dir_ / "bare.off", sheet = dir_ / "sheet.off";
+  const std::string base = q(vault()) + " --vertices 150 --no-twist -q -o ";
+  ASSERT_EQ(run(base + q(plain)).exit_code, 0);
+  ASSERT_EQ(run(base + q(scan) + " --preset scan").exit_code, 0);
+  EXPECT_EQ(eftest::slurp(plain), eftest::slurp(scan));
+  // Without normals open_sheet fits quadric normals: another mesh; a flag still applies on top.
+  ASSERT_EQ(run(base + q(bare) + " --ignore-normals").exit_code, 0);
+  ASSERT_EQ(run(base + q(sheet) + " --ignore-normals --preset open_sheet").exit_code, 0);
+  EXPECT_NE(eftest::slurp(bare), eftest::slurp(sheet));
+  const fs::path sheet_flag = dir_ / "sheet-flag.off";
+  ASSERT_EQ(run(base + q(sheet_flag) + " --ignore-normals --quadric-normals").exit_code, 0);
+  EXPECT_EQ(eftest::slurp(sheet), eftest::slurp(sheet_flag));
+  const eftest::CommandResult bad = run(base + q(dir_ / "x.off") + " --preset thin-shell");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("thin_shell"), std::string::npos) << bad.err;
+}
+
 TEST_F(GcsCli, SameSeedSameFileAndNoTwistIsAccepted) {
   const fs::path a = dir_ / "a.off", b = dir_ / "b.off", c = dir_ / "c.off";
   ASSERT_EQ(run(q(vault()) + " -o " + q(a) + " --vertices 150 --seed 7 --quiet").exit_code, 0);

@@ -1,5 +1,5 @@
 // Noise in point clouds (gcs/cloud_noise.h) and the reconstructor's smoothing of noisy clouds
-// (ReconstructOptions::smooth_noise_ratio, gcs-reconstruct --keep-noise): the estimate finds the
+// (InputOptions::smooth_noise_ratio, gcs-reconstruct --keep-noise): the estimate finds the
 // noise that was added, clean clouds and thin shells with normals are not called noisy, smoothing
 // brings the points (and the mesh) nearer the true surface, bad input is refused.
 
@@ -181,9 +181,9 @@ TEST(CloudNoise, TheReconstructorSmoothsNoisyCloudsOnlyAndItsMeshIsNearerTheTrut
   const PointCloud noisy = sphere_cloud(3000, 0.02);
   const gcs::ReconstructResult smoothed = gcs::reconstruct(noisy, o);
   EXPECT_TRUE(smoothed.cloud_smoothed);
-  EXPECT_GT(smoothed.noise_ratio, o.smooth_noise_ratio);
+  EXPECT_GT(smoothed.noise_ratio, o.input.smooth_noise_ratio);
   gcs::ReconstructOptions keep = o;
-  keep.smooth_noise_ratio = std::numeric_limits<double>::infinity();
+  keep.input.smooth_noise_ratio = std::numeric_limits<double>::infinity();
   const gcs::ReconstructResult raw = gcs::reconstruct(noisy, keep);
   EXPECT_FALSE(raw.cloud_smoothed);
   EXPECT_LT(mean_vertex_sphere_error(smoothed.mesh), 0.7 * mean_vertex_sphere_error(raw.mesh));
@@ -194,9 +194,9 @@ TEST(CloudNoise, TheReconstructorSmoothsNoisyCloudsOnlyAndItsMeshIsNearerTheTrut
   EXPECT_LT(c.noise_ratio, 0.01);
 
   gcs::ReconstructOptions bad = o;
-  bad.smooth_noise_ratio = -0.1;
+  bad.input.smooth_noise_ratio = -0.1;
   EXPECT_THROW(gcs::reconstruct(clean, bad), InvalidInput);
-  bad.smooth_noise_ratio = std::numeric_limits<double>::quiet_NaN();
+  bad.input.smooth_noise_ratio = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(gcs::reconstruct(clean, bad), InvalidInput);
 }
 

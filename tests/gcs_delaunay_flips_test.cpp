@@ -1,5 +1,5 @@
 // The Delaunay flips of the GCS result (gcs/src/detail/sample_projection.h delaunay_flips,
-// ReconstructOptions::delaunay_flips): long diagonals between coplanar faces are flipped, near-Delaunay
+// PostProcessOptions::delaunay_flips): long diagonals between coplanar faces are flipped, near-Delaunay
 // edges where that evens the valences, creases
 // stay, positions and validity are kept, and the reconstruction's smallest angles do not get worse.
 
@@ -158,7 +158,7 @@ TEST(GcsDelaunayFlips, ReconstructionKeepsTopologyAndImprovesTheSmallestAngle) {
   o.target_vertices = 300;
   o.seed = 3;
   const Mesh with = gcs::reconstruct(cloud, o).mesh;
-  o.delaunay_flips = false;
+  o.post.delaunay_flips = false;
   const Mesh without = gcs::reconstruct(cloud, o).mesh;
   const gcs::MeshValidity a = gcs::mesh_validity(with), b = gcs::mesh_validity(without);
   EXPECT_EQ(with.n_vertices(), without.n_vertices());

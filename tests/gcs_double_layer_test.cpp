@@ -344,7 +344,7 @@ INSTANTIATE_TEST_SUITE_P(Clouds, GcsSheet,
                            return i.param.shape + (i.param.normals ? "_normals" : "_no_normals");
                          });
 
-// ReconstructOptions::skip_unfaced_samples on a closed vault shell whose walls are about one mean
+// ExperimentalOptions::skip_unfaced_samples on a closed vault shell whose walls are about one mean
 // edge apart (thickness 0.2, 300 vertices): the option changes the run (samples there face no
 // vertex nearby), the result is a valid manifold mesh in one piece, and the same seed gives the same
 // mesh. On an open sheet with input normals some vertex always faces the sample: the same mesh
@@ -353,7 +353,7 @@ TEST(GcsOrientedNearest, SkippingUnfacedSamplesOnAThinShellIsValidAndDeterminist
   const auto run = [](const PointCloud& cloud, bool skip) {
     gcs::ReconstructOptions o;
     o.target_vertices = 300;
-    o.skip_unfaced_samples = skip;
+    o.experimental.skip_unfaced_samples = skip;
     return gcs::Reconstructor(cloud, o).run().mesh;
   };
   const auto same = [](const Mesh& a, const Mesh& b) {

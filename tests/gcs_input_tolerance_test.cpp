@@ -145,7 +145,7 @@ TEST_F(InputTolerance, ReaderToleratesAZeroNormalInAPly) {
 gcs::ReconstructOptions small(size_t target) {
   gcs::ReconstructOptions o;
   o.target_vertices = target;
-  o.batch_splits = 50;
+  o.growth.batch_splits = 50;
   o.progress_interval = 25;
   return o;
 }

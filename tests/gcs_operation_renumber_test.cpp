@@ -147,8 +147,8 @@ class RecordingOperation : public gcs::Operation {
 gcs::ReconstructOptions options() {
   gcs::ReconstructOptions o;
   o.target_vertices = 2100;
-  o.steps_per_split = 10;
-  o.batch_splits = 50;
+  o.growth.steps_per_split = 10;
+  o.growth.batch_splits = 50;
   o.progress_interval = 100;
   return o;
 }
@@ -205,7 +205,7 @@ TEST(GcsOperationRenumber, AnOperationThatChangesNothingLeavesTheRunAsItIs) {
   const edgefront::PointCloud cloud = vault_shell_cloud(5000, 0.02);
   gcs::ReconstructOptions o = options();
   o.target_vertices = 600;
-  o.steps_per_split = 50;  // with these settings the grid was once checked only with operations registered
+  o.growth.steps_per_split = 50;  // with these settings the grid was once checked only with operations registered
   gcs::Reconstructor plain(cloud, o);
   const gcs::ReconstructResult a = plain.run();
   gcs::Reconstructor hooked(cloud, o);
@@ -323,7 +323,7 @@ edgefront::PointCloud bumpy_sphere_cloud() {
 TEST(GcsOperationRenumber, ReconstructionWithTheTwistOperationRenumbersAndStaysValid) {
   const edgefront::PointCloud cloud = bumpy_sphere_cloud();
   gcs::ReconstructOptions o = options();
-  o.steps_per_split = 20;
+  o.growth.steps_per_split = 20;
   const TwistRun a = run_with_twist(cloud, o);
   EXPECT_EQ(a.result.stop_reason, gcs::StopReason::target_reached);
   EXPECT_GT(a.twist->stats().calls, 10u);
@@ -341,8 +341,8 @@ TEST(GcsOperationRenumber, ReconstructionWithTheTwistOperationRenumbersAndStaysV
 TEST(GcsOperationRenumber, ReconstructionRenumbersAfterTwistRepairs) {
   const edgefront::PointCloud cloud = vault_shell_cloud(3000, 0.2);
   gcs::ReconstructOptions o = options();
-  o.orient_winners = false;
-  o.steps_per_split = 5;
+  o.input.orient_winners = false;
+  o.growth.steps_per_split = 5;
   const TwistRun a = run_with_twist(cloud, o);
   EXPECT_GT(a.regions_at_first_renumbering, 0u);
   EXPECT_GE(a.recorder->renumberings, 1u);

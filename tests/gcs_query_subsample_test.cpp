@@ -1,4 +1,4 @@
-// Tests of the reconstructor's query subsample (ReconstructOptions::max_query_points): a cloud
+// Tests of the reconstructor's query subsample (InputOptions::max_query_points): a cloud
 // with normals larger than the limit is queried through a spatially even subsample in the
 // topology passes and the projection; the results keep the shape's topology, are deterministic,
 // and clouds within the limit (or without normals) give the same bytes as without a limit.
@@ -25,7 +25,7 @@ PointCloud cloud_of(const std::string& shape, size_t points) { return edgefront:
 gcs::ReconstructOptions options(size_t target, size_t max_query_points) {
   gcs::ReconstructOptions o;
   o.target_vertices = target;
-  o.max_query_points = max_query_points;
+  o.input.max_query_points = max_query_points;
   return o;
 }
 
@@ -118,7 +118,7 @@ TEST(QuerySubsample, OperationsGetTheSubsampleInTheirContext) {
   const PointCloud cloud = cloud_of("torus", 6000);
   for (const size_t limit : {size_t(0), size_t(1500)}) {
     gcs::ReconstructOptions o = options(300, limit);
-    o.batch_splits = 50;
+    o.growth.batch_splits = 50;
     gcs::Reconstructor r(cloud, o);
     auto rec = std::make_shared<QueryPointsRecorder>();
     r.add_operation(rec);

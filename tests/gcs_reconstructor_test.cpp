@@ -33,7 +33,7 @@ PointCloud cloud_of(const std::string& shape, size_t points = 3000, std::uint64_
 gcs::ReconstructOptions small(size_t target) {
   gcs::ReconstructOptions o;
   o.target_vertices = target;
-  o.batch_splits = 50;
+  o.growth.batch_splits = 50;
   o.progress_interval = 25;
   return o;
 }
@@ -345,7 +345,7 @@ TEST(GcsReconstructor, AnOperationSeesOnlyChangesSinceItsLastCall) {
   };
   auto rec = std::make_shared<Recorder>();
   gcs::ReconstructOptions o = small(400);
-  o.batch_splits = 1;
+  o.growth.batch_splits = 1;
   gcs::Reconstructor r(cloud_of("icosphere", 2000), o);
   r.add_operation(rec);
   r.run();
@@ -358,24 +358,24 @@ TEST(GcsReconstructor, AnOperationSeesOnlyChangesSinceItsLastCall) {
   EXPECT_GT(partial, calls / 2);
 }
 
-// ReconstructOptions::batch_growth_vertices: from that many live vertices on, batches of
+// GrowthOptions::batch_growth_vertices: from that many live vertices on, batches of
 // ceil(batch_splits x live / batch_growth_vertices) splits. Below it the mesh is the same as with
 // fixed batches; above it there are fewer, longer batches (each call still sees every change since
 // the last), and the result is still a valid closed mesh.
 TEST(GcsReconstructor, BatchesGrowWithTheMeshFromBatchGrowthVertices) {
   const PointCloud cloud = cloud_of("icosphere", 3000);
   gcs::ReconstructOptions fixed = small(400);
-  fixed.batch_growth_vertices = 0;
+  fixed.growth.batch_growth_vertices = 0;
   gcs::ReconstructOptions above = small(400);
-  above.batch_growth_vertices = 400;  // the target: never grows
+  above.growth.batch_growth_vertices = 400;  // the target: never grows
   const gcs::ReconstructResult a = gcs::reconstruct(cloud, fixed), b = gcs::reconstruct(cloud, above);
   EXPECT_EQ(flat_points(a.mesh), flat_points(b.mesh));
   EXPECT_EQ(flat_faces(a.mesh), flat_faces(b.mesh));
   EXPECT_EQ(a.batches, b.batches);
 
-  fixed.batch_splits = 1;
+  fixed.growth.batch_splits = 1;
   gcs::ReconstructOptions grown = fixed;
-  grown.batch_growth_vertices = 10;  // from 10 vertices on: 10% growth per batch
+  grown.growth.batch_growth_vertices = 10;  // from 10 vertices on: 10% growth per batch
   const gcs::ReconstructResult c = gcs::reconstruct(cloud, fixed), d = gcs::reconstruct(cloud, grown);
   EXPECT_GE(c.batches, c.splits);  // one split per batch (and the final call)
   // 10 vertices to 400 at >= 10% per batch: at most ln(40) / ln(1.1) ~ 39 batches, plus those
@@ -384,6 +384,41 @@ TEST(GcsReconstructor, BatchesGrowWithTheMeshFromBatchGrowthVertices) {
   EXPECT_GT(d.batches, 30u);
   EXPECT_EQ(edgefront::compute_stats(d.mesh).border_loops, 0u);
   expect_manifold(d.mesh, "grown batches");
+}
+
+// The presets differ from the defaults in the documented fields only; preset() maps the names; the
+// header's designated-initializer example compiles and sets the nested field.
+TEST(GcsReconstructor, PresetsChangeOnlyTheirDocumentedFields) {
+  using gcs::ReconstructOptions;
+  EXPECT_EQ(ReconstructOptions::scan(), ReconstructOptions{});
+  ReconstructOptions shell = ReconstructOptions::thin_shell();
+  EXPECT_TRUE(shell.experimental.skip_unfaced_samples);
+  EXPECT_TRUE(shell.input.quadric_normals);
+  shell.experimental.skip_unfaced_samples = false;
+  shell.input.quadric_normals = false;
+  EXPECT_EQ(shell, ReconstructOptions{});
+  ReconstructOptions sheet = ReconstructOptions::open_sheet();
+  EXPECT_TRUE(sheet.input.quadric_normals);
+  sheet.input.quadric_normals = false;
+  EXPECT_EQ(sheet, ReconstructOptions{});
+  EXPECT_NE(ReconstructOptions::thin_shell(), ReconstructOptions::open_sheet());
+
+  const std::vector<std::string> names = ReconstructOptions::preset_names();
+  ASSERT_EQ(names.size(), 3u);
+  EXPECT_EQ(ReconstructOptions::preset("scan"), ReconstructOptions::scan());
+  EXPECT_EQ(ReconstructOptions::preset("thin_shell"), ReconstructOptions::thin_shell());
+  EXPECT_EQ(ReconstructOptions::preset("open_sheet"), ReconstructOptions::open_sheet());
+  try {
+    (void)ReconstructOptions::preset("thin-shell");
+    ADD_FAILURE() << "an unknown preset was accepted";
+  } catch (const edgefront::InvalidInput& e) {
+    for (const std::string& n : names) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
+  }
+
+  const ReconstructOptions o{.target_vertices = 2000, .post = {.fit_rounds = 5}};
+  EXPECT_EQ(o.target_vertices, 2000u);
+  EXPECT_EQ(o.post.fit_rounds, 5);
+  EXPECT_TRUE(o.post.fit_surface);  // the group's other fields keep their defaults
 }
 
 TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
@@ -417,20 +452,20 @@ TEST(GcsReconstructor, RejectsBadInputWithClearErrors) {
   EXPECT_THROW(gcs::Reconstructor(ok, small(3)), InvalidInput);
   EXPECT_THROW(gcs::Reconstructor(ok, small(401)), InvalidInput);
   gcs::ReconstructOptions bad = small(50);
-  bad.winner_rate = 0;
+  bad.growth.winner_rate = 0;
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
   bad = small(50);
-  bad.steps_per_split = 0;
+  bad.growth.steps_per_split = 0;
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
   bad = small(50);
-  bad.film_samples = 65;  // more nearest samples per face than the film test allows
+  bad.topology.film_samples = 65;  // more nearest samples per face than the film test allows
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
-  bad.film_samples = 64;
+  bad.topology.film_samples = 64;
   EXPECT_NO_THROW(gcs::Reconstructor(ok, bad));
   bad = small(50);
-  bad.border_trim_rings = 9;  // more rings trimmed along a refused loop than allowed
+  bad.topology.border_trim_rings = 9;  // more rings trimmed along a refused loop than allowed
   EXPECT_THROW(gcs::Reconstructor(ok, bad), InvalidInput);
-  bad.border_trim_rings = 8;
+  bad.topology.border_trim_rings = 8;
   EXPECT_NO_THROW(gcs::Reconstructor(ok, bad));
   PointCloud wrong_normals = ok;
   wrong_normals.normals.resize(3);
@@ -512,12 +547,12 @@ TEST(GcsReconstructor, LargeOffsetSmallExtent) {
 
 TEST(GcsReconstructor, TetrahedronStartAndStopReasons) {
   gcs::ReconstructOptions o = small(200);
-  o.start = gcs::StartShape::tetrahedron;
+  o.growth.start = gcs::StartShape::tetrahedron;
   const gcs::ReconstructResult res = gcs::reconstruct(cloud_of("icosphere", 2000), o);
   EXPECT_EQ(res.mesh.n_vertices(), 200u);
   EXPECT_EQ(edgefront::compute_stats(res.mesh).euler_characteristic, 2);
   EXPECT_EQ(gcs::to_string(res.stop_reason), "target reached");
-  o.max_steps_per_vertex = 1;  // 200 basic steps: two splits at most
+  o.growth.max_steps_per_vertex = 1;  // 200 basic steps: two splits at most
   const gcs::ReconstructResult cut = gcs::reconstruct(cloud_of("icosphere", 2000), o);
   EXPECT_EQ(cut.stop_reason, gcs::StopReason::step_limit);
   expect_manifold(cut.mesh, "step limit");

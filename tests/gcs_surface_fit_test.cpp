@@ -1,4 +1,4 @@
-// The surface fit of the GCS result (gcs/src/detail/surface_fit.h, ReconstructOptions::fit_surface):
+// The surface fit of the GCS result (gcs/src/detail/surface_fit.h, PostProcessOptions::fit_surface):
 // vertices move along their normals toward the sampled surface, faces do not turn past the bound,
 // no self-intersections appear, the reconstruction stays deterministic, bad options are rejected.
 
@@ -200,14 +200,14 @@ TEST(GcsSurfaceFit, ReconstructionOptionsOutOfRangeAreRejected) {
   };
   gcs::ReconstructOptions o;
   o.target_vertices = 300;  // within the cloud's 3000 points: only the fit option is out of range
-  o.fit_rounds = 0;
+  o.post.fit_rounds = 0;
   expect_rejected(o, "fit_rounds");
-  o.fit_rounds = 21;
+  o.post.fit_rounds = 21;
   expect_rejected(o, "fit_rounds");
-  o.fit_rounds = gcs::ReconstructOptions{}.fit_rounds;
-  o.fit_smoothness = -0.5;
+  o.post.fit_rounds = gcs::ReconstructOptions{}.post.fit_rounds;
+  o.post.fit_smoothness = -0.5;
   expect_rejected(o, "fit_smoothness");
-  o.fit_smoothness = std::numeric_limits<double>::infinity();
+  o.post.fit_smoothness = std::numeric_limits<double>::infinity();
   expect_rejected(o, "fit_smoothness");
 }
 
@@ -220,7 +220,7 @@ TEST(GcsSurfaceFit, ReconstructionIsDeterministicAndTheFitOnlyMovesVertices) {
   o.seed = 3;
   const Mesh a = gcs::reconstruct(cloud, o).mesh;
   const Mesh b = gcs::reconstruct(cloud, o).mesh;
-  o.fit_surface = false;
+  o.post.fit_surface = false;
   const Mesh plain = gcs::reconstruct(cloud, o).mesh;
   ASSERT_EQ(a.n_vertices(), b.n_vertices());
   ASSERT_EQ(a.n_vertices(), plain.n_vertices());

@@ -1,5 +1,5 @@
 // Resolving self-intersecting face pairs of the GCS result (gcs/src/detail/untangle.h,
-// ReconstructOptions::resolve_self_intersections): a poked vertex is smoothed back, crossings
+// PostProcessOptions::resolve_self_intersections): a poked vertex is smoothed back, crossings
 // smoothing cannot undo are cut out, a mesh without crossings is untouched, bad parameters are
 // refused, a cut never splits the mesh, and a thin vault shell that comes out of the loop with crossings is returned without.
 
@@ -233,7 +233,7 @@ TEST(GcsUntangle, AThinVaultShellIsReturnedWithoutCrossings) {
     gcs::ReconstructOptions o;
     o.target_vertices = 300;
     o.seed = 2;
-    o.resolve_self_intersections = resolve;
+    o.post.resolve_self_intersections = resolve;
     return gcs::Reconstructor(shell, o).run();
   };
   const gcs::ReconstructResult kept = run(false);

@@ -216,8 +216,8 @@ TEST(SpatialOrder, ReconstructionThatRenumbersStaysValidAndDeterministic) {
   const edgefront::PointCloud cloud = edgefront::shapes::sample("torus", so);
   gcs::ReconstructOptions o;
   o.target_vertices = 2200;
-  o.steps_per_split = 10;
-  o.batch_splits = 50;
+  o.growth.steps_per_split = 10;
+  o.growth.batch_splits = 50;
   o.progress_interval = 400;
   gcs::Reconstructor r(cloud, o);
   size_t checks = 0;

@@ -166,7 +166,7 @@ TEST(ThreadsPhases, ReconstructionIsByteIdenticalForOneTwoAndThreeThreads) {
   for (unsigned t : {1u, 2u, 3u}) {
     gcs::ReconstructOptions o;
     o.target_vertices = 250;
-    o.quadric_normals = true;
+    o.input.quadric_normals = true;
     o.seed = 5;
     o.threads = t;
     gcs::Reconstructor r(cloud, o);

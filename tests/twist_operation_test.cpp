@@ -75,7 +75,7 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   gcs::ReconstructOptions ro;
   ro.target_vertices = 400;
   ro.seed = 3;
-  ro.orient_winners = false;  // with oriented winners (the default) plain GCS does not twist here
+  ro.input.orient_winners = false;  // with oriented winners (the default) plain GCS does not twist here
   gcs::Reconstructor plain(cloud, ro);
   const double without = twist::face_orientation_agreement(plain.run().mesh, truth);
   gcs::Reconstructor repaired(cloud, ro);
@@ -134,11 +134,55 @@ TEST(TwistOperation, ScatteredLimitAppliesOnlyWithoutNormals) {
   }
 }
 
+// The hook's repair settings (TwistOperationOptions::default_repair) differ from twist::repair's
+// defaults in the four fields twist_operation.h and docs/twist.md name, and only there.
+TEST(TwistOperation, DefaultRepairDiffersFromRepairDefaultsOnlyWhereDocumented) {
+  const twist::RepairOptions plain;
+  const twist::RepairOptions hook = gcs::TwistOperationOptions{}.repair;
+  EXPECT_EQ(hook.max_border_ratio, 0.0);
+  EXPECT_EQ(hook.peel_flaps, 3);
+  EXPECT_TRUE(hook.peel_from_cuts);
+  EXPECT_EQ(hook.drop_turned_patches, 4u);
+  EXPECT_NE(hook.max_border_ratio, plain.max_border_ratio);
+  EXPECT_NE(hook.peel_flaps, plain.peel_flaps);
+  EXPECT_NE(hook.peel_from_cuts, plain.peel_from_cuts);
+  EXPECT_NE(hook.drop_turned_patches, plain.drop_turned_patches);
+  EXPECT_EQ(hook.max_repairs, plain.max_repairs);
+  EXPECT_EQ(hook.min_component_faces, plain.min_component_faces);
+  EXPECT_EQ(hook.min_cut_piece_share, plain.min_cut_piece_share);
+  EXPECT_EQ(hook.regrow_cut_outs, plain.regrow_cut_outs);
+  EXPECT_EQ(hook.retest_turn_degrees, plain.retest_turn_degrees);
+  EXPECT_EQ(hook.retest_move, plain.retest_move);
+  EXPECT_EQ(hook.label_by_reference, plain.label_by_reference);
+  EXPECT_EQ(hook.cut_cost, plain.cut_cost);
+  EXPECT_EQ(hook.flip_seam_pieces, plain.flip_seam_pieces);
+  EXPECT_EQ(hook.global_orientation, plain.global_orientation);
+  EXPECT_EQ(hook.garbage_collect, plain.garbage_collect);  // (TwistOperation turns it off itself)
+  const twist::DetectOptions& hd = hook.detect;
+  const twist::DetectOptions& pd = plain.detect;
+  EXPECT_EQ(hd.radius, pd.radius);
+  EXPECT_EQ(hd.surface_factor, pd.surface_factor);
+  EXPECT_EQ(hd.parallel_cos, pd.parallel_cos);
+  EXPECT_EQ(hd.facing_cos, pd.facing_cos);
+  EXPECT_EQ(hd.fold_cos, pd.fold_cos);
+  EXPECT_EQ(hd.self_intersections, pd.self_intersections);
+  EXPECT_EQ(hd.grow_levels, pd.grow_levels);
+  EXPECT_EQ(hd.min_flagged_faces, pd.min_flagged_faces);
+  EXPECT_EQ(hd.min_flagged_share, pd.min_flagged_share);
+  EXPECT_EQ(hd.require_orientation_evidence, pd.require_orientation_evidence);
+  EXPECT_EQ(hd.reference_cos, pd.reference_cos);
+  EXPECT_EQ(hd.reference_side_weight, pd.reference_side_weight);
+  EXPECT_EQ(hd.reference_margin, pd.reference_margin);
+  EXPECT_EQ(hd.thin_wall, pd.thin_wall);
+  EXPECT_EQ(hd.audit_faces, pd.audit_faces);
+  EXPECT_EQ(hd.threads, pd.threads);
+}
+
 TEST(TwistOperation, StackedLayerRoundsOfTheReconstructorAreValidated) {
   const edgefront::PointCloud cloud = edgefront::shapes::sample("vault-shell", {});
   for (int rounds : {-1, 17}) {
     gcs::ReconstructOptions ro;
-    ro.stacked_layer_rounds = rounds;
+    ro.post.stacked_layer_rounds = rounds;
     try {
       gcs::Reconstructor rec(cloud, ro);
       FAIL() << "no exception for " << rounds;

@@ -57,21 +57,26 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
       put(c, a, 3 * r + 2);
     }
   }
+  // The ids of a bucket's entries are kept next to them (`bucket_id`, read in order) instead of
+  // being read back from `edge_of`, whose entries lie all over the mesh (a cache miss each).
   std::vector<std::uint32_t> edge_of(3 * m);
+  std::vector<std::uint32_t> bucket_id(3 * m);
   std::uint32_t edges = 0;
   for (size_t u = 0; u < n; ++u) {
     for (std::uint32_t i = start[u]; i < start[u + 1]; ++i) {
       std::uint32_t id = edges;
       for (std::uint32_t j = start[u]; j < i; ++j) {
         if (bucket[j].other == bucket[i].other) {
-          id = edge_of[bucket[j].h];
+          id = bucket_id[j];
           break;
         }
       }
       if (id == edges) ++edges;
+      bucket_id[i] = id;
       edge_of[bucket[i].h] = id;
     }
   }
+  std::vector<std::uint32_t>().swap(bucket_id);
   std::vector<Entry>().swap(bucket);
   std::vector<std::uint32_t>().swap(start);
 
@@ -131,6 +136,10 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
   };
   std::vector<Extra> extras;
   std::unordered_map<std::uint32_t, int> copy_of_class;
+  // Per corner: kNone when it belongs to its vertex's first fan (the common case), else the root
+  // of its fan, to be mapped to the fan's copy below. The build reads it in order instead of
+  // walking the union-find again (whose roots lie all over the mesh: a cache miss each).
+  std::vector<std::uint32_t> corner_fan(3 * m, kNone);
   for (size_t r = 0; r < m; ++r) {
     if (!kept[r]) continue;
     for (size_t k = 0; k < 3; ++k) {
@@ -139,11 +148,13 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
       std::uint32_t& first = first_class[static_cast<size_t>(v)];
       if (first == kNone) {
         first = root;
-      } else if (first != root && copy_of_class.emplace(root, -1).second) {
-        extras.push_back(Extra{v, r, root});
+      } else if (first != root) {
+        corner_fan[3 * r + k] = root;
+        if (copy_of_class.emplace(root, -1).second) extras.push_back(Extra{v, r, root});
       }
     }
   }
+  corner_class = BasicUnionFind<std::uint32_t>();  // free it
   std::sort(extras.begin(), extras.end(),
             [](const Extra& a, const Extra& b) { return a.vertex != b.vertex ? a.vertex < b.vertex : a.row < b.row; });
   for (size_t i = 0; i < extras.size(); ++i) copy_of_class[extras[i].root] = static_cast<int>(n + i);
@@ -188,9 +199,8 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
     HalfedgeHandle hh[3];
     bool is_new[3], needs_adjust[3] = {false, false, false};
     for (size_t k = 0; k < 3; ++k) {
-      const int input = tris[3 * r + k];
-      const std::uint32_t root = static_cast<std::uint32_t>(corner_class.find(3 * r + k));
-      v[k] = VertexHandle(root == first_class[static_cast<size_t>(input)] ? input : copy_of_class.at(root));
+      const std::uint32_t fan = corner_fan[3 * r + k];
+      v[k] = VertexHandle(fan == kNone ? tris[3 * r + k] : copy_of_class.at(fan));
     }
     for (size_t i = 0; i < 3; ++i) {
       const int e = mesh_edge[edge_of[3 * r + i]];

@@ -3,8 +3,8 @@
 # dropped when read (every face wound consistently with its neighbours), is edge- and vertex-
 # manifold, closed in one piece where expected; the orientation consistency against the points'
 # normals is printed and must reach MIN_RAW when given. With RERUN the run is repeated and must give
-# the same bytes.
-# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED VERTICES [MIN_RAW] [MIN_FACES (default VERTICES)] [RERUN]
+# the same bytes. With HEAL the session heals the borders (--heal) and must have added faces.
+# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED VERTICES [MIN_RAW] [MIN_FACES (default VERTICES)] [RERUN] [HEAL]
 cmake_minimum_required(VERSION 3.20)
 set(cloud ${WORK}/${NAME}.xyz)
 set(mesh ${WORK}/${NAME}.off)
@@ -18,8 +18,12 @@ set(args ${cloud} -o ${mesh} --vertices ${VERTICES} --seed 1)
 if(NOT TWIST)
   list(APPEND args --no-twist)
 endif()
+if(HEAL)
+  list(APPEND args --heal)
+endif()
 execute_process(COMMAND ${FOREIGN_GCS} ${args} RESULT_VARIABLE rc ERROR_VARIABLE err)
 message(STATUS "${err}")
+set(run_log "${err}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "foreign-gcs failed (${rc})")
 endif()
@@ -34,6 +38,9 @@ string(JSON raw GET "${json}" orientation_consistency raw)
 string(JSON comp GET "${json}" orientation_consistency per_component)
 message(STATUS "${NAME}: ${vertices} vertices, ${faces} faces, ${components} components, ${border_loops} border loops, closed ${closed}; orientation consistency raw ${raw}, per component ${comp}")
 set(problems "")
+if(HEAL AND NOT run_log MATCHES "\\+[1-9][0-9]* faces \\(heal: ")
+  list(APPEND problems "the heal added no face")
+endif()
 if(NOT DEFINED MIN_FACES)
   set(MIN_FACES ${VERTICES})
 endif()

@@ -216,6 +216,10 @@ class Loop {
     so.repair.peel_from_cuts = true;
     so.repair.drop_turned_patches = 4;
     so.max_retwists = o_.max_retwists;
+    // The border operations this loop lacks, done by the session and replayed like the rest.
+    so.heal.enabled = o_.heal;
+    so.heal.max_gap_edges = o_.heal_gap_edges;
+    so.heal.max_hole_vertices = o_.heal_hole_vertices;
     session_ = std::make_unique<twist::RepairSession>(V, F, so);
     replay(session_->initial_record());  // empty for the octahedron
     m_.dirty.clear();
@@ -453,9 +457,9 @@ class Loop {
     ++stats_.batches;
     if (m_.live_vertices() > grid_.built_for() * 3 / 2 + 8) rebuild_grid();
     if (o_.verbose)
-      std::fprintf(stderr, "batch %zu: %zu steps, %zu vertices, %zu faces; record: +%zu vertices, %zu flipped, %zu removed; far probes %zu/%zu\n",
+      std::fprintf(stderr, "batch %zu: %zu steps, %zu vertices, %zu faces; record: +%zu vertices, %zu flipped, %zu removed, +%zu faces; far probes %zu/%zu\n",
                    stats_.batches, stats_.basic_steps, m_.live_vertices(), m_.live_faces(), r.vertices_added.size(),
-                   r.faces_flipped.size(), r.faces_removed.size(), stats_.probes_far, stats_.probes);
+                   r.faces_flipped.size(), r.faces_removed.size(), r.faces_added.size(), stats_.probes_far, stats_.probes);
   }
 
   /// The host's changes since the last answer, in its own indices.
@@ -487,6 +491,9 @@ class Loop {
     stats_.record_faces_flipped += r.faces_flipped.size();
     stats_.record_faces_removed += r.faces_removed.size();
     stats_.record_corners_replaced += r.corners_replaced.size();
+    stats_.record_faces_added += r.faces_added.size();
+    stats_.heal_strips += session_->stats().heal.strips;
+    stats_.heal_holes += session_->stats().heal.holes;
     for (size_t v = before; v < m_.vertex_slots(); ++v) grid_.insert(static_cast<int>(v), m_.pos[v]);
     for (const twist::VertexMoved& mv : r.vertices_moved) grid_.move(mv.vertex, m_.pos[static_cast<size_t>(mv.vertex)]);
     // Vertices left without faces (deleted by the repair, or isolated by its removals) leave the
@@ -561,6 +568,8 @@ LoopStats run_gcs(const Cloud& cloud, const LoopOptions& options, std::vector<Po
   if (options.target_vertices < 6) throw std::runtime_error("--vertices must be at least 6");
   if (!cloud.normals.empty() && cloud.normals.size() != cloud.points.size())
     throw std::runtime_error("normals do not match the points");
+  if (options.heal && cloud.normals.empty())
+    throw std::runtime_error("--heal needs oriented points (x y z nx ny nz): the healed faces must lie on the reference cloud");
   Loop loop(cloud, options);
   return loop.run(out_vertices, out_faces);
 }

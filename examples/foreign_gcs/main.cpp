@@ -28,7 +28,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--verbose]\n"
+    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--verbose]\n"
     "  POINTS         text file, one point per line: x y z [nx ny nz]\n"
     "  -o MESH        output mesh, .off or .ply (ASCII)\n"
     "  --vertices N   stop at N live vertices (6 to 10000000, default 2000)\n"
@@ -38,6 +38,9 @@ constexpr const char* kUsage =
     "  --repair-from N no incremental repair while the mesh has fewer than N vertices (default 200)\n"
     "  --max-retwists R a place the repair turned more often than R times is cut out (default 2)\n"
     "  --probes K     'far along the surface?' MDF probes per batch (0 to 10000, default 16)\n"
+    "  --heal         the session re-joins borders after each repair (zips, small holes; needs normals)\n"
+    "  --heal-gap E   with --heal: zip border chains closer than E mean edges (0 to 10, default 1)\n"
+    "  --heal-holes N with --heal: close holes of at most N border vertices by a fan (0 to 1000, default 8)\n"
     "  --verbose      one line per batch on stderr\n";
 
 struct UsageError : std::runtime_error {
@@ -52,6 +55,15 @@ std::uint64_t parse_count(const std::string& name, const std::string& text, std:
   const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
   if (errno == ERANGE || v < lo || v > hi)
     throw UsageError(name + ": " + text + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
+double parse_real(const std::string& name, const std::string& text, double lo, double hi) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() ? std::nan("") : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !(v >= lo && v <= hi))
+    throw UsageError(name + ": '" + text + "' is not a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return v;
 }
 
@@ -161,6 +173,12 @@ int main(int argc, char** argv) {
         o.max_retwists = parse_count(a, value(), 0, 1000000);
       } else if (a == "--probes") {
         o.probes_per_batch = parse_count(a, value(), 0, 10000);
+      } else if (a == "--heal") {
+        o.heal = true;
+      } else if (a == "--heal-gap") {
+        o.heal_gap_edges = parse_real(a, value(), 0, 10);
+      } else if (a == "--heal-holes") {
+        o.heal_hole_vertices = parse_count(a, value(), 0, 1000);
       } else if (a == "--verbose") {
         o.verbose = true;
       } else if (!a.empty() && a[0] == '-') {
@@ -191,10 +209,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "foreign-gcs: %zu vertices, %zu faces; %zu basic steps, %zu batches, %zu vertex splits, %zu edge splits, "
                  "%zu collapses%s; twist repair: %zu calls, records: +%zu vertices, %zu faces flipped, %zu removed, %zu "
-                 "corners replaced; far probes %zu of %zu; %.2f s (session %.2f s)\n",
+                 "corners replaced, +%zu faces (heal: %zu strips, %zu holes); far probes %zu of %zu; %.2f s (session %.2f s)\n",
                  V.size(), F.size(), s.basic_steps, s.batches, s.splits, s.edge_splits, s.collapses,
                  s.step_limit ? " (stopped by the step limit)" : "", s.repair_calls, s.record_vertices_added,
-                 s.record_faces_flipped, s.record_faces_removed, s.record_corners_replaced, s.probes_far, s.probes,
+                 s.record_faces_flipped, s.record_faces_removed, s.record_corners_replaced, s.record_faces_added,
+                 s.heal_strips, s.heal_holes, s.probes_far, s.probes,
                  s.seconds_loop, s.seconds_session);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "foreign-gcs: error: %s\n", e.what());

@@ -1,29 +1,31 @@
 #include "gcs/evaluation.h"
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <iomanip>
-#include <limits>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
-#include "detail/self_intersection.h"
+#include "detail/evaluation_common.h"
 #include "edgefront/coordinate_range.h"
 #include "edgefront/error.h"
-#include "edgefront/geometry.h"
-#include "edgefront/parallel.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
 #include "edgefront/triangle_bvh.h"
 
 namespace gcs {
+
+using detail::eval::Box;
+using detail::eval::mesh_triangles;
+using detail::eval::Triangle;
+using detail::eval::TriangleBvh;
+using detail::eval::validity_of;
+
 namespace {
 
 using edgefront::FaceHandle;
@@ -34,7 +36,6 @@ using edgefront::PointIndex;
 using edgefront::Vec3;
 
 constexpr std::size_t kMaxSamples = 100000000;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool finite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
@@ -53,6 +54,10 @@ void check_options(const EvaluationOptions& o) {
   }
 }
 
+}  // namespace
+
+namespace detail::eval {
+
 void check_mesh_coordinates(const Mesh& mesh, const char* what) {
   for (const auto v : mesh.vertices()) {
     if (mesh.status(v).deleted()) continue;
@@ -63,6 +68,12 @@ void check_mesh_coordinates(const Mesh& mesh, const char* what) {
   }
   edgefront::check_coordinate_range(mesh, std::string("evaluation: ") + what);
 }
+
+}  // namespace detail::eval
+
+namespace {
+
+using detail::eval::check_mesh_coordinates;
 
 void check_cloud(const PointCloud& cloud) {
   if (cloud.empty()) throw InvalidInput("evaluation: the ground-truth point set is empty");
@@ -83,25 +94,6 @@ void check_cloud(const PointCloud& cloud) {
                          std::to_string(i));
     }
   }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Geometry: the shared kernel (edgefront/geometry.h, edgefront/triangle_bvh.h)
-
-using Box = edgefront::AlignedBox;
-using edgefront::Triangle;
-using edgefront::TriangleBvh;
-
-// Live faces of the mesh as triangles; `face_of[i]` is the face index of triangle i.
-std::vector<Triangle> mesh_triangles(const Mesh& mesh, std::vector<int>* face_of = nullptr) {
-  std::vector<Triangle> tris;
-  tris.reserve(mesh.n_faces());
-  for (const auto f : mesh.faces()) {
-    if (mesh.status(f).deleted()) continue;
-    tris.push_back(edgefront::face_triangle(mesh, f));
-    if (face_of) face_of->push_back(f.idx());
-  }
-  return tris;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -222,24 +214,6 @@ OrientationConsistency orientation_of(const Mesh& mesh, const std::vector<int>& 
   return o;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Self-intersections
-
-// Counts the intersecting pairs; with `pairs`, also lists them (triangle indices, first < second
-// in leaf order).
-// On `threads` threads (contiguous chunks of the leaf order, the pairs joined in chunk order: the
-// same list for any count).
-std::size_t count_self_intersections_of(const TriangleBvh& bvh, std::vector<std::pair<int, int>>* pairs = nullptr,
-                                        unsigned threads = 1) {
-  return bvh.intersecting_pairs(pairs, threads);
-}
-
-// ---------------------------------------------------------------------------------------------
-
-double angle_deg(const Vec3& a, const Vec3& b) {
-  return std::atan2((a % b).norm(), a | b) * (180.0 / 3.14159265358979323846);
-}
-
 Box bbox_of(const std::vector<Vec3>& pts) {
   Box b;
   for (const Vec3& p : pts) b.add(p);
@@ -259,105 +233,6 @@ GroundTruth GroundTruth::from_mesh(edgefront::Mesh mesh) {
 }
 
 bool GroundTruth::has_normals() const { return is_mesh() || points().has_normals(); }
-
-std::size_t count_self_intersections(const Mesh& mesh) {
-  check_mesh_coordinates(mesh, "the mesh");
-  std::vector<Triangle> tris = mesh_triangles(mesh);
-  if (tris.empty()) return 0;
-  return count_self_intersections_of(TriangleBvh(std::move(tris)));
-}
-
-namespace detail {
-
-std::vector<std::pair<int, int>> self_intersecting_face_pairs(const Mesh& mesh) {
-  check_mesh_coordinates(mesh, "the mesh");
-  std::vector<int> face_of;
-  std::vector<Triangle> tris = mesh_triangles(mesh, &face_of);
-  std::vector<std::pair<int, int>> pairs;
-  if (tris.empty()) return pairs;
-  count_self_intersections_of(TriangleBvh(std::move(tris)), &pairs);
-  for (auto& [a, b] : pairs) {
-    a = face_of[static_cast<std::size_t>(a)];
-    b = face_of[static_cast<std::size_t>(b)];
-    if (a > b) std::swap(a, b);
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
-}
-
-}  // namespace detail
-
-namespace {
-
-// Validity of `mesh`; `bvh` (over the mesh's live faces) is reused when given.
-MeshValidity validity_of(const Mesh& mesh, bool count_self, const TriangleBvh* bvh, unsigned threads = 1) {
-  const edgefront::MeshStats st = edgefront::compute_stats(mesh);
-  MeshValidity m;
-  m.vertices = st.vertices;
-  m.edges = st.edges;
-  m.faces = st.faces;
-  m.nonmanifold_edges = 0;
-  m.edge_manifold = true;
-  m.nonmanifold_vertices = st.nonmanifold_vertices;
-  m.vertex_manifold = st.nonmanifold_vertices == 0;
-  m.components = st.components;
-  m.border_loops = st.border_loops;
-  m.closed = st.border_loops == 0;
-  m.euler_characteristic = st.euler_characteristic;
-  for (const auto& c : st.per_component) {
-    m.component_genus.push_back(c.genus);
-    m.genus += c.genus;
-  }
-  m.isolated_vertices = st.isolated_vertices;
-  m.degenerate_faces = st.degenerate_faces;
-  m.duplicate_faces = st.duplicate_faces;
-  m.valence_histogram = st.valence_histogram;
-
-  std::vector<Triangle> own;
-  if (!bvh) own = mesh_triangles(mesh);
-  const std::vector<Triangle>& tris = bvh ? bvh->triangles() : own;
-  std::vector<double> min_angles;
-  min_angles.reserve(tris.size());
-  std::size_t below10 = 0, below30 = 0;
-  for (const Triangle& t : tris) {
-    m.area += 0.5 * ((t.p[1] - t.p[0]) % (t.p[2] - t.p[0])).norm();
-    double a = kInf;
-    for (int i = 0; i < 3; ++i) {
-      const Vec3& p = t.p[static_cast<std::size_t>(i)];
-      const Vec3 e1 = t.p[static_cast<std::size_t>((i + 1) % 3)] - p,
-                 e2 = t.p[static_cast<std::size_t>((i + 2) % 3)] - p;
-      // A zero-length side makes the face degenerate: its smallest angle is 0.
-      a = std::min(a, e1.sqrnorm() > 0.0 && e2.sqrnorm() > 0.0 ? angle_deg(e1, e2) : 0.0);
-    }
-    min_angles.push_back(a);
-    below10 += a < 10.0 ? 1 : 0;
-    below30 += a < 30.0 ? 1 : 0;
-  }
-  if (!min_angles.empty()) {
-    const double n = static_cast<double>(min_angles.size());
-    m.faces_min_angle_below_10 = static_cast<double>(below10) / n;
-    m.faces_min_angle_below_30 = static_cast<double>(below30) / n;
-    m.min_angle_deg = *std::min_element(min_angles.begin(), min_angles.end());
-    std::sort(min_angles.begin(), min_angles.end());
-    const std::size_t k = min_angles.size();
-    m.median_min_angle_deg = k % 2 ? min_angles[k / 2] : 0.5 * (min_angles[k / 2 - 1] + min_angles[k / 2]);
-  }
-  if (count_self) {
-    if (bvh) {
-      m.self_intersecting_pairs = count_self_intersections_of(*bvh, nullptr, threads);
-    } else {
-      m.self_intersecting_pairs = own.empty() ? 0 : count_self_intersections_of(TriangleBvh(std::move(own)), nullptr, threads);
-    }
-  }
-  return m;
-}
-
-}  // namespace
-
-MeshValidity mesh_validity(const Mesh& mesh, bool count_self) {
-  check_mesh_coordinates(mesh, "the mesh");
-  return validity_of(mesh, count_self, nullptr);
-}
 
 namespace {
 
@@ -490,183 +365,6 @@ Evaluation evaluate(const Mesh& result, const GroundTruth& gt, const EvaluationO
   }
   e.validity = validity_of(result, options.self_intersections, &result_bvh, options.threads);
   return e;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Output
-
-namespace {
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::array<char, 64> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
-}
-
-std::string fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
-
-std::string distance_json(const OneSidedDistance& d, double diag) {
-  std::ostringstream os;
-  os << "{\"count\": " << d.count << ", \"mean\": " << num(d.mean) << ", \"rms\": " << num(d.rms)
-     << ", \"median\": " << num(d.median) << ", \"p95\": " << num(d.p95) << ", \"max\": " << num(d.max)
-     << ", \"mean_percent\": " << num(100 * d.mean / diag) << ", \"p95_percent\": " << num(100 * d.p95 / diag)
-     << ", \"max_percent\": " << num(100 * d.max / diag) << "}";
-  return os.str();
-}
-
-}  // namespace
-
-std::string format_evaluation(const Evaluation& e) {
-  std::ostringstream os;
-  auto dist = [&](const char* label, double v) {
-    os << label << fixed(v, 6) << "  (" << fixed(e.scale(v), 4) << "% of bbox diagonal)\n";
-  };
-  os << "ground truth:            " << (e.ground_truth_is_mesh ? "mesh, " : "point set, ")
-     << e.ground_truth_points << (e.ground_truth_is_mesh ? " samples" : " points") << ", bbox diagonal "
-     << fixed(e.gt_bbox_diagonal, 6) << "\n";
-  os << "result samples:          " << e.result_to_gt.count << "; distance to a mesh: "
-     << (e.exact_surface_distance ? "exact, to its surface" : "to its nearest sample") << "\n";
-  dist("chamfer-L1:              ", e.chamfer_l1);
-  dist("  result -> gt mean:     ", e.result_to_gt.mean);
-  dist("  gt -> result mean:     ", e.gt_to_result.mean);
-  dist("hausdorff:               ", e.hausdorff);
-  dist("  result -> gt max:      ", e.result_to_gt.max);
-  dist("  gt -> result max:      ", e.gt_to_result.max);
-  dist("hausdorff 95%:           ", e.hausdorff_p95);
-  for (const FScore& f : e.fscores) {
-    os << "F-score @ " << fixed(100 * f.threshold_fraction, 2) << "%:          " << fixed(f.fscore, 4)
-       << "  (precision " << fixed(f.precision, 4) << ", recall " << fixed(f.recall, 4) << ", threshold "
-       << fixed(f.threshold, 6) << ")\n";
-  }
-  if (e.normal_consistency) {
-    os << "normal consistency:      " << fixed(*e.normal_consistency, 4) << "  (mean |n.n_gt|)\n";
-  } else {
-    os << "normal consistency:      n/a (ground truth without normals)\n";
-  }
-  if (e.orientation) {
-    std::size_t with_samples = 0, flipped = 0;
-    for (const auto& c : e.orientation->components) {
-      with_samples += c.samples > 0 ? 1 : 0;
-      flipped += c.samples > 0 && c.flipped ? 1 : 0;
-    }
-    os << "orientation consistency: " << fixed(e.orientation->raw, 4) << " as is, "
-       << fixed(e.orientation->per_component, 4) << " with the better sign per component (" << flipped
-       << " of " << with_samples << " components better flipped)\n";
-  } else {
-    os << "orientation consistency: n/a (ground truth without normals)\n";
-  }
-  const MeshValidity& m = e.validity;
-  os << "mesh:                    " << m.vertices << " vertices, " << m.edges << " edges, " << m.faces
-     << " faces, area " << fixed(m.area, 6) << "\n";
-  os << "manifold:                edges " << (m.edge_manifold ? "yes" : "no") << ", vertices "
-     << (m.vertex_manifold ? "yes" : "no") << " (" << m.nonmanifold_vertices << " non-manifold)";
-  if (m.faces_dropped_when_read > 0) {
-    os << "; but the file had " << m.faces_dropped_when_read
-       << " more faces that made it non-manifold (dropped on reading)";
-  }
-  os << "\n";
-  os << "components:              " << m.components << ", border loops " << m.border_loops
-     << (m.closed ? " (closed)" : "") << ", isolated vertices " << m.isolated_vertices << "\n";
-  os << "euler / genus:           " << m.euler_characteristic << " / " << m.genus;
-  if (m.component_genus.size() > 1) {
-    os << "  (per component:";
-    for (std::size_t i = 0; i < m.component_genus.size() && i < 10; ++i) os << " " << m.component_genus[i];
-    if (m.component_genus.size() > 10) os << " ...";
-    os << ")";
-  }
-  os << "\n";
-  os << "self-intersecting pairs: "
-     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("not computed"))
-     << "\n";
-  os << "degenerate / duplicate:  " << m.degenerate_faces << " / " << m.duplicate_faces << " faces\n";
-  os << "min angle:               " << fixed(m.min_angle_deg, 2) << " deg, median of per-face minimum "
-     << fixed(m.median_min_angle_deg, 2) << " deg; " << fixed(100 * m.faces_min_angle_below_10, 2)
-     << "% of faces < 10 deg, " << fixed(100 * m.faces_min_angle_below_30, 2) << "% < 30 deg\n";
-  os << "valence histogram:      ";
-  std::size_t total = 0;
-  for (const std::size_t c : m.valence_histogram) total += c;
-  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k) {
-    if (m.valence_histogram[k] == 0) continue;
-    os << " " << k << ":" << m.valence_histogram[k] << " ("
-       << fixed(100.0 * static_cast<double>(m.valence_histogram[k]) / static_cast<double>(total), 1) << "%)";
-  }
-  os << "\n";
-  return os.str();
-}
-
-std::string evaluation_to_json(const Evaluation& e) {
-  std::ostringstream os;
-  const double diag = e.gt_bbox_diagonal;
-  os << "{\"ground_truth\": {\"kind\": \"" << (e.ground_truth_is_mesh ? "mesh" : "points")
-     << "\", \"points\": " << e.ground_truth_points << ", \"bbox_diagonal\": " << num(diag) << "},\n";
-  os << " \"result_samples\": " << e.result_to_gt.count << ", \"distance_to_mesh\": \""
-     << (e.exact_surface_distance ? "surface" : "nearest_sample") << "\",\n";
-  os << " \"chamfer_l1\": " << num(e.chamfer_l1) << ", \"chamfer_l1_percent\": " << num(e.scale(e.chamfer_l1))
-     << ",\n";
-  os << " \"hausdorff\": " << num(e.hausdorff) << ", \"hausdorff_percent\": " << num(e.scale(e.hausdorff))
-     << ",\n";
-  os << " \"hausdorff_p95\": " << num(e.hausdorff_p95)
-     << ", \"hausdorff_p95_percent\": " << num(e.scale(e.hausdorff_p95)) << ",\n";
-  os << " \"result_to_gt\": " << distance_json(e.result_to_gt, diag) << ",\n";
-  os << " \"gt_to_result\": " << distance_json(e.gt_to_result, diag) << ",\n";
-  os << " \"fscores\": [";
-  for (std::size_t i = 0; i < e.fscores.size(); ++i) {
-    const FScore& f = e.fscores[i];
-    os << (i ? ", " : "") << "{\"threshold_fraction\": " << num(f.threshold_fraction)
-       << ", \"threshold\": " << num(f.threshold) << ", \"precision\": " << num(f.precision)
-       << ", \"recall\": " << num(f.recall) << ", \"fscore\": " << num(f.fscore) << "}";
-  }
-  os << "],\n";
-  os << " \"normal_consistency\": " << (e.normal_consistency ? num(*e.normal_consistency) : "null") << ",\n";
-  os << " \"orientation_consistency\": ";
-  if (e.orientation) {
-    os << "{\"raw\": " << num(e.orientation->raw)
-       << ", \"per_component\": " << num(e.orientation->per_component) << ", \"components\": [";
-    bool first = true;
-    for (std::size_t c = 0; c < e.orientation->components.size(); ++c) {
-      const ComponentOrientation& co = e.orientation->components[c];
-      if (co.faces == 0) continue;
-      os << (first ? "" : ", ") << "{\"component\": " << c << ", \"faces\": " << co.faces
-         << ", \"samples\": " << co.samples << ", \"area_share\": " << num(co.area_share)
-         << ", \"agreeing\": " << num(co.agreeing) << ", \"flipped\": " << (co.flipped ? "true" : "false")
-         << "}";
-      first = false;
-    }
-    os << "]}";
-  } else {
-    os << "null";
-  }
-  os << ",\n";
-  const MeshValidity& m = e.validity;
-  os << " \"mesh\": {\"vertices\": " << m.vertices << ", \"edges\": " << m.edges << ", \"faces\": " << m.faces
-     << ", \"area\": " << num(m.area) << ", \"edge_manifold\": " << (m.edge_manifold ? "true" : "false")
-     << ", \"nonmanifold_edges\": " << m.nonmanifold_edges
-     << ", \"vertex_manifold\": " << (m.vertex_manifold ? "true" : "false")
-     << ", \"nonmanifold_vertices\": " << m.nonmanifold_vertices
-     << ", \"faces_dropped_when_read\": " << m.faces_dropped_when_read
-     << ",\n  \"components\": " << m.components << ", \"border_loops\": " << m.border_loops
-     << ", \"closed\": " << (m.closed ? "true" : "false")
-     << ", \"euler_characteristic\": " << m.euler_characteristic << ", \"genus\": " << num(m.genus)
-     << ", \"component_genus\": [";
-  for (std::size_t i = 0; i < m.component_genus.size(); ++i)
-    os << (i ? ", " : "") << num(m.component_genus[i]);
-  os << "],\n  \"isolated_vertices\": " << m.isolated_vertices
-     << ", \"degenerate_faces\": " << m.degenerate_faces << ", \"duplicate_faces\": " << m.duplicate_faces
-     << ", \"self_intersecting_pairs\": "
-     << (m.self_intersecting_pairs ? std::to_string(*m.self_intersecting_pairs) : std::string("null"))
-     << ",\n  \"min_angle_deg\": " << num(m.min_angle_deg)
-     << ", \"median_min_angle_deg\": " << num(m.median_min_angle_deg)
-     << ", \"faces_min_angle_below_10\": " << num(m.faces_min_angle_below_10)
-     << ", \"faces_min_angle_below_30\": " << num(m.faces_min_angle_below_30) << ", \"valence_histogram\": [";
-  for (std::size_t k = 0; k < m.valence_histogram.size(); ++k)
-    os << (k ? ", " : "") << m.valence_histogram[k];
-  os << "]}}\n";
-  return os.str();
 }
 
 }  // namespace gcs

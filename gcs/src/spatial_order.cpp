@@ -90,10 +90,11 @@ void sort_by_code(std::vector<std::pair<Code, Index>>& keyed, int code_bits) {
 std::vector<std::size_t> morton_order(const std::vector<Vec3>& points) {
   std::vector<std::size_t> order(points.size());
   if (points.empty()) return order;
-  const MortonCoder code(points, 21);
+  constexpr int kBitsPerAxis = 21;  // 3 x 21 = 63 bits: the finest code in a 64-bit key
+  const MortonCoder code(points, kBitsPerAxis);
   std::vector<std::pair<std::uint64_t, std::size_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {code(points[i]), i};
-  sort_by_code(keyed, 63);
+  sort_by_code(keyed, 3 * kBitsPerAxis);
   for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
   return order;
 }
@@ -103,11 +104,12 @@ std::vector<std::size_t> coarse_morton_order(const std::vector<Vec3>& points) {
   std::vector<std::size_t> order(points.size());
   if (points.empty()) return order;
   // 8-byte pairs and three radix passes instead of morton_order's 16 bytes and six.
-  const MortonCoder code(points, 10);
+  constexpr int kBitsPerAxis = 10;  // 3 x 10 = 30 bits: the code fits a 32-bit key
+  const MortonCoder code(points, kBitsPerAxis);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     keyed[i] = {static_cast<std::uint32_t>(code(points[i])), static_cast<std::uint32_t>(i)};
-  sort_by_code(keyed, 30);
+  sort_by_code(keyed, 3 * kBitsPerAxis);
   for (std::size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
   return order;
 }

@@ -51,14 +51,16 @@ void barycentric(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c, dou
   out[2] = w / s;
 }
 
-// Closest points on the mesh, searched among the faces around the 3 nearest live vertices.
+// Closest points on the mesh, searched among the faces around the kFootVertices nearest live
+// vertices (one is not enough: the closest face need not touch the nearest vertex).
+constexpr std::size_t kFootVertices = 3;
 class FootFinder {
  public:
   explicit FootFinder(const Mesh& mesh) : mesh_(mesh), index_(live_points(mesh, ids_)) {}
 
   bool find(const Vec3& p, Foot& out) {
     if (index_.empty()) return false;
-    index_.k_nearest(p, 3, hits_);
+    index_.k_nearest(p, kFootVertices, hits_);
     double best = -1;
     for (const PointIndex::Neighbor& h : hits_) {
       const VertexHandle v(ids_[h.index]);

@@ -158,6 +158,9 @@ Pairs pull_back(Mesh& mesh, Pairs pairs, const std::vector<Vec3>& origin, const 
 // in any case (min_component_faces).
 constexpr std::size_t kMinPieceFaces = 8;
 constexpr double kMinPieceFraction = 0.05;
+// A hole the cut left is filled only when its fan agrees with the faces around it (mean cosine of
+// their normals at least this), as the topology pass's hole fills (kFillNormalAgreement there).
+constexpr double kFillNormalAgreement = 0.5;
 
 // Deletes face f of `trial` and the pieces of fewer than 8 faces that leaves; when f's corners
 // end up in several pieces, the largest of those stays and the others go if each is below 5% of
@@ -252,7 +255,7 @@ UntangleReport untangle(Mesh& mesh, const CloudQuery& cloud, const UntangleParam
       // smoothed like the input (no cut) and kept when that leaves no new crossing.
       UntangleParams smooth_only = p;
       smooth_only.cut = false;
-      report.holes_filled += fill_small_holes_checked(mesh, cloud, p.fill_max_vertices, p.fill_support, 0.5, cut_corner,
+      report.holes_filled += fill_small_holes_checked(mesh, cloud, p.fill_max_vertices, p.fill_support, kFillNormalAgreement, cut_corner,
                                                       [&](Mesh& filled) {
                                                         if (self_intersecting_face_pairs(filled) == pairs) return true;
                                                         if (!pairs.empty()) return false;

@@ -56,9 +56,9 @@ void register_reconstruct(py::module_& m) {
   m.def(
       "reconstruct",
       [](const py::handle& points, const py::handle& normals, const py::handle& vertices, std::uint64_t seed,
-         const py::handle& progress, bool twist, bool return_info) -> py::object {
+         const py::handle& progress, bool twist, bool return_info, const std::string& preset) -> py::object {
         edgefront::PointCloud cloud = point_cloud(points, normals);
-        gcs::ReconstructOptions o;
+        gcs::ReconstructOptions o = gcs::ReconstructOptions::preset(preset);  // InvalidInput -> ValueError
         if (vertices.is_none()) {
           o.target_vertices = std::min<std::size_t>(5000, cloud.size());
         } else {
@@ -100,7 +100,9 @@ void register_reconstruct(py::module_& m) {
       },
       py::arg("points"), py::arg("normals") = py::none(), py::arg("vertices") = py::none(), py::arg("seed") = 1,
       py::arg("progress") = py::none(), py::arg("twist") = true, py::arg("return_info") = false,
-      "reconstruct(points, normals=None, vertices=None, seed=1, progress=None, twist=True, return_info=False) -> (V, F)\n\n"
+      py::arg("preset") = "scan",
+      "reconstruct(points, normals=None, vertices=None, seed=1, progress=None, twist=True, return_info=False, "
+      "preset=\"scan\") -> (V, F)\n\n"
       "Reconstructs a triangle mesh from a point cloud with growing cell structures (the loop of\n"
       "Ivrissimtzis et al. with borders, handles and hole filling) and, with twist=True (default), the twist\n"
       "repair after every batch: the same mesh, byte for byte, as `gcs-reconstruct POINTS --vertices N\n"
@@ -108,6 +110,8 @@ void register_reconstruct(py::module_& m) {
       "points: (n, 3) float64/float32; normals: (n, 3) unit normals or None (then fitted).\n"
       "vertices: the target vertex count (default min(5000, n)), at most the number of distinct points.\n"
       "seed: the sample draws' seed; the same input, seed and target give the same bytes.\n"
+      "preset: the options preset, as gcs-reconstruct --preset: \"scan\" (the defaults), \"thin_shell\"\n"
+      "(thin closed shells) or \"open_sheet\" (open surfaces without normals); see docs/reconstruction.md.\n"
       "progress: called every 50 vertex splits and at the end with a dict (vertices, target_vertices,\n"
       "basic_steps, seconds). Return False (any false value other than None) to cancel: the run stops and\n"
       "the valid mesh reached so far comes back (return_info's stop_reason then says \"cancelled\"). If it\n"
@@ -116,7 +120,8 @@ void register_reconstruct(py::module_& m) {
       "Returns V float64 (k, 3), F int32 (m, 3); with return_info=True also a dict (stop_reason, cancelled,\n"
       "basic_steps, splits, collapses, batches, seconds, cloud_smoothed).\n"
       "The GIL is released while it runs (the callback re-acquires it). Raises ValueError for bad arrays\n"
-      "(NaN, shape, dtype, normals of another count), fewer than 4 points, a target out of range.");
+      "(NaN, shape, dtype, normals of another count), fewer than 4 points, a target out of range, an\n"
+      "unknown preset.");
 
   m.def(
       "evaluate",

@@ -54,6 +54,21 @@ def test_another_seed_gives_another_mesh(cloud, result):
     assert len(V3) == TARGET and not np.array_equal(V, V3)
 
 
+def test_preset_bit_for_bit_with_gcs_reconstruct_and_not_the_defaults(tmp_path, cloud):
+    # Without normals open_sheet fits quadric normals (InputOptions::quadric_normals): another mesh
+    # than the defaults, and the same bytes as gcs-reconstruct --preset open_sheet.
+    P, _ = cloud
+    V, F = ef.reconstruct(P, vertices=TARGET, preset="open_sheet")
+    out = tmp_path / "r.ply"
+    app("gcs-reconstruct", CLOUD, "-o", out, "--vertices", TARGET, "--ignore-normals", "--preset", "open_sheet", "-q")
+    V2, F2 = ef.read_mesh(out)
+    assert np.array_equal(V, V2) and np.array_equal(F, F2)
+    V0, _ = ef.reconstruct(P, vertices=TARGET)
+    assert not np.array_equal(V, V0)
+    with pytest.raises(ValueError, match="thin_shell"):
+        ef.reconstruct(P, vertices=TARGET, preset="thin-shell")
+
+
 def test_evaluate_bit_for_bit_with_gcs_eval(tmp_path, cloud, result):
     P, N = cloud
     V, F, _ = result

@@ -7,11 +7,15 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
+#include <vector>
 
+#include "detail/detect_steps.h"
 #include "detail/geometry.h"
 #include "edgefront/error.h"
 #include "edgefront/geometry.h"
@@ -37,126 +41,6 @@ const char* to_string(EvidenceKind kind) {
     case EvidenceKind::SelfIntersection: return "self-intersection";
   }
   return "unknown";
-}
-
-namespace {
-// 21 bits per axis: far cells may share a key, which only adds candidates (queries check distances).
-std::uint64_t key_of_cell(std::int64_t x, std::int64_t y, std::int64_t z) {
-  const auto bits = [](std::int64_t c) { return static_cast<std::uint64_t>(c) & 0x1FFFFFu; };
-  return (bits(x) << 42) | (bits(y) << 21) | bits(z);
-}
-std::uint64_t cell_key(const Vec3& p, double cell) {
-  const auto c = [&](int i) { return static_cast<std::int64_t>(std::floor(p[i] / cell)); };
-  return key_of_cell(c(0), c(1), c(2));
-}
-}  // namespace
-
-FaceGeometry face_geometry(const Mesh& mesh, FaceHandle f) {
-  if (!edgefront::is_live(mesh, f)) {
-    throw InvalidInput("twist::face_geometry: face " + std::to_string(f.idx()) +
-                       " is not a live face of the mesh (invalid, out of range or deleted)");
-  }
-  FaceGeometry g;
-  std::array<Vec3, 3> p;
-  size_t i = 0;
-  for (VertexHandle v : mesh.fv_range(f)) {
-    EF_CHECK(i < 3, "face " + std::to_string(f.idx()) + " is not a triangle");
-    p[i] = mesh.point(v);
-    g.vertices[i++] = v.idx();
-  }
-  EF_CHECK(i == 3, "face " + std::to_string(f.idx()) + " is not a triangle");
-  g.normal = detail::unit_normal(p);
-  g.centre = detail::centroid(p);
-  for (size_t k = 0; k < 3; ++k) g.longest = std::max(g.longest, (p[k] - p[(k + 1) % 3]).norm());
-  return g;
-}
-
-void FaceGrid::insert(const Mesh& mesh, FaceHandle f) {
-  if (!edgefront::is_live(mesh, f)) return;
-  const FaceGeometry g = face_geometry(mesh, f);
-  const std::uint64_t key = cell_key(g.centre, cell_);
-  const size_t i = static_cast<size_t>(f.idx());
-  if (i >= records_.size()) records_.resize(std::max(i + 1, 2 * records_.size()));
-  Record& r = records_[i];
-  r.geometry = g;
-  if (r.key != kNoKey) {
-    auto& old = cells_[r.key];
-    const auto pos = std::find_if(old.begin(), old.end(), [&](const Entry& e) { return e.face == f.idx(); });
-    if (r.key == key && pos != old.end()) {
-      pos->centre = g.centre;
-      return;
-    }
-    if (pos != old.end()) {
-      *pos = old.back();
-      old.pop_back();
-      --size_;
-    }
-  }
-  r.key = key;
-  cells_[key].push_back(Entry{f.idx(), g.centre});
-  ++size_;
-}
-
-void FaceGrid::update(const Mesh& mesh, const std::vector<FaceHandle>& faces) {
-  EF_CHECK(cell_ > 0, "FaceGrid::update before rebuild");
-  for (FaceHandle f : faces) insert(mesh, f);
-}
-
-void FaceGrid::update_new(const Mesh& mesh) {
-  EF_CHECK(cell_ > 0, "FaceGrid::update_new before rebuild");
-  for (size_t i = seen_faces_; i < mesh.n_faces(); ++i) insert(mesh, FaceHandle(static_cast<int>(i)));
-  seen_faces_ = mesh.n_faces();
-}
-
-void FaceGrid::rebuild(const Mesh& mesh, double cell) {
-  if (!(cell > 0) || !std::isfinite(cell)) throw InvalidInput("twist::FaceGrid: the cell size must be finite and > 0");
-  cell_ = cell;
-  cells_.clear();
-  records_.assign(mesh.n_faces(), Record{});
-  size_ = 0;
-  ++rebuilds_;
-  for (FaceHandle f : mesh.faces()) insert(mesh, f);
-  seen_faces_ = mesh.n_faces();
-}
-
-void FaceGrid::query(const Mesh& mesh, const Vec3& p, double radius, std::vector<FaceHandle>& out) const {
-  out.clear();
-  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || !std::isfinite(radius) || radius < 0)
-    throw InvalidInput("twist::FaceGrid::query: the point and the radius must be finite, the radius >= 0");
-  if (!(cell_ > 0)) return;
-  const double r2 = radius * radius;
-  const auto take = [&](const std::vector<Entry>& entries) {
-    for (const Entry& e : entries) {
-      if ((e.centre - p).sqrnorm() >= r2) continue;
-      const FaceHandle f(e.face);
-      if (edgefront::is_live(mesh, f)) out.push_back(f);
-    }
-  };
-  // Cell ranges in doubles first: a query box with more cells than the grid holds (or beyond the
-  // integer range) scans the occupied cells instead of the box.
-  double lo[3], hi[3], span = 1;
-  for (int i = 0; i < 3; ++i) {
-    lo[i] = std::floor((p[i] - radius) / cell_);
-    hi[i] = std::floor((p[i] + radius) / cell_);
-    span *= hi[i] - lo[i] + 1;
-  }
-  const bool in_range = std::abs(lo[0]) < 1e15 && std::abs(hi[0]) < 1e15 && std::abs(lo[1]) < 1e15 &&
-                        std::abs(hi[1]) < 1e15 && std::abs(lo[2]) < 1e15 && std::abs(hi[2]) < 1e15;
-  if (!in_range || span > static_cast<double>(cells_.size())) {
-    for (const auto& cell : cells_) take(cell.second);
-  } else {
-    const auto c = [](double v) { return static_cast<std::int64_t>(v); };
-    for (std::int64_t x = c(lo[0]); x <= c(hi[0]); ++x) {
-      for (std::int64_t y = c(lo[1]); y <= c(hi[1]); ++y) {
-        for (std::int64_t z = c(lo[2]); z <= c(hi[2]); ++z) {
-          const auto it = cells_.find(key_of_cell(x, y, z));
-          if (it != cells_.end()) take(it->second);
-        }
-      }
-    }
-  }
-  std::sort(out.begin(), out.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
-  out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 namespace {
@@ -571,54 +455,6 @@ class Detector {
   std::vector<std::pair<double, FaceHandle>> layers_;
 };
 
-
-/// The border of a face set as closed loops of halfedges with the set on their right (the face
-/// of each halfedge lies outside or is missing), and per loop whether it lies on the mesh border.
-std::pair<std::vector<std::vector<HalfedgeHandle>>, std::vector<bool>> border_loops(const Mesh& mesh,
-                                                                                   const std::vector<FaceHandle>& faces) {
-  std::unordered_map<int, char> in_set;
-  for (FaceHandle f : faces) in_set[f.idx()] = 1;
-  std::vector<HalfedgeHandle> starts;
-  std::unordered_map<int, char> unused;  // border halfedges not yet in a loop
-  for (FaceHandle f : faces) {
-    for (HalfedgeHandle h : mesh.fh_range(f)) {
-      const HalfedgeHandle o = mesh.opposite_halfedge_handle(h);
-      const FaceHandle g = mesh.face_handle(o);
-      if (g.is_valid() && in_set.count(g.idx())) continue;
-      starts.push_back(o);
-      unused[o.idx()] = 1;
-    }
-  }
-  std::sort(starts.begin(), starts.end(), [](HalfedgeHandle a, HalfedgeHandle b) { return a.idx() < b.idx(); });
-  std::vector<std::vector<HalfedgeHandle>> loops;
-  std::vector<bool> on_border;
-  for (HalfedgeHandle s0 : starts) {
-    if (!unused.count(s0.idx())) continue;
-    std::vector<HalfedgeHandle> loop;
-    HalfedgeHandle h = s0;
-    while (h.is_valid() && unused.erase(h.idx())) {
-      loop.push_back(h);
-      // The next border halfedge leaves to_vertex(h): turn around it from h's opposite.
-      HalfedgeHandle next;
-      const HalfedgeHandle back = mesh.opposite_halfedge_handle(h);
-      HalfedgeHandle g = back;
-      do {
-        g = mesh.cw_rotated_halfedge_handle(g);
-        if (unused.count(g.idx()) || g == s0) {
-          next = g;
-          break;
-        }
-      } while (g != back);
-      h = next;
-    }
-    bool all_border = true;
-    for (HalfedgeHandle x : loop) all_border = all_border && mesh.is_boundary(x);
-    loops.push_back(std::move(loop));
-    on_border.push_back(all_border);
-  }
-  return {loops, on_border};
-}
-
 }  // namespace
 
 int reference_vote(const ReferenceNormals& reference, const DetectOptions& options, const Vec3& centre, const Vec3& normal,
@@ -636,9 +472,9 @@ int reference_vote(const ReferenceNormals& reference, const DetectOptions& optio
 
 namespace {
 
-/// One detection. `quick`: no layer is looked for in front of faces the reference confirms, and
-/// the pass ends after the evidence, setting `has_core` (see `detect_regions`).
-DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool quick, bool& has_core) {
+/// The checks of a detection's input (in incremental mode only the candidates' vertices: no pass
+/// over the mesh).
+void check_pass_input(const Mesh& mesh, const DetectOptions& options) {
   edgefront::require_attributes(mesh, "twist::detect");
   if (options.face_grid && options.restrict_to) {
     // Incremental: no pass over the mesh; the candidates' vertices are checked.
@@ -656,252 +492,152 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
     detail::check_mesh(mesh, "twist::detect");
   }
   validate_options(mesh, options);
-  Detector det(mesh, options, quick);
-  DetectResult result;
+}
 
-  // 1. Evidence on the candidate faces.
+/// The evidence found in one detection pass: the faces tested, the flagged ones with what flagged
+/// them, and the flagged faces in the order found.
+struct PassEvidence {
   std::unordered_map<int, Evidence> flagged;
   std::unordered_map<int, char> tested;
   std::vector<FaceHandle> order;  // flagged faces in the order found
-  auto run_test = [&](FaceHandle f) -> bool {
+  /// Tests f (once); returns whether it is flagged.
+  bool run_test(Detector& det, FaceHandle f) {
     if (!tested.emplace(f.idx(), 1).second) return flagged.count(f.idx()) > 0;
     Evidence ev;
     if (!det.test(f, ev)) return false;
     flagged.emplace(f.idx(), ev);
     order.push_back(f);
     return true;
+  }
+};
+
+/// Step 1 on the whole mesh on several threads: contiguous ranges of faces, a detector each (`det`
+/// takes the first). The scan and the tests of a face do not depend on other faces' (the caches
+/// are per face), so chunk by chunk gives what one detector gives face by face: the pairs are
+/// merged in face order before the tests, the flagged faces are joined in chunk order.
+void test_whole_mesh_parallel(const Mesh& mesh, const DetectOptions& options, bool quick, unsigned threads,
+                              Detector& det, PassEvidence& pass) {
+  const std::vector<FaceHandle> faces(mesh.faces().begin(), mesh.faces().end());
+  const unsigned chunks = edgefront::threads_for(faces.size(), threads);
+  std::vector<std::unique_ptr<Detector>> workers(chunks);
+  std::vector<std::vector<std::pair<int, int>>> logs(chunks);
+  std::vector<std::vector<std::pair<FaceHandle, Evidence>>> found(chunks);
+  auto detector = [&](unsigned c) -> Detector& {
+    if (c == 0) return det;
+    if (!workers[c]) workers[c] = std::make_unique<Detector>(mesh, options, quick);
+    return *workers[c];
   };
-  // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
-  constexpr std::size_t kFacesPerThread = 1000;
-  const unsigned threads =
-      options.restrict_to ? 1u
-                          : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),
-                                                                        std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
-  if (!options.restrict_to && threads > 1) {
-    // Whole mesh on several threads: contiguous ranges of faces, a detector each (this one takes
-    // the first). The scan and the tests of a face do not depend on other faces' (the caches are
-    // per face), so chunk by chunk gives what one detector gives face by face: the pairs are
-    // merged in face order before the tests, the flagged faces are joined in chunk order.
-    const std::vector<FaceHandle> faces(mesh.faces().begin(), mesh.faces().end());
-    const unsigned chunks = edgefront::threads_for(faces.size(), threads);
-    std::vector<std::unique_ptr<Detector>> workers(chunks);
-    std::vector<std::vector<std::pair<int, int>>> logs(chunks);
-    std::vector<std::vector<std::pair<FaceHandle, Evidence>>> found(chunks);
-    auto detector = [&](unsigned c) -> Detector& {
-      if (c == 0) return det;
-      if (!workers[c]) workers[c] = std::make_unique<Detector>(mesh, options, quick);
-      return *workers[c];
-    };
-    if (options.self_intersections) {
-      edgefront::parallel_for(faces.size(), chunks, [&](std::size_t begin, std::size_t end, unsigned c) {
-        Detector& d = detector(c);
-        d.si_log = &logs[c];
-        for (std::size_t i = begin; i < end; ++i) d.scan_intersections(faces[i]);
-        d.si_log = nullptr;
-      });
-    }
+  if (options.self_intersections) {
     edgefront::parallel_for(faces.size(), chunks, [&](std::size_t begin, std::size_t end, unsigned c) {
       Detector& d = detector(c);
-      if (options.self_intersections) d.adopt_scans(logs, faces);
-      for (std::size_t i = begin; i < end; ++i) {
-        Evidence ev;
-        if (d.test(faces[i], ev)) found[c].emplace_back(faces[i], ev);
-      }
+      d.si_log = &logs[c];
+      for (std::size_t i = begin; i < end; ++i) d.scan_intersections(faces[i]);
+      d.si_log = nullptr;
     });
-    for (unsigned c = 0; c < chunks; ++c) {
-      if (c > 0) det.adopt_tests(detector(c));
-      for (const auto& [f, ev] : found[c]) {
-        flagged.emplace(f.idx(), ev);
-        order.push_back(f);
-      }
+  }
+  edgefront::parallel_for(faces.size(), chunks, [&](std::size_t begin, std::size_t end, unsigned c) {
+    Detector& d = detector(c);
+    if (options.self_intersections) d.adopt_scans(logs, faces);
+    for (std::size_t i = begin; i < end; ++i) {
+      Evidence ev;
+      if (d.test(faces[i], ev)) found[c].emplace_back(faces[i], ev);
     }
-    for (FaceHandle f : faces) tested.emplace(f.idx(), 1);
-  } else if (!options.restrict_to) {
-    if (options.self_intersections) {
-      for (FaceHandle f : mesh.faces()) det.scan_intersections(f);
-    }
-    for (FaceHandle f : mesh.faces()) run_test(f);
-  } else {
-    std::vector<FaceHandle> candidates = *options.restrict_to;
-    // The audit: evenly spaced face indices (the next live face after a deleted one), so it
-    // costs O(audit_faces), not a pass over the mesh.
-    const size_t nf = mesh.n_faces();
-    const size_t audit = std::min(options.audit_faces, nf);
-    for (size_t i = 0; i < audit; ++i) {
-      size_t k = (options.audit_offset + i * nf / audit) % nf;
-      for (size_t probe = 0; probe < 16 && !edgefront::is_live(mesh, FaceHandle(static_cast<int>(k))); ++probe) k = (k + 1) % nf;
-      if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(k)))) candidates.push_back(FaceHandle(static_cast<int>(k)));
-    }
-    std::deque<std::pair<FaceHandle, int>> queue;
-    // Self-intersections only mark where a twist line runs (a region needs orientation evidence,
-    // see `require_orientation_evidence`), so the candidates are not scanned for them: only the
-    // faces grown around flagged ones are (the scan is the costliest test, and most candidates
-    // of a batch are right).
-    det.set_scan_intersections(!options.require_orientation_evidence);
-    for (FaceHandle f : candidates) {
-      if (run_test(f)) queue.emplace_back(f, 0);
-    }
-    // Faces that point at a candidate's back from right behind: their evidence changed with the
-    // candidate although they did not move (one level: partners of partners are not followed).
-    for (FaceHandle g : det.take_behind()) {
-      if (run_test(g)) queue.emplace_back(g, 0);
-    }
-    det.set_scan_intersections(true);
-    // Grow the evidence: test faces within grow_levels hops of a flagged face, so a twisted
-    // region is found whole although only changed faces were candidates.
-    while (!queue.empty()) {
-      const auto [f, hops] = queue.front();
-      queue.pop_front();
-      if (hops >= options.grow_levels) continue;
-      for (HalfedgeHandle h : mesh.fh_range(f)) {
-        const FaceHandle g = mesh.opposite_face_handle(h);
-        if (!g.is_valid() || tested.count(g.idx())) continue;
-        // Flagged and ambiguous faces (evidence both ways) carry the search on.
-        queue.emplace_back(g, run_test(g) || det.ambiguous(g) ? 0 : hops + 1);
-      }
+  });
+  for (unsigned c = 0; c < chunks; ++c) {
+    if (c > 0) det.adopt_tests(detector(c));
+    for (const auto& [f, ev] : found[c]) {
+      pass.flagged.emplace(f.idx(), ev);
+      pass.order.push_back(f);
     }
   }
-  result.stats = det.stats;
-  result.stats.flagged_faces = flagged.size();
-  if (flagged.empty()) return result;
-  // A region needs a core: a face with orientation evidence whose neighbours across every edge
-  // have it too, i.e. a patch whose orientation is wrong, not only faces turned against right
-  // neighbours (a tangle: a triangle or two flipped over in a crease while the mesh moves, which
-  // the loop's smoothing undoes and a cut would only tear open). With a reference, the reference
-  // tells the side wherever it decides: a facing layer then only marks where a twist line may
-  // run (two right parts of the surface also face each other across a gap narrower than the
-  // radius: a tail over a back, a leg along a body), and counts for the core only where the side
-  // judge abstains between the walls of a wall thinner than the faces.
-  auto core_evidence = [&](FaceHandle f) {
-    const auto it = flagged.find(f.idx());
-    if (it == flagged.end()) return false;
-    if (it->second.kind == EvidenceKind::Reference) return true;
-    if (it->second.kind != EvidenceKind::FacingLayer) return false;
-    return !options.reference || (options.reference_side_weight > 0 && det.vote(f) == 0);
-  };
-  auto is_core = [&](FaceHandle f) {
-    if (!core_evidence(f)) return false;
+  for (FaceHandle f : faces) pass.tested.emplace(f.idx(), 1);
+}
+
+/// Step 1 on the whole mesh on one thread.
+void test_whole_mesh(const Mesh& mesh, const DetectOptions& options, Detector& det, PassEvidence& pass) {
+  if (options.self_intersections) {
+    for (FaceHandle f : mesh.faces()) det.scan_intersections(f);
+  }
+  for (FaceHandle f : mesh.faces()) pass.run_test(det, f);
+}
+
+/// Step 1 in incremental mode: the candidates (`DetectOptions::restrict_to`) and an audit sample,
+/// the faces right behind them, and the faces grown around flagged ones.
+void test_candidates(const Mesh& mesh, const DetectOptions& options, Detector& det, PassEvidence& pass) {
+  std::vector<FaceHandle> candidates = *options.restrict_to;
+  // The audit: evenly spaced face indices (the next live face after a deleted one), so it
+  // costs O(audit_faces), not a pass over the mesh.
+  const size_t nf = mesh.n_faces();
+  const size_t audit = std::min(options.audit_faces, nf);
+  for (size_t i = 0; i < audit; ++i) {
+    size_t k = (options.audit_offset + i * nf / audit) % nf;
+    for (size_t probe = 0; probe < 16 && !edgefront::is_live(mesh, FaceHandle(static_cast<int>(k))); ++probe) k = (k + 1) % nf;
+    if (edgefront::is_live(mesh, FaceHandle(static_cast<int>(k)))) candidates.push_back(FaceHandle(static_cast<int>(k)));
+  }
+  std::deque<std::pair<FaceHandle, int>> queue;
+  // Self-intersections only mark where a twist line runs (a region needs orientation evidence,
+  // see `require_orientation_evidence`), so the candidates are not scanned for them: only the
+  // faces grown around flagged ones are (the scan is the costliest test, and most candidates
+  // of a batch are right).
+  det.set_scan_intersections(!options.require_orientation_evidence);
+  for (FaceHandle f : candidates) {
+    if (pass.run_test(det, f)) queue.emplace_back(f, 0);
+  }
+  // Faces that point at a candidate's back from right behind: their evidence changed with the
+  // candidate although they did not move (one level: partners of partners are not followed).
+  for (FaceHandle g : det.take_behind()) {
+    if (pass.run_test(det, g)) queue.emplace_back(g, 0);
+  }
+  det.set_scan_intersections(true);
+  // Grow the evidence: test faces within grow_levels hops of a flagged face, so a twisted
+  // region is found whole although only changed faces were candidates.
+  while (!queue.empty()) {
+    const auto [f, hops] = queue.front();
+    queue.pop_front();
+    if (hops >= options.grow_levels) continue;
     for (HalfedgeHandle h : mesh.fh_range(f)) {
       const FaceHandle g = mesh.opposite_face_handle(h);
-      if (g.is_valid() && !core_evidence(g)) return false;
+      if (!g.is_valid() || pass.tested.count(g.idx())) continue;
+      // Flagged and ambiguous faces (evidence both ways) carry the search on.
+      queue.emplace_back(g, pass.run_test(det, g) || det.ambiguous(g) ? 0 : hops + 1);
     }
-    return true;
-  };
-  // No core anywhere: no region can be kept, so none is grown (most calls of a refinement loop).
-  has_core = std::any_of(order.begin(), order.end(), is_core);
-  if (quick || (options.require_orientation_evidence && !has_core)) return result;
+  }
+}
 
-  // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
-  std::vector<VertexHandle> sources;
-  {
-    std::unordered_map<int, char> seen;
-    for (FaceHandle f : order) {
-      for (VertexHandle v : mesh.fv_range(f)) {
-        if (seen.emplace(v.idx(), 1).second) sources.push_back(v);
-      }
-    }
-    std::sort(sources.begin(), sources.end(), [](VertexHandle a, VertexHandle b) { return a.idx() < b.idx(); });
-  }
-  edgefront::MinimalEdgeFront front(mesh);
-  front.reset(edgefront::FrontSource::from_vertices(sources));
-  front.run(options.grow_levels);
-  const std::vector<edgefront::FrontLoop> loops = front.loops();
-  std::unordered_map<int, char> front_edge;
-  for (const auto& loop : loops) {
-    for (HalfedgeHandle h : loop.halfedges) front_edge[mesh.edge_handle(h).idx()] = 1;
-  }
+/// Whether f has core evidence.
+/// A region needs a core: a face with orientation evidence whose neighbours across every edge
+/// have it too, i.e. a patch whose orientation is wrong, not only faces turned against right
+/// neighbours (a tangle: a triangle or two flipped over in a crease while the mesh moves, which
+/// the loop's smoothing undoes and a cut would only tear open). With a reference, the reference
+/// tells the side wherever it decides: a facing layer then only marks where a twist line may
+/// run (two right parts of the surface also face each other across a gap narrower than the
+/// radius: a tail over a back, a leg along a body), and counts for the core only where the side
+/// judge abstains between the walls of a wall thinner than the faces.
+bool core_evidence(const DetectOptions& options, Detector& det, const std::unordered_map<int, Evidence>& flagged,
+                   FaceHandle f) {
+  const auto it = flagged.find(f.idx());
+  if (it == flagged.end()) return false;
+  if (it->second.kind == EvidenceKind::Reference) return true;
+  if (it->second.kind != EvidenceKind::FacingLayer) return false;
+  return !options.reference || (options.reference_side_weight > 0 && det.vote(f) == 0);
+}
 
-  // 3. Regions: the surface behind the front, connected without crossing it.
-  std::unordered_map<int, int> region_of;
-  std::vector<FaceHandle> seeds = order;
-  std::sort(seeds.begin(), seeds.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
-  std::vector<TwistRegion> regions;
-  for (FaceHandle seed : seeds) {
-    if (region_of.count(seed.idx())) continue;
-    const int id = static_cast<int>(regions.size());
-    regions.emplace_back();
-    TwistRegion& r = regions.back();
-    std::deque<FaceHandle> queue{seed};
-    region_of[seed.idx()] = id;
-    while (!queue.empty()) {
-      const FaceHandle f = queue.front();
-      queue.pop_front();
-      r.faces.push_back(f);
-      r.area += detail::area(detail::face_points(mesh, f));
-      const auto ev = flagged.find(f.idx());
-      if (ev != flagged.end()) r.evidence.push_back(ev->second);
-      for (HalfedgeHandle h : mesh.fh_range(f)) {
-        if (front_edge.count(mesh.edge_handle(h).idx())) continue;
-        const FaceHandle g = mesh.opposite_face_handle(h);
-        if (!g.is_valid() || region_of.count(g.idx())) continue;
-        region_of[g.idx()] = id;
-        queue.push_back(g);
-      }
-    }
-    std::sort(r.faces.begin(), r.faces.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
-    std::sort(r.evidence.begin(), r.evidence.end(),
-              [](const Evidence& a, const Evidence& b) { return a.face.idx() < b.face.idx(); });
-    r.flagged_faces = r.evidence.size();
+/// A face of a core: with core evidence, as are its neighbours across every edge.
+bool is_core(const Mesh& mesh, const DetectOptions& options, Detector& det,
+             const std::unordered_map<int, Evidence>& flagged, FaceHandle f) {
+  if (!core_evidence(options, det, flagged, f)) return false;
+  for (HalfedgeHandle h : mesh.fh_range(f)) {
+    const FaceHandle g = mesh.opposite_face_handle(h);
+    if (g.is_valid() && !core_evidence(options, det, flagged, g)) return false;
   }
-  // 4. Fill holes: a piece of the rest enclosed by a region (bounded by one of several border
-  //    loops) and smaller than the region joins it; the largest piece always stays outside.
-  //    Each piece is explored with a budget of the region's size, so this is semi-local.
-  std::unordered_map<int, char> filled;
-  for (size_t id = 0; id < regions.size(); ++id) {
-    TwistRegion& r = regions[id];
-    std::vector<std::vector<FaceHandle>> pieces;
-    std::unordered_map<int, char> explored;
-    bool some_outside = false;
-    for (const auto& loop : loops) {
-      if (loop.halfedges.empty()) continue;
-      const FaceHandle behind = mesh.opposite_face_handle(loop.halfedges.front());
-      const auto it = behind.is_valid() ? region_of.find(behind.idx()) : region_of.end();
-      if (it == region_of.end() || it->second != static_cast<int>(id)) continue;
-      for (HalfedgeHandle h0 : loop.halfedges) {
-        const FaceHandle start = mesh.face_handle(h0);
-        if (!start.is_valid() || region_of.count(start.idx()) || explored.count(start.idx())) continue;
-        std::vector<FaceHandle> piece{start};
-        explored[start.idx()] = 1;
-        bool fits = true;
-        for (size_t q = 0; q < piece.size() && fits; ++q) {
-          for (HalfedgeHandle h : mesh.fh_range(piece[q])) {
-            const FaceHandle g = mesh.opposite_face_handle(h);
-            if (!g.is_valid() || explored.count(g.idx())) continue;
-            const auto owner = region_of.find(g.idx());
-            if (owner != region_of.end()) {
-              if (owner->second != static_cast<int>(id)) fits = false;  // touches another region
-              continue;
-            }
-            explored[g.idx()] = 1;
-            piece.push_back(g);
-            if (piece.size() >= r.faces.size()) fits = false;
-          }
-        }
-        if (fits) {
-          pieces.push_back(std::move(piece));
-        } else {
-          some_outside = true;
-        }
-      }
-    }
-    if (!some_outside && !pieces.empty()) {  // keep the largest piece outside
-      const auto largest = std::max_element(pieces.begin(), pieces.end(),
-                                            [](const auto& a, const auto& b) { return a.size() < b.size(); });
-      pieces.erase(largest);
-    }
-    for (const auto& piece : pieces) {
-      for (FaceHandle f : piece) {
-        filled[f.idx()] = 1;
-        region_of[f.idx()] = static_cast<int>(id);
-        r.faces.push_back(f);
-        r.area += detail::area(detail::face_points(mesh, f));
-      }
-    }
-    std::sort(r.faces.begin(), r.faces.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
-  }
-  // 5. Trim: faces added by growing or filling that show positive evidence of being right (a
-  //    back-to-back layer or an agreeing reference normal) leave the region, so the cut runs at
-  //    the twist line and does not flip right faces. Then the border loops of what remains.
+  return true;
+}
+
+/// Step 5, trim: faces added by growing or filling that show positive evidence of being right (a
+/// back-to-back layer or an agreeing reference normal) leave the region, so the cut runs at the
+/// twist line and does not flip right faces. Then the border loops of what remains.
+void trim_right_faces(const Mesh& mesh, const std::unordered_map<int, Evidence>& flagged, Detector& det,
+                      std::vector<TwistRegion>& regions) {
   for (TwistRegion& r : regions) {
     std::unordered_map<int, char> in_region, right;
     for (FaceHandle f : r.faces) in_region[f.idx()] = 1;
@@ -917,12 +653,54 @@ DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool qu
       r.area = 0;
       for (FaceHandle f : r.faces) r.area += detail::area(detail::face_points(mesh, f));
     }
-    std::tie(r.border, r.border_on_mesh_border) = border_loops(mesh, r.faces);
+    std::tie(r.border, r.border_on_mesh_border) = detail::border_loops(mesh, r.faces);
   }
+}
+
+/// One detection. `quick`: no layer is looked for in front of faces the reference confirms, and
+/// the pass ends after the evidence, setting `has_core` (see `detect_regions`).
+DetectResult detect_pass(const Mesh& mesh, const DetectOptions& options, bool quick, bool& has_core) {
+  check_pass_input(mesh, options);
+  Detector det(mesh, options, quick);
+  DetectResult result;
+
+  // 1. Evidence on the candidate faces.
+  PassEvidence pass;
+  // At most one thread per this many faces in a whole-mesh detection (each builds a detector).
+  constexpr std::size_t kFacesPerThread = 1000;
+  const unsigned threads =
+      options.restrict_to ? 1u
+                          : static_cast<unsigned>(std::min<std::size_t>(edgefront::resolve_threads(options.threads),
+                                                                        std::max<std::size_t>(1, mesh.n_faces() / kFacesPerThread)));
+  if (!options.restrict_to && threads > 1) {
+    test_whole_mesh_parallel(mesh, options, quick, threads, det, pass);
+  } else if (!options.restrict_to) {
+    test_whole_mesh(mesh, options, det, pass);
+  } else {
+    test_candidates(mesh, options, det, pass);
+  }
+  result.stats = det.stats;
+  result.stats.flagged_faces = pass.flagged.size();
+  if (pass.flagged.empty()) return result;
+  // A region needs a core (see core_evidence).
+  auto core = [&](FaceHandle f) { return is_core(mesh, options, det, pass.flagged, f); };
+  // No core anywhere: no region can be kept, so none is grown (most calls of a refinement loop).
+  has_core = std::any_of(pass.order.begin(), pass.order.end(), core);
+  if (quick || (options.require_orientation_evidence && !has_core)) return result;
+
+  // 2. Grow the flagged faces into regions with a Minimal Edge Front from their vertices.
+  const std::vector<edgefront::FrontLoop> loops = detail::grow_front(mesh, pass.order, options.grow_levels);
+  // 3. Regions: the surface behind the front, connected without crossing it.
+  std::unordered_map<int, int> region_of;
+  std::vector<TwistRegion> regions = detail::regions_behind_front(mesh, pass.order, pass.flagged, loops, region_of);
+  // 4. Fill holes: pieces of the rest enclosed by a region and smaller than it join it.
+  detail::fill_enclosed_pieces(mesh, loops, region_of, regions);
+  // 5. Trim: faces added by growing or filling that show evidence of being right leave the region.
+  trim_right_faces(mesh, pass.flagged, det, regions);
   auto orientation_evidence = [&](const TwistRegion& r) {
     if (!options.require_orientation_evidence) return true;
     for (const Evidence& e : r.evidence) {
-      if (is_core(e.face)) return true;
+      if (core(e.face)) return true;
     }
     return false;
   };

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "detail/geometry.h"
+#include "detail/heal.h"
 #include "detail/host_mirror.h"
 #include "edgefront/error.h"
 #include "edgefront/minimal_distance_front.h"
@@ -96,13 +97,28 @@ struct RepairSession::Impl {
   double mean_edge = 0;
   size_t mean_edge_faces = 0;  // live faces when it was computed
 
+  std::vector<FaceHandle> healed;  // faces the last heal added: the next repair looks at them
+
+  static const SessionOptions& checked(const SessionOptions& o) {
+    const HealOptions& h = o.heal;
+    if (!h.enabled) return o;
+    if (o.repair.detect.reference == nullptr) {
+      refuse("heal needs a reference cloud (SessionOptions::repair.detect.reference): the new faces must lie on it");
+    }
+    for (const double x : {h.max_gap_edges, h.max_support_edges}) {
+      if (!(x >= 0) || !std::isfinite(x)) refuse("heal distances must be finite and >= 0");
+    }
+    if (!std::isfinite(h.min_normal_agreement)) refuse("heal min_normal_agreement must be finite");
+    return o;
+  }
+
   static RepairOptions repair_options(RepairOptions o) {
     o.garbage_collect = false;  // the mirror keeps its indices, as the host does
     return o;
   }
 
   Impl(const edgefront::VertexArrayView& v, const edgefront::FaceArrayView& f, SessionOptions o)
-      : options(std::move(o)),
+      : options(checked(o)),
         converted(edgefront::mesh_from_arrays(v, f, options.conversion)),
         host(detail::host_of_conversion(v, f, converted)),
         repairer(repair_options(options.repair), options.max_retwists) {
@@ -150,6 +166,10 @@ struct RepairSession::Impl {
   /// Applies the batch to the mirror and the host's state, all or nothing; fills `changed` with
   /// the mirror faces the repair should look at. Then splits the vertices the batch left pinched.
   void commit(std::vector<FaceHandle>& changed) {
+    for (FaceHandle f : healed) {
+      if (edgefront::is_live(mirror(), f)) changed.push_back(f);
+    }
+    healed.clear();
     if (face_edits.empty() && vertex_edits.empty()) return;
     struct Clear {
       Impl& s;
@@ -366,6 +386,16 @@ struct RepairSession::Impl {
     return r;
   }
 
+  /// The heal (when on) on the mirror; true when it added faces.
+  bool heal(double mean_edge_length) {
+    stats.heal = {};
+    if (!options.heal.enabled) return false;
+    const detail::HealCounts c =
+        detail::heal_borders(mirror(), *options.repair.detect.reference, mean_edge_length, options.heal, healed);
+    stats.heal = {c.strips, c.holes, healed.size()};
+    return !healed.empty();
+  }
+
   double estimated_mean_edge() {
     if (mean_edge == 0 || 10 * std::max(live_faces, mean_edge_faces) > 11 * std::min(live_faces, mean_edge_faces)) {
       mean_edge = detail::mean_edge_length(mirror());
@@ -439,6 +469,7 @@ bool RepairSession::pending() const { return !impl_->face_edits.empty() || !impl
 EditRecord RepairSession::sync() {
   std::vector<FaceHandle> changed;
   impl_->commit(changed);
+  impl_->stats.heal = {};  // no heal here
   return impl_->record(false);
 }
 
@@ -449,14 +480,17 @@ EditRecord RepairSession::repair(double mean_edge_length) {
   s.commit(changed);
   const double mel = mean_edge_length > 0 ? mean_edge_length : s.estimated_mean_edge();
   s.stats.report = s.repairer.repair_changed(s.mirror(), changed, mel);
+  const bool healed = s.heal(mel);
   const RepairReport& r = s.stats.report;
-  return s.record(r.repairs > 0 || r.faces_removed > 0 || r.regions_cut_out > 0 || r.faces_flipped > 0);
+  return s.record(healed || r.repairs > 0 || r.faces_removed > 0 || r.regions_cut_out > 0 || r.faces_flipped > 0);
 }
 
 EditRecord RepairSession::finish() {
   Impl& s = *impl_;
   std::vector<FaceHandle> changed;
   s.commit(changed);
+  if (s.options.heal.enabled) s.heal(s.estimated_mean_edge());
+  s.healed.clear();  // the full repair looks at every face
   s.stats.report = s.repairer.finish(s.mirror());
   return s.record(true);
 }

@@ -86,7 +86,7 @@ struct MeshRenumbering {
 struct OperationContext {
   const edgefront::PointCloud& points;  ///< the input samples (normals when the input had them)
   /// For a large cloud with normals that the loop queries through a spatially even subsample
-  /// (ReconstructOptions::max_query_points): that subsample, points with their normals, in the
+  /// (InputOptions::max_query_points): that subsample, points with their normals, in the
   /// same coordinates as `points`; an operation that searches the samples may use it instead (a
   /// k-d tree over it is cheaper to build and to query). nullptr when the loop uses the whole cloud.
   const edgefront::PointCloud* query_points = nullptr;

@@ -23,6 +23,7 @@
 /// \code
 ///   edgefront::PointCloud cloud = edgefront::read_points("data/vault-shell.xyz");
 ///   gcs::ReconstructResult r = gcs::reconstruct(cloud, {.target_vertices = 2000});
+///   // or a preset: gcs::ReconstructOptions::thin_shell(), open_sheet() (see ReconstructOptions)
 ///   edgefront::write_mesh(r.mesh, "vault.ply");
 /// \endcode
 
@@ -45,217 +46,255 @@ enum class StartShape {
   tetrahedron  ///< 4 vertices, 4 triangles (the paper's start)
 };
 
-/// Options of the reconstruction. Defaults follow the paper where it gives a value.
-struct ReconstructOptions {
-  /// Stop when the mesh has this many live vertices; in [4, number of distinct input points] (and
-  /// at most 50,000,000). Points that repeat an earlier one exactly are dropped before the run.
-  std::size_t target_vertices = 5000;
-  StartShape start = StartShape::box;  ///< start mesh
-  /// Basic steps between two vertex splits (the paper's lambda; 70 also works). >= 1.
+/// How the growing-cell-structures loop grows the mesh (the paper's parameters and the loop's
+/// batching). The defaults follow the paper where it gives a value.
+struct GrowthOptions {
+  StartShape start = StartShape::box;  ///< start mesh; default box
+  /// Basic steps between two vertex splits (the paper's lambda). Default 100; >= 1.
   int steps_per_split = 100;
-  /// Winner learning rate alpha_w: x_w += alpha_w (s - x_w). In (0, 1].
+  /// Winner learning rate alpha_w: x_w += alpha_w (s - x_w). Default 0.06; in (0, 1].
   double winner_rate = 0.06;
-  /// Neighbour smoothing rate alpha_n of the tangential Laplacian. In [0, 1].
+  /// Neighbour smoothing rate alpha_n of the tangential Laplacian. Default 0.05; in [0, 1].
   double neighbor_rate = 0.05;
-  /// Smoothing passes over the winner's 1-ring per basic step (the paper: 5). In [0, 100].
+  /// Smoothing passes over the winner's 1-ring per basic step (the paper: 5). Default 5; in
+  /// [0, 100].
   int smoothing_iterations = 5;
   /// Signal counter half-life in units of |V| basic steps: every basic step multiplies all
-  /// counters by 0.5^(1 / (half_life * |V|)) (O(1) through a global scale). > 0.
+  /// counters by 0.5^(1 / (half_life * |V|)). Default 6; finite, > 0.
   double decay_half_life = 6.0;
-  /// Inactivity window mu: every mu * |V| basic steps, vertices that have not won during the last
-  /// mu * |V| steps are collapsed. > 0; 0 disables collapses.
+  /// Inactivity window mu in units of |V| basic steps: every mu * |V| basic steps, vertices that
+  /// have not won during the last mu * |V| steps are collapsed. Default 20; finite, >= 0; 0
+  /// disables collapses.
   double inactivity_window = 20.0;
   /// Vertex splits between two calls of the registered operations and of the built-in topology
-  /// pass (border creation and loop merging); on meshes above batch_growth_vertices, more (see
-  /// there). >= 1.
+  /// pass; on meshes above batch_growth_vertices, more (see there). Default 200; >= 1.
   std::size_t batch_splits = 200;
-  /// From this many live vertices on, a batch grows in proportion to the mesh: ceil(batch_splits x
-  /// live / batch_growth_vertices) splits, so that the per-batch costs (the operations' change
-  /// sets, which cover most faces after a batch, and the loop's bookkeeping over all faces) stay a
-  /// fixed share of the run instead of growing with the square of the target (at 100,000 vertices
-  /// and the defaults: 2,000-split batches). Smaller meshes are not affected. 0 = batches of batch_splits always.
+  /// From this many live vertices on, a batch has ceil(batch_splits x live / batch_growth_vertices)
+  /// splits, so that the per-batch costs (the operations' change sets, the loop's bookkeeping over
+  /// all faces) stay a fixed share of the run instead of growing with the square of the target.
+  /// Default 10,000 vertices; 0 = batches of batch_splits always.
   std::size_t batch_growth_vertices = 10000;
-  /// Remove triangles no sample supports (creates borders on open surfaces).
+  /// Safety stop: at most this many basic steps per target vertex; the loop then stops with
+  /// StopReason::step_limit (collapses keep the mesh from growing). Default 2000; 0 = no limit.
+  std::uint64_t max_steps_per_vertex = 2000;
+  /// Field by field.
+  bool operator==(const GrowthOptions&) const = default;
+};
+
+/// The built-in topology pass after each batch (neural-mesh style): border creation, loop
+/// merging, component joining and hole filling. Distances are in units of the mesh's mean edge
+/// length (at least the sample spacing for the support distance).
+struct TopologyOptions {
+  /// The pass starts once the mesh has this many live vertices (a coarse mesh does not hug the
+  /// samples yet); also when the oriented winner search starts (InputOptions::orient_winners).
+  /// Default 150; clamped to at most target_vertices / 2.
+  std::size_t min_vertices = 150;
+  /// Remove triangles no sample supports (creates borders on open surfaces). Default true.
   bool create_borders = true;
-  /// A face is unsupported when its centroid is farther than this times the mean edge length from
-  /// every input point; such faces are removed (only after the mesh has `topology_min_vertices`).
-  /// Finite, > 0.
+  /// A face is unsupported when its centroid is farther than this many mean edge lengths from
+  /// every input point. Default 1.5; finite, > 0.
   double unsupported_distance = 1.5;
-  /// Edges longer than this times the mean edge length are removed with their faces. Finite, > 1.
+  /// Edges longer than this many mean edge lengths are removed with their faces. Default 10;
+  /// finite, > 1.
   double long_edge_factor = 10.0;
+  /// Film test, for oriented samples that surround a volume (their normals point away from the
+  /// centroid): faces all of whose this many nearest samples (within the support distance) face
+  /// sideways to them and have them in front are removed (a film spanning a tunnel or gap outside
+  /// the object). Default 8 samples; in [0, 64]; 0 disables.
+  std::size_t film_samples = 8;
   /// Join close, similar, orientation-compatible border loops by a triangle strip (handles).
+  /// Default true.
   bool merge_borders = true;
-  /// Experimental, off by default: also zip slits, i.e. close the gap between two chains of one
-  /// border loop that run within 2 mean edge lengths of each other in opposite directions (a torn
-  /// tube). On kitten.xyz this splits the torn tail loop into several loops that the loop merge
-  /// does not join (no handle yet), so it is not on by default.
-  bool zip_slits = false;
-  /// For clouds that do not surround a volume (see film_samples: open sheets, landscapes), when
-  /// the mesh has several components, border chains of two different components that run within
-  /// 2 mean edge lengths of each other in opposite directions are zipped together by a strip that
-  /// lies on the cloud and agrees with the faces around (a piece torn off an open sheet, e.g. a
-  /// corner of a small planar cloud, is joined back). Not for clouds around a volume: there it
-  /// zipped nested surfaces (nested spheres) together while they separate. Not with zip_slits
-  /// (which zips within and across loops anyway).
+  /// For clouds that do not surround a volume (open sheets, landscapes) and a mesh of several
+  /// components: border chains of two components that run within 2 mean edge lengths of each
+  /// other in opposite directions are zipped by a strip that lies on the cloud and agrees with the
+  /// faces around (a piece torn off an open sheet is joined back). Not used for clouds around a
+  /// volume (it would zip nested surfaces together) nor with ExperimentalOptions::zip_slits.
+  /// Default true.
   bool join_components = true;
   /// Border loops of 9 up to this many vertices are closed by a strip zipping their two halves
   /// together when that strip lies on the cloud and agrees with the faces around (a slit torn into
-  /// a closed surface where the samples are sparse, e.g. under kitten.xyz's tail); 0 disables.
-  /// Wide holes (the opening of a hemisphere or cylinder) and open sheets fail these checks.
+  /// a closed surface where the samples are sparse). Wide holes and open sheets fail these checks.
+  /// Default 64 vertices; 0 disables.
   std::size_t fill_slits_max_vertices = 64;
+  /// When the strip joining two border loops is refused (its faces fold back against the faces
+  /// around: curled or overlapping rims), or the fan closing a hole whose border is at most 10
+  /// mean edge lengths long is refused, the join or fill is tried again with 1 ... this many rings
+  /// of faces removed along the loop(s) (on a copy, kept only when the strip or fan is then added
+  /// and no piece is cut off). Default 2 rings; in [0, 8]; 0 disables.
+  std::size_t border_trim_rings = 2;
+  /// Field by field.
+  bool operator==(const TopologyOptions&) const = default;
+};
+
+/// How the input cloud is prepared and used: normals, noise, nearest-sample queries.
+struct InputOptions {
   /// Oriented samples keep an open or planar cloud from ending as the start box collapsed onto it
-  /// from both sides (a double layer): once the mesh has topology_min_vertices vertices, a
+  /// from both sides (a double layer): once the mesh has TopologyOptions::min_vertices vertices, a
   /// sample's winner is the nearest vertex whose normal agrees with the sample's (among its 8
   /// nearest), and faces that face against the nearest sample's normal are removed with the
   /// unsupported ones. The samples' normals are the input normals; without them, normals fitted to
   /// each point's neighbours (see quadric_normals) and oriented consistently over the neighbour
   /// graph (outward, or for a nearly flat open cloud along the positive side of its thinnest
-  /// axis); not used when that graph is not connected.
+  /// axis); not used when that graph is not connected. Default true.
   bool orient_winners = true;
-  /// Without input normals: fit them by gcs::fit_normals (a quadric's normal at the point, defined
-  /// wherever the surface has one at the sampling scale; cloud_normals.h) and orient them with the
-  /// reflection agreement and island links (detail::orient_normals refined). Off by default: the
-  /// plane through each point's 20 nearest, NaN unless its smallest eigenvalue is < 5% of the
-  /// middle one, oriented by Hoppe's criterion. The fitted normals are far closer to the truth and
-  /// far less often undefined, and kitten.xyz without normals, the nested spheres and the
-  /// synthetic vault shells without normals reconstruct better with them; but on CGAL's models
-  /// the loop's border tests (the normal gate, the film test), which undefined normals switch off,
-  /// then open many more border loops than the default (figures: bench/results/gcs.md).
+  /// Clouds without normals only: fit them by gcs::fit_normals (a quadric's normal at the point,
+  /// cloud_normals.h) and orient them with the reflection agreement and island links, instead of
+  /// the default plane through each point's 20 nearest (undefined unless its smallest eigenvalue
+  /// is < 5% of the middle one, oriented by Hoppe's criterion). The fitted normals are closer to the
+  /// truth and far less often undefined; thin shells and open sheets without normals come out more
+  /// consistently oriented and with fewer border loops, but coarse scans of figures get more border
+  /// loops (the border tests, which undefined normals switch off, then act everywhere; see
+  /// bench/results/gcs.md). Default false; ignored for clouds with normals.
   bool quadric_normals = false;
-  /// With orient_winners and input normals: the winner is the nearest vertex facing the sample's
-  /// side among its 32 nearest (within four grid cells, about four mean edges, of the nearest)
-  /// instead of 8 (two cells), and a sample none of them faces is skipped (no winner, no move, no
-  /// signal) instead of pulling the plain nearest vertex to it. On a thin closed shell (walls about
-  /// one edge apart) the vertices nearest to a sample on a wall whose own layer is missing there
-  /// (not yet grown, or cut by the border creation) lie on the other wall and face away: pulling
-  /// them dented that wall into the gap, where the border creation then removed it, so the holes
-  /// spread (the torn vault shells). The missing layer grows back from its border instead (its
-  /// border vertices win the samples they face; with only 8 candidates they were often out of
-  /// reach, and whole stretches of a shell stayed missing). Not with fitted normals, whose
-  /// orientation can be wrong in places (the loop would never follow those samples; on a landscape
-  /// at 300 vertices that left folds). Off by default: on vault shells it covers the shells better
-  /// (higher coverage, lower Chamfer distance, fewer border loops) but does not close them, and
-  /// adds border loops on some thin-shell runs and self-intersecting pairs on others (which
-  /// resolve_self_intersections removes); figures: bench/results/gcs.md.
-  /// Other clouds (kitten.xyz, the open shapes, the main job) are unchanged or nearly so.
-  /// false: the published oriented loop's fallback (the plain nearest vertex wins among 8).
-  bool skip_unfaced_samples = false;
-  /// With oriented samples (see orient_winners) that surround a volume (their normals point away
-  /// from the centroid: not an open flat sheet), the border creation also removes films: faces all
-  /// of whose this many nearest samples (within the support distance) face sideways to them and
-  /// have them in front, i.e. a film spanning a tunnel or gap outside the object (kitten.xyz's
-  /// tail tunnel). 0 disables; at most 64.
-  std::size_t film_samples = 8;
-  /// Curled or overlapping rims: when the strip joining two close, similar, orientation-compatible
-  /// border loops is refused (its faces fold back against the faces around: the rims slid past
-  /// each other or bend away from the gap, e.g. the two openings of kitten.xyz's tail tunnel), or
-  /// the fan closing a hole whose border is at most 10 mean edge lengths long is refused, the
-  /// join or fill is tried again with 1 ... this many rings of faces removed along the loop(s) (on
-  /// a copy, kept only when the strip or fan is then added and no piece is cut off). 0 disables;
-  /// at most 8.
-  std::size_t border_trim_rings = 2;
   /// Noisy clouds are smoothed first: the noise is estimated (gcs::estimate_noise, cloud_noise.h)
   /// and when it exceeds this share of the point spacing, every point is moved onto the quadric
-  /// fitted to its 64 nearest points (gcs::smooth_noise). The loop, its border tests and the
-  /// post-processing (which put the mesh on the samples) then use the smoothed points, so the mesh
-  /// does not carry the noise: with noise of 0.06-0.24 point spacings on synthetic shapes the
-  /// 5K-vertex mesh is 1.8-3x closer to the true surface (Chamfer-L1), while its distance to the
-  /// noisy points themselves grows (bench/results/gcs-noise.md).
-  /// Clean clouds are left as they are: the synthetic shapes, CGAL's kitten.xyz and the vertex sets
-  /// of CGAL's six sample meshes estimate below 0.002 (CGAL's sphere_20k: 0.56). >= 0 (0 smooths
-  /// every cloud), not NaN; infinity turns it off.
+  /// fitted to its 64 nearest points (gcs::smooth_noise). The loop and the post-processing then use
+  /// the smoothed points (closer to the true surface, farther from the noisy points; see
+  /// bench/results/gcs-noise.md). Default 0.05 (clean scans estimate below it); >= 0 and not NaN;
+  /// 0 smooths every cloud; infinity turns it off.
   double smooth_noise_ratio = 0.05;
-  /// Post-processing of the returned mesh: every vertex not on a border is moved onto the tangent plane of its
-  /// nearest sample (input normal, or the normal fitted to the sample's neighbours), unless that
-  /// moves it more than half a mean edge length or turns one of its faces by more than 60 degrees.
-  /// The loop's own mesh (Reconstructor::mesh()) is not moved.
+  /// For a large cloud with input normals, the nearest-sample queries of the topology passes and
+  /// of the projection search a spatially even subsample of at most this many points (one point
+  /// out of every run of ceil(n / limit) in spatial order; which one depends on the seed) instead
+  /// of the whole cloud, so that their cost and the set-up's do not grow with the cloud. The basic
+  /// steps still draw from every point, and the surface fit uses its own even stride. Default 0 =
+  /// automatic: max(100000, 5 * target_vertices); a cloud of at most that many points (or without
+  /// normals) is used whole. Otherwise at least target_vertices.
+  std::size_t max_query_points = 0;
+  /// Field by field.
+  bool operator==(const InputOptions&) const = default;
+};
+
+/// Post-processing of the returned mesh, in this order. The loop's own mesh
+/// (Reconstructor::mesh()) is not changed by it. Angles in degrees, distances in mean edge lengths.
+struct PostProcessOptions {
+  /// Every vertex not on a border is moved onto the tangent plane of its nearest sample (input
+  /// normal, or the normal fitted to the sample's neighbours), unless that moves it more than half
+  /// a mean edge length or turns one of its faces by more than 60 degrees. Default true.
   bool project_to_samples = true;
-  /// Post-processing of the returned mesh, after project_to_samples and before the fit: interior
-  /// edges whose two opposite angles sum to more than 180 degrees are flipped (toward a Delaunay
-  /// triangulation on the surface) unless, within 30 degrees of 180, the flip takes the four
-  /// vertices' valences farther from 6 (4 on a border); edges within 30 degrees below 180 are
-  /// flipped when that brings the valences nearer 6; all where the two faces and the two new faces are within about 25
-  /// degrees of each other (creases stay) and no end drops below valence 3 (2 on a border); flips that would create
-  /// a self-intersecting face pair are not made. Vertex positions do not change. It removes most
-  /// of the loop's thin faces (on the kitten at 5K vertices the smallest angle goes from about
-  /// 9 to about 21 degrees); the distances to the samples hardly change.
+  /// Interior edges whose two opposite angles sum to more than 180 degrees are flipped (toward a
+  /// Delaunay triangulation on the surface) unless, within 30 degrees of 180, the flip takes the
+  /// four vertices' valences farther from 6 (4 on a border); edges within 30 degrees below 180 are
+  /// flipped when that brings the valences nearer 6; all where the two faces and the two new faces
+  /// are within about 25 degrees of each other (creases stay), no end drops below valence 3 (2 on a
+  /// border) and no self-intersecting face pair is created. Vertex positions do not change; most
+  /// thin faces go. Default true.
   bool delaunay_flips = true;
-  /// Post-processing of the returned mesh, after project_to_samples: a least-squares fit that moves
-  /// every vertex along its normal so that the samples lie on the triangles closest to them (the
-  /// chord error between vertices on a curved surface included), with a smoothness term between
+  /// A least-squares fit that moves every vertex along its normal so that the samples lie on the
+  /// triangles closest to them (the chord error included), with a smoothness term between
   /// neighbours; samples farther than a mean edge length from the mesh are ignored, and of more
-  /// than 2 samples per vertex an even stride of 2 per vertex is used (cost). Rounds after the
-  /// first weight each sample by mean|r| / max(|r|, 0.1 mean|r|) of the residuals r (iteratively
-  /// reweighted least squares: toward the smallest mean distance, the Chamfer-L1). Guards: a
-  /// vertex moves at most half a mean edge length, no face turns by more than 45 degrees, and the
-  /// vertices of both faces of every self-intersecting pair the fit would create stay where they were.
-  /// Tangential positions (angles, valences) do not change. The loop's own mesh is not moved.
+  /// than 2 samples per vertex an even stride of 2 per vertex is used. Rounds after the first
+  /// reweight the samples by their residuals (iteratively reweighted least squares toward the
+  /// smallest mean distance). Guards: a vertex moves at most half a mean edge length, no face turns
+  /// by more than 45 degrees, no self-intersecting face pair is created. Tangential positions do not
+  /// change. Default true.
   bool fit_surface = true;
-  /// Rounds of the fit (closest points recomputed each round). In [1, 20].
+  /// Rounds of the fit (closest points recomputed each round). Default 3; in [1, 20].
   int fit_rounds = 3;
   /// Weight of the squared difference of two neighbours' moves, per edge, relative to one sample's
-  /// squared residual. Finite, >= 0; larger is smoother and fits less.
+  /// squared residual. Default 0.1; finite, >= 0; larger is smoother and fits less.
   double fit_smoothness = 0.1;
-  /// Post-processing of the returned mesh, last (after the fit): rounds of removing small double
-  /// layers at borders (`twist::remove_stacked_layers`, its defaults otherwise): a face touching
-  /// the border that has a same-orientation partner stacked on it (close in space, far along the
-  /// surface), in a group of at most 8 such faces, is removed, so the other layer covers the
-  /// place alone. Rims and hole borders of thin shells curl over the surface next to them (the
-  /// loop's border operations, and the projection, flips and fit above move rim vertices), and
-  /// two layers of one wall with the same orientation are what a twist looks like
-  /// (bench/results/twist-vaults.md). A small pair with no face on the border is a pleat (a Z
-  /// fold): it is smoothed flat where that works without new folds, unless the other wall lies
-  /// within the fold (a shell thinner than the mesh resolves). Layers of a wall twisted
-  /// front to back (large groups) are left; a mesh without a border is not scanned (a closed
-  /// result keeps its bytes). In [0, 16]; 0 = off.
+  /// Rounds of removing small double layers at borders (`twist::remove_stacked_layers`, its
+  /// defaults otherwise): a face touching the border that has a same-orientation partner stacked
+  /// on it (close in space, far along the surface), in a group of at most 8 such faces, is
+  /// removed; a small pair with no face on the border (a pleat, a Z fold) is smoothed flat where
+  /// that makes no new folds. Large groups (a wall twisted front to back) are left; a mesh without
+  /// a border is not scanned. Default 3; in [0, 16]; 0 = off.
   int stacked_layer_rounds = 3;
-  /// Post-processing of the returned mesh, last: self-intersecting face pairs are resolved. On thin
-  /// shells (walls about an edge apart) the loop drags vertices of one wall through the other and
-  /// rims curl over the faces next to them, so faces cross. The vertices of the crossing faces
-  /// (then also 1 and 2 rings around them) are smoothed toward the mean of their neighbours (on a
-  /// border: of their two border neighbours; 8 half steps, at most half a mean edge length in
-  /// all); a move that makes a pair cross that did not before, or turns a face by more than 60
-  /// degrees, is put back; then the moved vertices go back halfway to where they were, 4 times, as
-  /// far as nothing crosses again. Of a pair still crossing one face is cut out (the one touching a
-  /// border, else the one farther from the samples; pieces it cuts off go when the border creation
-  /// would remove them too, below 8 faces or 5% of the largest piece; a cut that would cut off a
-  /// larger piece is not made), and
-  /// border loops of at most 8 vertices are then filled one at a time when their fans lie on the
-  /// samples and cross nothing (a hole the cut left: else by the least-area triangulation of its
-  /// border, and a fill whose crossings the smoothing undoes counts as crossing nothing). A mesh
-  /// without crossings keeps its bytes. false: crossings are left.
+  /// Self-intersecting face pairs are resolved, last: the vertices of the crossing faces (then 1
+  /// and 2 rings around them) are smoothed toward their neighbours' mean (at most half a mean edge
+  /// length; moves that make new crossings or turn a face by more than 60 degrees are put back);
+  /// of a pair still crossing one face is cut out (the one touching a border, else the one farther
+  /// from the samples; no cut that would cut off a large piece), and the small holes the cut left
+  /// (at most 8 vertices) are filled when their fans lie on the samples and cross nothing. A mesh
+  /// without crossings keeps its bytes. Default true; false leaves the crossings.
   bool resolve_self_intersections = true;
-  /// Border creation and merging start once the mesh has this many live vertices (a coarse mesh
-  /// does not hug the samples yet). Clamped to at most target_vertices / 2.
-  std::size_t topology_min_vertices = 150;
+  /// Field by field.
+  bool operator==(const PostProcessOptions&) const = default;
+};
+
+/// Knobs that are off by default because their effect is mixed (better on some clouds, worse on
+/// others: figures in bench/results/gcs.md, closed.md and twist-vaults.md). The presets set some of
+/// them where they measured better; a plain call should not need them.
+struct ExperimentalOptions {
+  /// Also zip slits: close the gap between two chains of one border loop that run within 2 mean
+  /// edge lengths of each other in opposite directions (a torn tube), within and across loops.
+  /// Default false (on closed scans it split torn loops into several that the loop merge does not
+  /// join).
+  bool zip_slits = false;
+  /// With InputOptions::orient_winners and input normals: the winner is the nearest vertex facing
+  /// the sample's side among its 32 nearest (within about four mean edges of the nearest) instead
+  /// of 8 (two), and a sample none of them faces is skipped (no winner, no move, no signal) instead
+  /// of pulling the plain nearest vertex to it. On a thin closed shell (walls about one edge
+  /// apart) the vertices nearest to a sample on a wall whose own layer is missing there lie on the
+  /// other wall and face away: pulling them dents that wall into the gap; skipping lets the missing
+  /// layer grow back from its border. Covers thin shells better (higher coverage, lower Chamfer
+  /// distance, fewer border loops on most shells) but adds border loops on the thinnest ones; other
+  /// clouds are unchanged or nearly so. Default false (the published oriented loop's fallback);
+  /// ignored without input normals. Set by ReconstructOptions::thin_shell().
+  bool skip_unfaced_samples = false;
+  /// Field by field.
+  bool operator==(const ExperimentalOptions&) const = default;
+};
+
+/// Options of the reconstruction: four top-level settings and groups for the loop's stages. The
+/// defaults (= ReconstructOptions::scan()) suit most clouds; the presets change a few fields for
+/// the kinds of cloud where the project measured better results with them:
+///
+/// \code
+///   gcs::reconstruct(cloud, {.target_vertices = 2000});                      // the defaults
+///   gcs::reconstruct(cloud, {.target_vertices = 2000, .post = {.fit_rounds = 5}});
+///   gcs::ReconstructOptions o = gcs::ReconstructOptions::thin_shell();
+///   o.target_vertices = 6000;
+///   gcs::reconstruct(cloud, o);
+/// \endcode
+struct ReconstructOptions {
+  /// Stop when the mesh has this many live vertices. Default 5000; in [4, number of distinct input
+  /// points] and at most 50,000,000 (points that repeat an earlier one exactly are dropped first).
+  std::size_t target_vertices = 5000;
   /// Seed of the sample draws: the same seed, input and options give the same mesh, byte for byte.
-  /// Any value.
+  /// Default 1; any value.
   std::uint64_t seed = 1;
-  /// Call the progress callback every this many vertex splits (and once at the end). >= 1.
-  std::size_t progress_interval = 100;
-  /// Safety stop: at most this many basic steps per target vertex (0 = no limit). The loop stops
-  /// with StopReason::step_limit when collapses keep the mesh from growing.
-  std::uint64_t max_steps_per_vertex = 2000;
-  /// For a large cloud with input normals, the nearest-sample queries of the topology passes and
-  /// of project_to_samples search a spatially even subsample of at most this many points (one
-  /// point out of every run of ceil(n / limit) in spatial order; which one depends on the seed)
-  /// instead of the whole cloud, so that their cost and the set-up's (no k-d tree over all the
-  /// points) do not grow with the cloud. The basic steps still draw from every point, and the
-  /// surface fit uses its own even stride. 0 = automatic: max(100000, 5 * target_vertices); a
-  /// cloud of at most that many points (or without normals) is used whole. Otherwise at least
-  /// target_vertices.
-  std::size_t max_query_points = 0;
   /// Threads for the phases that are parallel over points (noise estimate and smoothing, the
-  /// quadric normal fits), >= 0; 0 (the default) = all cores. The loop itself is sequential; the
-  /// mesh is the same bytes for any count.
+  /// quadric normal fits). Default 0 = all cores; at most edgefront's kMaxThreads. The loop itself
+  /// is sequential; the mesh is the same bytes for any count.
   unsigned threads = 0;
+  /// Call the progress callback every this many vertex splits (and once at the end). Default 100;
+  /// >= 1.
+  std::size_t progress_interval = 100;
+  GrowthOptions growth{};              ///< the growing-cell-structures loop
+  TopologyOptions topology{};          ///< border creation, merging and filling
+  InputOptions input{};                ///< normals, noise smoothing, query subsample
+  PostProcessOptions post{};           ///< post-processing of the returned mesh
+  ExperimentalOptions experimental{};  ///< mixed-effect knobs, off by default
+
+  /// The defaults: scans of objects (closed surfaces, with or without normals), landscapes and
+  /// open sheets with normals.
+  static ReconstructOptions scan();
+  /// Thin closed shells (walls about a mesh edge apart, e.g. a vault's two faces): the winner
+  /// search skips samples no nearby vertex faces (ExperimentalOptions::skip_unfaced_samples; with
+  /// input normals) and clouds without normals get quadric normals (InputOptions::quadric_normals).
+  /// Better coverage and orientation on most shells; it does not close them and can add border
+  /// loops (figures: docs/reconstruction.md, "Options and presets").
+  static ReconstructOptions thin_shell();
+  /// Open sheets without normals (a vault's single surface, a terrain patch scanned without
+  /// normals): quadric normals (InputOptions::quadric_normals); with input normals the same as scan().
+  static ReconstructOptions open_sheet();
+  /// The preset named `name` ("scan", "thin_shell", "open_sheet"; see preset_names()).
+  /// \throw edgefront::InvalidInput for another name, listing the valid ones.
+  static ReconstructOptions preset(const std::string& name);
+  /// The names preset() accepts, in the order above.
+  static std::vector<std::string> preset_names();
+  /// Field by field, the groups included.
+  bool operator==(const ReconstructOptions&) const = default;
 };
 
 /// Why run() stopped.
 enum class StopReason {
   target_reached,  ///< the mesh has target_vertices live vertices
   cancelled,       ///< the progress callback returned false
-  step_limit,      ///< max_steps_per_vertex * target_vertices basic steps were done
+  step_limit,      ///< GrowthOptions::max_steps_per_vertex * target_vertices basic steps were done
   shrunk_by_operations  ///< the target was reached, but the operations' final calls removed parts
                         ///< (e.g. twisted regions cut out) and 3 rounds of regrowing left the mesh
                         ///< below 90% of the target
@@ -313,14 +352,14 @@ struct ReconstructResult {
   std::size_t loops_merged = 0;   ///< border loop pairs joined by the built-in merge
   std::size_t slits_zipped = 0;   ///< border slits (close, opposite-running border chains) closed
   std::size_t holes_filled = 0;   ///< small border loops (<= 8 vertices) closed by a fan, and slits
-                                  ///< (up to fill_slits_max_vertices) closed by a strip
+                                  ///< (up to TopologyOptions::fill_slits_max_vertices) closed by a strip
   std::size_t batches = 0;        ///< split batches (each followed by the operations and the topology pass)
   double seconds_total = 0;       ///< wall time of run()
   double seconds_operations = 0;  ///< of it: in registered operations
   double seconds_topology = 0;    ///< of it: in the built-in border creation and merging
   double seconds_fit = 0;         ///< of it: in the surface fit, Delaunay flips, stacked-layer removal and crossing resolution of the returned mesh
   std::size_t stacked_faces_found = 0;    ///< faces with a stacked same-orientation partner before that removal
-  std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (ReconstructOptions::stacked_layer_rounds)
+  std::size_t stacked_faces_removed = 0;  ///< by the stacked-layer removal (PostProcessOptions::stacked_layer_rounds)
   std::size_t stacked_pleats_flattened = 0;  ///< stacked pairs inside the surface it smoothed apart
   ///@{
   /// Self-intersecting face pairs before the last post-processing step (resolve_self_intersections;
@@ -332,7 +371,7 @@ struct ReconstructResult {
   std::size_t crossing_holes_filled = 0;    ///< holes it filled after the cut
   double seconds_crossings = 0;             ///< of seconds_fit: in it (the crossing count included)
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
-  double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (ReconstructOptions::smooth_noise_ratio)
+  double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (InputOptions::smooth_noise_ratio)
   bool cloud_smoothed = false;     ///< the loop ran on the smoothed cloud
   /// Input normals that were missing (non-finite, or zero: e.g. dropped by edgefront::read_points
   /// with tolerate_invalid_normals) and were replaced by a normal fitted to the point's neighbours

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "../../../twist/src/detail/border_join.h"  // the border joins the twist layer shares
 #include "edgefront/mesh.h"
 #include "edgefront/mesh_stats.h"
 
@@ -118,17 +119,8 @@ struct MergeParams {
 /// pairs joined (each loop in at most one pair per call).
 std::size_t merge_border_loops(edgefront::Mesh& mesh, const CloudQuery& cloud, const MergeParams& params);
 
-struct ZipParams {
-  double mean_edge_length = 0;
-  double max_support_distance = 0;    ///< strip face centroids must be this close to the cloud
-  double max_gap_edges = 2.0;         ///< seed pairs closer than this many mean edge lengths
-  double min_opposite_cos = 0.3;      ///< the two borders' directions make a cosine below -this
-  std::size_t min_loop_separation = 5;  ///< same loop: seed vertices at least this many loop steps apart
-  double min_normal_agreement = 0.2;  ///< mean cosine between strip faces and the faces they border
-  std::size_t max_zips = 32;          ///< strips added per call
-  bool across_loops = false;          ///< also zip chains of two different loops (joins them)
-  bool only_across_components = false;  ///< only zip chains of loops in two different components
-};
+/// Parameters of zip_border_slits (shared with the twist layer's heal).
+using ZipParams = twist::detail::ZipParams;
 
 /// Closes slits: where two border chains (of the same loop or of two loops) run close to each other
 /// (within max_gap_edges mean edge lengths) in opposite directions, the gap between them is closed

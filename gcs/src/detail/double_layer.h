@@ -93,7 +93,7 @@ double normal_flux(const std::vector<edgefront::Vec3>& points, const std::vector
 /// apart (islands cut off by undefined normals, a small densely sampled detail) are linked by
 /// wider searches to points up to 4 times those points' k-th-neighbour distance away.
 /// `refined` false: neither (Hoppe's n_i . n_j, the k-nearest graph as it is; the reconstructor
-/// with ReconstructOptions::quadric_normals off).
+/// with InputOptions::quadric_normals off).
 bool orient_normals(const std::vector<edgefront::Vec3>& points, const edgefront::PointIndex& index,
                     std::vector<edgefront::Vec3>& normals, std::size_t k = 8,
                     const std::vector<double>* noise = nullptr, bool refined = true);

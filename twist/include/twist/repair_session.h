@@ -54,12 +54,42 @@
 
 namespace twist {
 
+/// Border heal after every repair (`SessionOptions::heal`): the border operations a host's loop
+/// may lack, done on the mirror and returned in the same record. A repair cuts a closed mesh along
+/// a twist line and flips a side; along that cut both sides then run the same way and cannot be
+/// glued back, but as the host's loop moves on, other borders come to run opposite and close
+/// (the pieces now facing the same way across a seam). The heal zips such chains with a strip of
+/// triangles (joining two loops, or closing a slit of one) and closes small holes with a fan
+/// around their centroid (one new vertex, `VertexAdded::original` -1; a triangle for a hole of 3).
+/// A strip or fan is added only when every face lies on the reference cloud and the new faces
+/// agree with the faces they border (mean cosine of the normals), so it never joins two sides
+/// that run the same way. The record reports the new faces in `faces_added` and the fan centres
+/// in `vertices_added`; the next `repair` looks at the healed faces too.
+struct HealOptions {
+  bool enabled = false;              ///< off: no heal (the default)
+  double max_gap_edges = 1.0;        ///< chains closer than this many mean edge lengths are zipped; 0: no zips
+  double max_support_edges = 0.5;    ///< new faces' centroids within this many mean edges of the reference points
+  double min_normal_agreement = 0.2; ///< mean cosine between new faces and the faces they border
+  size_t max_zips = 32;              ///< strips per answer
+  size_t max_hole_vertices = 8;      ///< holes of at most this many border vertices are closed (< 3: none)
+};
+
+/// What the heal did in the last answer.
+struct HealReport {
+  size_t strips = 0;       ///< strips zipped between border chains
+  size_t holes = 0;        ///< small holes closed
+  size_t faces_added = 0;  ///< faces the strips and fans added
+};
+
 /// Options of a `RepairSession`.
 struct SessionOptions {
   /// The repair (`garbage_collect` is ignored: the mirror keeps its indices while the host does).
   RepairOptions repair = {};
   size_t max_retwists = 2;  ///< see `TwistRepairer`; >= 0
   edgefront::ConversionOptions conversion = {};  ///< how the host's arrays are converted (`mesh_from_arrays`)
+  /// Border heal after every `repair` and before the full repair of `finish` (see `HealOptions`);
+  /// needs `repair.detect.reference` (the cloud the new faces must lie on).
+  HealOptions heal = {};
 };
 
 /// What the last answer did besides its record.
@@ -68,6 +98,7 @@ struct SessionStats {
   size_t faces_changed = 0;      ///< faces the last batch added, re-connected or moved
   size_t pinched_split = 0;      ///< vertices the last batch left pinched, split
   RepairReport report;           ///< of the last repair
+  HealReport heal;               ///< of the last answer's heal (zero when off, and after `sync`)
 };
 
 /// A mirror of a host's mesh with incremental twist repair (see the file comment). Not copyable;
@@ -75,7 +106,8 @@ struct SessionStats {
 class RepairSession {
  public:
   /// Converts the host's arrays (`edgefront::mesh_from_arrays`).
-  /// \throws edgefront::InvalidInput as `mesh_from_arrays`, or for options out of range.
+  /// \throws edgefront::InvalidInput as `mesh_from_arrays`, or for options out of range (a heal
+  ///         without a reference cloud, a negative or non-finite heal distance).
   RepairSession(const edgefront::VertexArrayView& vertices, const edgefront::FaceArrayView& faces,
                 SessionOptions options = {});
   ~RepairSession();
@@ -110,11 +142,11 @@ class RepairSession {
   /// \throws edgefront::InvalidInput for edits that do not fit (naming the host's index).
   EditRecord sync();
   /// Applies the edits and repairs the twists near what changed (`TwistRepairer::repair_changed`
-  /// in its local mode). `mean_edge_length` > 0: the host's value; 0: the session's estimate
+  /// in its local mode), then heals the borders when `SessionOptions::heal` is on. `mean_edge_length` > 0: the host's value; 0: the session's estimate
   /// (recomputed when the live edge count changed by more than 10% since the last time).
   EditRecord repair(double mean_edge_length = 0);
-  /// Applies the edits and repairs the whole mesh with the global orientation
-  /// (`TwistRepairer::finish`).
+  /// Applies the edits, heals the borders when `SessionOptions::heal` is on, and repairs the
+  /// whole mesh with the global orientation (`TwistRepairer::finish`).
   EditRecord finish();
   /// Per host face index (the host's face index space): the twisted region it lies in (0 = the
   /// largest), -1 for none or an empty slot. Detection only (`RepairOptions::detect`); no edits

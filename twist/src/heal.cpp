@@ -1,0 +1,47 @@
+// The session's border heal (detail/heal.h) on the shared border joins (detail/border_join.h).
+
+#include "detail/heal.h"
+
+#include "detail/border_join.h"
+#include "edgefront/mesh_stats.h"
+
+namespace twist::detail {
+
+using edgefront::FaceHandle;
+using edgefront::Mesh;
+using edgefront::Vec3;
+
+HealCounts heal_borders(Mesh& mesh, const ReferenceNormals& reference, double mean_edge_length,
+                        const HealOptions& options, std::vector<FaceHandle>& added) {
+  HealCounts counts;
+  if (!(mean_edge_length > 0)) return counts;
+  const size_t faces_before = mesh.n_faces();
+  const std::vector<Vec3>& points = reference.cloud().points;
+  const CloudDistance cloud = [&](const Vec3& p) { return (p - points[reference.nearest(p)]).norm(); };
+  const double support = options.max_support_edges * mean_edge_length;
+  if (options.max_gap_edges > 0 && options.max_zips > 0) {
+    ZipParams zp;
+    zp.mean_edge_length = mean_edge_length;
+    zp.max_support_distance = support;
+    zp.max_gap_edges = options.max_gap_edges;
+    zp.max_zips = options.max_zips;
+    zp.min_normal_agreement = options.min_normal_agreement;
+    zp.across_loops = true;
+    counts.strips = zip_border_slits(mesh, cloud, zp);
+  }
+  if (options.max_hole_vertices >= 3) {
+    for (const BorderLoop& loop : border_loops(mesh)) {
+      if (loop.vertices.size() > options.max_hole_vertices) continue;
+      if (fill_loop(mesh, cloud, loop, support, options.min_normal_agreement)) ++counts.holes;
+    }
+  }
+  for (size_t i = faces_before; i < mesh.n_faces(); ++i) {
+    const FaceHandle f(static_cast<int>(i));
+    if (!edgefront::is_live(mesh, f)) continue;
+    mesh.set_normal(f, mesh.calc_face_normal(f));  // as the session keeps its faces' normals
+    added.push_back(f);
+  }
+  return counts;
+}
+
+}  // namespace twist::detail
