@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     };
     const double area_before = area_of(read.mesh);
     const size_t pieces_before = edgefront::compute_stats(read.mesh).components;
-    const double consistency_before = reference ? twist::orientation_consistency(read.mesh, *reference) : 0.0;
+    const double consistency_before = reference ? twist::face_orientation_agreement(read.mesh, *reference) : 0.0;
     // With --points: the faces the points' normals reject, in red.
     auto rejected = [&](const edgefront::Mesh& mesh) {
       edgefront::render::FaceHighlight h;
@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     std::cout << "evidence:           " << r.detect_stats.faces_tested << " faces tested, " << r.detect_stats.distance_queries
               << " bounded distance fronts, " << r.detect_stats.flagged_faces << " faces flagged\n";
     if (reference) {
-      std::cout << "consistency:        " << consistency_before << " -> " << twist::orientation_consistency(read.mesh, *reference)
+      std::cout << "consistency:        " << consistency_before << " -> " << twist::face_orientation_agreement(read.mesh, *reference)
                 << " of the area agrees with --points\n";
       // What disagrees still, by the reference's verdict (reference_vote, as the repair judges).
       double total = 0, rejected_area = 0, undecided = 0;

@@ -367,7 +367,23 @@ TEST(GeodesicSolverArrays, LevelsAndPaths) {
     const Vec3 a0 = mesh.point(VertexHandle(p.edge[2 * i])), a1 = mesh.point(VertexHandle(p.edge[2 * i + 1]));
     const Vec3 q = a0 + p.t[i] * (a1 - a0);
     EXPECT_NEAR((q - ref.polyline[i].position).norm(), 0.0, 1e-12);
+    // The same point as a face row and barycentric coordinates in the row's corner order.
+    ASSERT_GE(p.face[i], 0);
+    Vec3 x(0, 0, 0);
+    for (size_t k = 0; k < 3; ++k) {
+      const int corner = a.faces[3 * static_cast<size_t>(p.face[i]) + k];
+      x += mesh.point(VertexHandle(corner)) * p.barycentric[3 * i + k];
+    }
+    EXPECT_NEAR((x - ref.polyline[i].position).norm(), 0.0, 1e-12);
   }
+  // Polyline points are sources as they are: the field from the middle one is the C++ field from
+  // its PathPoint::location.
+  const size_t mid = ref.polyline.size() / 2;
+  const DistanceArrays from_mid = solver.distance_from_points(std::span<const int>(&p.face[mid], 1),
+                                                              std::span<const double>(&p.barycentric[3 * mid], 3));
+  const DistanceField ref_mid = geodesic_distance(mesh, {ref.polyline[mid].location});
+  ASSERT_EQ(from_mid.distance.size(), ref_mid.distance.size());
+  for (size_t v = 0; v < ref_mid.distance.size(); ++v) EXPECT_NEAR(from_mid.distance[v], ref_mid.distance[v], 1e-9) << v;
   const PathArrays line = solver.polyline(p.vertices);
   EXPECT_EQ(line.vertices, p.vertices);
   EXPECT_LE(line.length, ref.edge_length + 1e-12);

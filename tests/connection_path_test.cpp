@@ -42,7 +42,8 @@ void expect_chain(const Mesh& mesh, const ConnectionPath& p, VertexHandle from, 
   }
 }
 
-// Every polyline point lies on the mesh edge it names; consecutive points share a face.
+// Every polyline point lies on the mesh edge it names, its `location` (face and barycentric
+// coordinates) is the same point on a face of that edge; consecutive points share a face.
 void expect_polyline_on_surface(const Mesh& mesh, const std::vector<PathPoint>& pts) {
   auto faces_of = [&](const PathPoint& p) {
     std::vector<FaceHandle> fs;
@@ -64,6 +65,11 @@ void expect_polyline_on_surface(const Mesh& mesh, const std::vector<PathPoint>& 
     if (p.vertex.is_valid()) {
       EXPECT_LT((mesh.point(p.vertex) - p.position).norm(), 1e-12);
     }
+    ASSERT_TRUE(is_live(mesh, p.location.face));
+    const auto fs = faces_of(p);
+    EXPECT_NE(std::find(fs.begin(), fs.end(), p.location.face), fs.end()) << "location on a face the point is not on";
+    EXPECT_LT((surface_point_position(mesh, p.location) - p.position).norm(), 1e-9);
+    EXPECT_NEAR(p.location.bary[0] + p.location.bary[1] + p.location.bary[2], 1.0, 1e-12);
   }
   for (size_t i = 1; i < pts.size(); ++i) {
     const auto fa = faces_of(pts[i - 1]), fb = faces_of(pts[i]);
@@ -190,6 +196,34 @@ TEST(ConnectionPath, PolylineOnAConvexPlanarGridIsTheStraightSegment) {
         expect_polyline_on_surface(mesh, p.polyline);
         EXPECT_DOUBLE_EQ(p.length, p.polyline_length);
       }
+    }
+  }
+}
+
+TEST(ConnectionPath, PolylinePointsAreGeodesicSourcesAsTheyAre) {
+  // On a regular planar grid the distance from any point is Euclidean (the windows are exact):
+  // each polyline point's location, passed as it is, is the source at that point.
+  const Mesh mesh = shapes::grid({.cells = 12, .variant = GridVariant::regular, .seed = 1});
+  const ConnectionPath p = connection_path(mesh, VertexHandle(2), VertexHandle(static_cast<int>(mesh.n_vertices()) - 4),
+                                           {.polyline = true});
+  ASSERT_EQ(p.status, PathStatus::Found);
+  ASSERT_GE(p.polyline.size(), 3u);
+  const std::vector<SurfacePoint> all = surface_points(p.polyline);
+  ASSERT_EQ(all.size(), p.polyline.size());
+  for (const size_t i : {size_t{0}, p.polyline.size() / 2, p.polyline.size() - 1}) {
+    DistanceOptions o;
+    o.method = DistanceMethod::Windows;
+    const DistanceField d = geodesic_distance(mesh, {p.polyline[i].location}, o);
+    for (VertexHandle v : mesh.vertices()) {
+      EXPECT_NEAR(d.distance[static_cast<size_t>(v.idx())], (mesh.point(v) - p.polyline[i].position).norm(), 1e-9)
+          << "source point " << i << ", vertex " << v.idx();
+    }
+  }
+  // The whole polyline as one source set: zero along it.
+  const DistanceField along = geodesic_distance(mesh, all);
+  for (const PathPoint& q : p.polyline) {
+    if (q.vertex.is_valid()) {
+      EXPECT_NEAR(along.distance[static_cast<size_t>(q.vertex.idx())], 0.0, 1e-12);
     }
   }
 }

@@ -217,7 +217,7 @@ TEST(TwistDetect, ReferenceNormalsDecideTheSide) {
   const auto [twisted, covered] = twisted_covered(s, regions[0]);
   EXPECT_EQ(covered, twisted);
   EXPECT_EQ(right_faces_in(s, regions[0]), 0u);
-  EXPECT_LT(twist::orientation_consistency(s.mesh, ref), 0.95);
+  EXPECT_LT(twist::face_orientation_agreement(s.mesh, ref), 0.95);
 }
 
 TEST(TwistDetect, OnAWallThinnerThanTheEdgesTheNearestNormalIsNoEvidence) {

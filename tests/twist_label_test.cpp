@@ -172,7 +172,7 @@ TEST(TwistLabel, HandFlippedPatchesOfSphereAndTorusAreFlippedBack) {
       Mesh m = flip_patches(c.mesh, 4, 40 + 60 * seed, seed, &flipped);
       const std::string what = c.name + " seed " + std::to_string(seed);
       ASSERT_EQ(m.n_faces(), c.mesh.n_faces()) << what;
-      ASSERT_LT(twist::orientation_consistency(m, ref), 0.97) << what;
+      ASSERT_LT(twist::face_orientation_agreement(m, ref), 0.97) << what;
       const size_t pieces = components(m);
       for (bool seams : {true, false}) {
         // With the seam rule the patches are flipped before the labelling; without it the labels
@@ -182,7 +182,7 @@ TEST(TwistLabel, HandFlippedPatchesOfSphereAndTorusAreFlippedBack) {
         o.detect.reference = &ref;
         o.experimental.flip_seam_pieces = seams;
         const twist::RepairReport r = twist::repair(mm, o);
-        EXPECT_DOUBLE_EQ(twist::orientation_consistency(mm, ref), 1.0) << what << seams;
+        EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(mm, ref), 1.0) << what << seams;
         EXPECT_EQ(mm.n_faces(), c.mesh.n_faces()) << what;
         EXPECT_EQ(r.faces_removed, 0u) << what;
         EXPECT_EQ(r.cut_edges, 0u) << what << ": whole pieces are flipped, no cut";
@@ -203,13 +203,13 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
   for (std::uint32_t seed = 1; seed <= 3; ++seed) {
     size_t flipped = 0;
     Mesh m = flip_patches(sphere, 4, 40 + 60 * seed, seed, &flipped);
-    ASSERT_LT(twist::orientation_consistency(m, ref), 0.97) << seed;
+    ASSERT_LT(twist::face_orientation_agreement(m, ref), 0.97) << seed;
     twist::RepairOptions o;
     o.experimental.flip_seam_pieces = true;
     Mesh off = m;
     EXPECT_EQ(twist::repair(off).seam_faces_flipped, 0u) << "off by default";
     const twist::RepairReport r = twist::repair(m, o);
-    EXPECT_DOUBLE_EQ(twist::orientation_consistency(m, ref), 1.0) << seed;
+    EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(m, ref), 1.0) << seed;
     EXPECT_EQ(r.seam_faces_flipped, flipped) << seed;
     EXPECT_GE(r.seam_pieces_flipped, 1u) << seed;
     EXPECT_EQ(r.faces_removed, 0u) << seed;
@@ -231,11 +231,11 @@ TEST(TwistLabel, HandFlippedPatchesNeedNoReference) {
     edgefront::restore_attributes(r);
     m = std::move(r);
   }
-  ASSERT_LT(twist::orientation_consistency(m, ref), 0.5);
+  ASSERT_LT(twist::face_orientation_agreement(m, ref), 0.5);
   twist::RepairOptions o;
   o.experimental.flip_seam_pieces = true;
   const twist::RepairReport r = twist::repair(m, o);
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(m, ref), 1.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(m, ref), 1.0);
   EXPECT_EQ(r.seam_faces_flipped, flipped);
   EXPECT_GE(r.components_flipped, 1u) << "the group is closed: outward normals";
 }
@@ -255,18 +255,18 @@ TEST(TwistLabel, AnOpenSurfaceFacingInwardNeedsTheReference) {
     inward.add_face(t);
   }
   edgefront::restore_attributes(inward);
-  ASSERT_DOUBLE_EQ(twist::orientation_consistency(inward, ref), 0.0);
+  ASSERT_DOUBLE_EQ(twist::face_orientation_agreement(inward, ref), 0.0);
   Mesh alone = inward;
   const twist::RepairReport r = twist::repair(alone);
   EXPECT_EQ(r.regions_found, 0u) << "not found without a reference";
   EXPECT_EQ(r.components_flipped, 0u);
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(alone, ref), 0.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(alone, ref), 0.0);
   twist::RepairOptions o;
   o.detect.reference = &ref;
   const twist::RepairReport fixed = twist::repair(inward, o);
   EXPECT_EQ(fixed.repairs, 1u);
   EXPECT_EQ(fixed.cut_edges, 0u);
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(inward, ref), 1.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(inward, ref), 1.0);
 }
 
 TEST(TwistLabel, ScatteredRejectionsDoNotShredTheSurface) {

@@ -77,12 +77,12 @@ TEST(TwistOperation, EndToEndVaultShellFromABox) {
   ro.seed = 3;
   ro.input.orient_winners = false;  // with oriented winners (the default) plain GCS does not twist here
   gcs::Reconstructor plain(cloud, ro);
-  const double without = twist::orientation_consistency(plain.run().mesh, truth);
+  const double without = twist::face_orientation_agreement(plain.run().mesh, truth);
   gcs::Reconstructor repaired(cloud, ro);
   auto op = std::make_shared<gcs::TwistOperation>();
   repaired.add_operation(op);
   const gcs::ReconstructResult r = repaired.run();
-  const double with = twist::orientation_consistency(r.mesh, truth);
+  const double with = twist::face_orientation_agreement(r.mesh, truth);
   EXPECT_LT(without, 0.9) << "plain GCS twists here";
   // At this coarse size (400 vertices, plain winners) one seed is a noisy sample and most of the
   // shell is lost with or without the repair (bench_twist --vertices 400 --points 5000

@@ -215,7 +215,7 @@ TEST(TwistRepair, TurnedOverRimFlapIsRemovedWhenAsked) {
   EXPECT_EQ(r.turned_faces_collapsed, 0u);
   EXPECT_EQ(s.mesh.n_faces(), 144u);
   EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(s.mesh, ref), 1.0);
   o.experimental.drop_turned_patches = 65;
   EXPECT_THROW(twist::repair(s.mesh, o), InvalidInput);
 }
@@ -246,7 +246,7 @@ twist::RepairReport expect_straightened(Mesh& mesh, const twist::ReferenceNormal
   EXPECT_EQ(r.turned_faces_collapsed, 0u);
   EXPECT_EQ(r.turned_faces_removed, 0u);
   EXPECT_EQ(mesh.n_faces(), 144u);
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(mesh, ref), 1.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(mesh, ref), 1.0);
   EXPECT_EQ(twist::same_orientation_pairs(mesh).size(), 0u);
   return r;
 }
@@ -307,7 +307,7 @@ TEST(TwistRepair, InvertedInteriorSliverIsCollapsedWhenAsked) {
   EXPECT_EQ(r.turned_faces_collapsed, 1u);
   EXPECT_EQ(r.turned_faces_removed, 0u);
   EXPECT_EQ(s.mesh.n_faces(), 142u) << "a collapse removes the sliver and its neighbour across the edge";
-  EXPECT_DOUBLE_EQ(twist::orientation_consistency(s.mesh, ref), 1.0);
+  EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(s.mesh, ref), 1.0);
   EXPECT_EQ(edgefront::compute_stats(s.mesh).components, 2u);
   EXPECT_EQ(twist::same_orientation_pairs(s.mesh).size(), 0u);
 }

@@ -300,6 +300,10 @@ struct GeodesicSolver::Impl {
         out.edge.push_back(a.vertex_row[static_cast<size_t>(a.mesh.to_vertex_handle(p.halfedge).idx())]);
         out.t.push_back(p.t);
       }
+      // The mesh face's corners run in the row's order (as `distance_from_points` reads them).
+      const bool on_face = p.location.face.is_valid();
+      out.face.push_back(on_face ? a.face_row[static_cast<size_t>(p.location.face.idx())] : -1);
+      for (const double b : p.location.bary) out.barycentric.push_back(on_face ? b : 0.0);
     }
     return out;
   }

@@ -390,6 +390,7 @@ class Straightener {
       break;
     }
     p.t = 0.0;
+    if (p.halfedge.is_valid()) p.location = surface_point_on_edge(mesh_, p.halfedge, 0.0);  // an isolated vertex has none
     return p;
   }
 
@@ -423,6 +424,7 @@ class Straightener {
           pt.t = 1;
           pt.position = to;
         }
+        pt.location = surface_point_on_edge(mesh_, pt.halfedge, pt.t);
         push(pt);
       }
       push(vertex_point(VertexHandle(apex_vertex(portals, apexes[k]))));
@@ -749,6 +751,13 @@ std::vector<PathPoint> geodesic_polyline(const Mesh& mesh, const std::vector<Ver
       });
   if (split) return joined;
   return st.run(chain, max_flips, converged);
+}
+
+std::vector<SurfacePoint> surface_points(const std::vector<PathPoint>& polyline) {
+  std::vector<SurfacePoint> out;
+  out.reserve(polyline.size());
+  for (const PathPoint& p : polyline) out.push_back(p.location);
+  return out;
 }
 
 double polyline_length(const std::vector<PathPoint>& points) {

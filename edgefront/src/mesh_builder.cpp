@@ -13,18 +13,10 @@
 #include <vector>
 
 #include "edgefront/error.h"
+#include "edgefront/union_find.h"
 #include "edgefront/vertex_twins.h"
 
 namespace edgefront {
-
-namespace {
-
-size_t find_root(std::vector<std::uint32_t>& parent, size_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
-}  // namespace
 
 namespace detail {
 
@@ -93,14 +85,8 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> first_he(edges, kNone);  // the edge's first kept halfedge
   std::vector<std::uint8_t> count(edges, 0);
-  std::vector<std::uint32_t> parent(3 * m);
-  std::iota(parent.begin(), parent.end(), 0u);
+  BasicUnionFind<std::uint32_t> corner_class(3 * m);
   std::vector<std::uint8_t> kept(m, 0);
-  auto unite = [&](size_t a, size_t b) {
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a != b) parent[std::max(a, b)] = static_cast<std::uint32_t>(std::min(a, b));
-  };
   for (size_t r = 0; r < m; ++r) {
     bool ok = true;
     for (size_t k = 0; k < 3 && ok; ++k) {
@@ -131,8 +117,8 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
       }
       // h runs a -> b, g runs b -> a: at a, corner k of r and the corner after g's; at b, the reverse.
       const size_t g = first_he[e];
-      unite(h, next_corner(g));
-      unite(next_corner(h), g);
+      corner_class.unite(h, next_corner(g));
+      corner_class.unite(next_corner(h), g);
     }
   }
   std::vector<std::uint32_t>().swap(first_he);
@@ -158,7 +144,7 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
     if (!kept[r]) continue;
     for (size_t k = 0; k < 3; ++k) {
       const int v = tris[3 * r + k];
-      const std::uint32_t root = static_cast<std::uint32_t>(find_root(parent, 3 * r + k));
+      const std::uint32_t root = static_cast<std::uint32_t>(corner_class.find(3 * r + k));
       std::uint32_t& first = first_class[static_cast<size_t>(v)];
       if (first == kNone) {
         first = root;
@@ -168,7 +154,7 @@ ArrayMesh build_mesh(const PointRows& points, std::span<const int> tris) {
       }
     }
   }
-  std::vector<std::uint32_t>().swap(parent);
+  corner_class = BasicUnionFind<std::uint32_t>();  // free it
   std::sort(extras.begin(), extras.end(),
             [](const Extra& a, const Extra& b) { return a.vertex != b.vertex ? a.vertex < b.vertex : a.row < b.row; });
   for (size_t i = 0; i < extras.size(); ++i) copy_of_class[extras[i].root] = static_cast<int>(n + i);

@@ -8,41 +8,13 @@
 #include <sstream>
 
 #include "edgefront/error.h"
+#include "edgefront/union_find.h"
 
 namespace edgefront {
 
-namespace {
-
-/// Union-find with path halving and union by size.
-class DisjointSets {
- public:
-  explicit DisjointSets(size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), 0); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (size_[a] < size_[b]) std::swap(a, b);
-    parent_[b] = a;
-    size_[a] += size_[b];
-  }
-
- private:
-  std::vector<size_t> parent_;
-  std::vector<size_t> size_;
-};
-
-}  // namespace
-
 ComponentLabels connected_components(const Mesh& mesh) {
   const size_t nv = mesh.n_vertices();
-  DisjointSets sets(nv);
+  UnionFind sets(nv);
   for (size_t i = 0; i < mesh.n_edges(); ++i) {
     const EdgeHandle e(static_cast<int>(i));
     if (mesh.status(e).deleted()) continue;

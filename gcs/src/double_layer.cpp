@@ -12,6 +12,7 @@
 
 #include "edgefront/error.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/union_find.h"
 
 namespace gcs::detail {
 
@@ -121,25 +122,19 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
 std::vector<int> cloud_parts(const std::vector<Vec3>& points, const edgefront::PointIndex& index, std::size_t k) {
   EF_CHECK(index.size() == points.size(), "cloud_parts: sizes differ");
   const std::size_t n = points.size();
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  const auto root = [&parent](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  edgefront::UnionFind parts_of(n);
   std::vector<edgefront::PointIndex::Neighbor> knn;
   for (std::size_t i = 0; i < n; ++i) {
     index.k_nearest(points[i], k + 1, knn);
     for (const auto& nb : knn) {
-      const std::size_t a = root(i), b = root(nb.index);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      parts_of.unite(i, nb.index);
     }
   }
   // Roots are the smallest index of their set, so labels go in the order of first points.
   std::vector<int> label(n, -1);
   int parts = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t r = root(i);
+    const std::size_t r = parts_of.find(i);
     label[i] = r == i ? parts++ : label[r];
   }
   return label;

@@ -16,6 +16,7 @@
 #include "edgefront/mesh_stats.h"
 #include "edgefront/parallel.h"
 #include "edgefront/point_index.h"
+#include "edgefront/triangle_bvh.h"
 
 namespace gcs {
 

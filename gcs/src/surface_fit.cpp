@@ -10,8 +10,8 @@
 #include <Eigen/Sparse>
 
 #include "detail/self_intersection.h"
-#include "detail/triangle_closest.h"
 #include "edgefront/error.h"
+#include "edgefront/geometry.h"
 #include "edgefront/point_index.h"
 
 namespace gcs::detail {
@@ -72,7 +72,7 @@ class FootFinder {
           x[k] = mesh_.point(u);
           id[k++] = u.idx();
         }
-        const Vec3 q = closest_on_triangle(p, x[0], x[1], x[2]);
+        const Vec3 q = edgefront::closest_point_on_triangle(p, x[0], x[1], x[2]);
         const double d2 = (q - p).sqrnorm();
         if (best >= 0 && d2 >= best) continue;
         const Vec3 n = (x[1] - x[0]) % (x[2] - x[0]);

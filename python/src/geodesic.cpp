@@ -167,20 +167,32 @@ class PySolver {
     return to_numpy(std::move(l));
   }
 
+  // One path query (the GIL released, the solver's path buffers locked).
+  edgefront::PathArrays find_path(int a, int b, bool polyline) {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    edgefront::ConnectionPathOptions o;
+    o.polyline = polyline;
+    return solver_.connection_path(a, b, o);
+  }
+
   py::tuple path(int a, int b, bool polyline) {
-    edgefront::PathArrays p;
-    {
-      py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(mutex_);
-      edgefront::ConnectionPathOptions o;
-      o.polyline = polyline;
-      p = solver_.connection_path(a, b, o);
-    }
+    edgefront::PathArrays p = find_path(a, b, polyline);
     if (p.status == edgefront::PathStatus::NoPath) {
       return py::make_tuple(to_numpy_rows(std::vector<double>()), kInf);
     }
     if (polyline) return py::make_tuple(to_numpy_rows(std::move(p.points)), p.length);
     return py::make_tuple(chain_points(solver_, p.vertices), p.length);
+  }
+
+  // The geodesic polyline's points as surface points: (faces, barycentric), a `sources` argument.
+  py::tuple path_sources(int a, int b) {
+    edgefront::PathArrays p = find_path(a, b, true);
+    if (p.status == edgefront::PathStatus::NoPath) {
+      p.face.clear();
+      p.barycentric.clear();
+    }
+    return py::make_tuple(to_numpy(std::move(p.face)), to_numpy_rows(std::move(p.barycentric)));
   }
 
  private:
@@ -279,7 +291,13 @@ void register_geodesic(py::module_& m) {
            "within max_levels (all levels when negative).")
       .def("path", &PySolver::path, py::arg("a"), py::arg("b"), py::arg("polyline") = true,
            "path(a, b, polyline=True) -> (points, length)\n\n"
-           "As geodesic_path, on this solver's mesh.");
+           "As geodesic_path, on this solver's mesh.")
+      .def("path_sources", &PySolver::path_sources, py::arg("a"), py::arg("b"),
+           "path_sources(a, b) -> (faces, barycentric)\n\n"
+           "The points of path(a, b)'s geodesic polyline as surface points: k face rows of F (int32) and a\n"
+           "(k, 3) float64 array of barycentric coordinates in each row's corner order, in polyline order.\n"
+           "Pass the pair (or a slice of both) as `sources` to distance() to measure from polyline points.\n"
+           "Empty arrays when a and b lie in different components.");
 
   m.def(
       "geodesic_path",

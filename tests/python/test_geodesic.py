@@ -145,6 +145,21 @@ def test_planar_path_is_straight():
     assert chain_length >= exact - 1e-9
 
 
+def test_polyline_points_are_geodesic_sources():
+    # On a plane the polyline is the straight segment; each of its points, as (face, barycentric),
+    # reproduces its position, and as a source gives Euclidean distances (MDF: exact on a plane).
+    V, F = grid(21)
+    solver = ef.GeodesicSolver(V, F)
+    a, b = 3, len(V) - 5
+    pts, _ = solver.path(a, b)
+    faces, bary = solver.path_sources(a, b)
+    assert faces.shape == (len(pts),) and bary.shape == (len(pts), 3)
+    np.testing.assert_allclose(np.einsum("ki,kij->kj", bary, V[F[faces]]), pts, atol=1e-12)
+    mid = len(pts) // 2
+    d = solver.distance((faces[mid:mid + 1], bary[mid:mid + 1]))
+    np.testing.assert_allclose(d, np.linalg.norm(V - pts[mid], axis=1), atol=1e-9)
+
+
 def test_path_between_components_is_empty():
     V, F = grid(5)
     V2 = np.concatenate([V, V + [10, 0, 0]])

@@ -85,30 +85,6 @@ bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t,
   return true;
 }
 
-bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b) {
-  double scale = 0;
-  for (size_t i = 0; i < 3; ++i) {
-    scale = std::max(scale, (a[i] - a[(i + 1) % 3]).norm());
-    scale = std::max(scale, (b[i] - b[(i + 1) % 3]).norm());
-  }
-  const double eps = 1e-9 * scale;
-  // Quick rejection: all corners of one triangle strictly on one side of the other's plane (no
-  // edge can cross it; `segment_crosses` would refuse every edge for the same reason).
-  const auto one_side = [eps](const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& other) {
-    const Vec3 n = unit_normal(t);
-    if (n.sqrnorm() == 0) return true;  // degenerate: segment_crosses refuses it too
-    const double d0 = OpenMesh::dot(other[0] - t[0], n), d1 = OpenMesh::dot(other[1] - t[0], n),
-                 d2 = OpenMesh::dot(other[2] - t[0], n);
-    return (d0 > eps && d1 > eps && d2 > eps) || (d0 < -eps && d1 < -eps && d2 < -eps);
-  };
-  if (one_side(a, b) || one_side(b, a)) return false;
-  for (size_t i = 0; i < 3; ++i) {
-    if (segment_crosses(a[i], a[(i + 1) % 3], b, eps)) return true;
-    if (segment_crosses(b[i], b[(i + 1) % 3], a, eps)) return true;
-  }
-  return false;
-}
-
 bool stacked_layers(const std::array<Vec3, 3>& a, const Vec3& na, double la, const std::array<Vec3, 3>& b,
                     const Vec3& nb, double lb) {
   constexpr double kStackedOverlap = 0.1;  // of the shorter longest edge (see LayerRule::Stacked)

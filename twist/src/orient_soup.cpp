@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "edgefront/error.h"
+#include "edgefront/union_find.h"
 
 namespace twist {
 
@@ -25,10 +26,6 @@ struct Incidence {
   int dir = 0;    ///< +1 when the face runs lo -> hi along this edge
 };
 
-size_t find_root(std::vector<size_t>& parent, size_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 }  // namespace
 
@@ -97,8 +94,7 @@ SoupOrientation orient_soup(const std::vector<Vec3>& points, const std::vector<s
   out.non_orientable = !cut.empty();
 
   // Vertex copies: corners (face, k) joined across uncut manifold edges.
-  std::vector<size_t> parent(nf * 3);
-  std::iota(parent.begin(), parent.end(), size_t{0});
+  edgefront::UnionFind corner_class(nf * 3);
   for (const auto& [key, inc] : edges) {
     if (inc.size() != 2 || cut.count(key)) continue;
     for (int end = 0; end < 2; ++end) {
@@ -110,16 +106,14 @@ SoupOrientation orient_soup(const std::vector<Vec3>& points, const std::vector<s
         const int c = t[static_cast<size_t>(k)] == v ? k : (k + 1) % 3;
         corners[s] = inc[static_cast<size_t>(s)].face * 3 + static_cast<size_t>(c);
       }
-      const size_t ra = find_root(parent, corners[0]);
-      const size_t rb = find_root(parent, corners[1]);
-      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+      corner_class.unite(corners[0], corners[1]);
     }
   }
   std::map<size_t, VertexHandle> vertex_of_class;
   std::vector<int> copies_of(points.size(), 0);
   for (size_t f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
-      const size_t root = find_root(parent, f * 3 + static_cast<size_t>(k));
+      const size_t root = corner_class.find(f * 3 + static_cast<size_t>(k));
       if (vertex_of_class.count(root)) continue;
       const int v = triangles[root / 3][root % 3];
       vertex_of_class[root] = out.mesh.add_vertex(points[static_cast<size_t>(v)]);
@@ -128,7 +122,7 @@ SoupOrientation orient_soup(const std::vector<Vec3>& points, const std::vector<s
   }
   for (size_t f = 0; f < nf; ++f) {
     std::array<VertexHandle, 3> vh;
-    for (int k = 0; k < 3; ++k) vh[static_cast<size_t>(k)] = vertex_of_class[find_root(parent, f * 3 + static_cast<size_t>(k))];
+    for (int k = 0; k < 3; ++k) vh[static_cast<size_t>(k)] = vertex_of_class[corner_class.find(f * 3 + static_cast<size_t>(k))];
     if (orient[f] < 0) {
       std::swap(vh[1], vh[2]);
       ++out.faces_reversed;

@@ -92,7 +92,7 @@ double ReferenceNormals::wall_thickness(const Vec3& p, size_t candidates) const 
   return std::numeric_limits<double>::infinity();
 }
 
-double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {
+double face_orientation_agreement(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {
   double total = 0;
   double agree = 0;
   for (edgefront::FaceHandle f : mesh.faces()) {
@@ -103,7 +103,7 @@ double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNorma
     total += a;
     if (OpenMesh::dot(n, reference.nearest_normal(detail::centroid(p))) > 0) agree += a;
   }
-  if (!(total > 0)) throw InvalidInput("orientation consistency: the mesh has no face of positive area");
+  if (!(total > 0)) throw InvalidInput("twist::face_orientation_agreement: the mesh has no face of positive area");
   return agree / total;
 }
 

@@ -15,6 +15,7 @@
 #include "detail/geometry.h"
 #include "detail/repair_steps.h"
 #include "edgefront/mesh_stats.h"
+#include "edgefront/union_find.h"
 #include "twist/repair.h"
 
 namespace twist {
@@ -28,22 +29,7 @@ using detail::DupList;
 
 namespace {
 
-class UnionFind {
- public:
-  explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), size_t{0}); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<size_t> parent_;
-};
+using edgefront::UnionFind;
 
 /// The winding number of a closed surface given by its faces around p: the sum of the faces'
 /// signed solid angles seen from p over 4 pi (Van Oosterom & Strackee's formula), +-1 inside

@@ -298,6 +298,11 @@ struct PathArrays {
   std::vector<double> points;
   std::vector<int> edge;  ///< k x 2 input vertices per polyline point (see `points`)
   std::vector<double> t;  ///< per polyline point, its parameter in [0, 1] along `edge`
+  /// Per polyline point, the same point as a face row and barycentric coordinates (k x 3, in the
+  /// row's corner order; `PathPoint::location`): pass both to `distance_from_points` to measure
+  /// from points of the polyline. -1 (and zeros) for a point without a face (an isolated vertex).
+  std::vector<int> face;
+  std::vector<double> barycentric;  ///< k x 3, see `face`
 };
 
 /// A reusable solver for many queries on one mesh given as arrays: keeps the converted mesh, the

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "edgefront/mesh.h"
+#include "edgefront/surface_point.h"
 
 namespace edgefront {
 
@@ -89,12 +90,21 @@ enum class PathStatus {
 
 /// A point of a polyline on the surface: on the mesh edge of `halfedge` at parameter `t` from its
 /// from-vertex (0) to its to-vertex (1). Points at mesh vertices have `vertex` set (and `t` 0 or 1).
+/// `location` is the same point as the library's one surface-location type (surface_point.h), so
+/// any point of a polyline is a geodesic source as it is: `geodesic_distance(mesh, {p.location})`.
 struct PathPoint {
   HalfedgeHandle halfedge;        ///< the mesh edge the point lies on, as one of its halfedges
   double t = 0.0;                 ///< parameter along `halfedge`, in [0, 1] (0: its from-vertex)
   Vec3 position = Vec3(0, 0, 0);  ///< the point in space (the mesh's length unit)
   VertexHandle vertex;  ///< valid when the point is a mesh vertex
+  /// The point as a face and barycentric coordinates: `surface_point_on_edge(mesh, halfedge, t)`
+  /// (coordinate 1 at `vertex` for a point at a vertex).
+  SurfacePoint location;
 };
+
+/// The locations of the points of a polyline (`PathPoint::location` of each, in order): sources
+/// for `geodesic_distance` or `MinimalDistanceFront::reset`.
+std::vector<SurfacePoint> surface_points(const std::vector<PathPoint>& polyline);
 
 /// The answer of a query.
 struct ConnectionPath {

@@ -55,17 +55,9 @@
 
 #include "edgefront/front_source.h"
 #include "edgefront/mesh.h"
+#include "edgefront/surface_point.h"
 
 namespace edgefront {
-
-/// A point on the surface: a face and barycentric coordinates (non-negative, summing to 1) with
-/// respect to the face's vertices in OpenMesh's `fv_range` order.
-struct SurfacePoint {
-  FaceHandle face;  ///< a live face of the mesh
-  /// Barycentric coordinates with respect to the face's vertices in `fv_range` order: each >= 0,
-  /// finite, summing to 1 within 1e-9 (default: the centroid).
-  std::array<double, 3> bary = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-};
 
 /// How `geodesic_distance` computes a field: four trade-offs between accuracy and time
 /// (README, "Geodesic distances: four modes"; bench/results/geodesic-*.md).

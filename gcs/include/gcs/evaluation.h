@@ -27,9 +27,10 @@
 /// - Normals: a result sample's normal is its face's normal; the ground truth's normal at the
 ///   nearest point is the point's normal (oriented point set) or the nearest triangle's normal
 ///   (mesh). Since the samples are area-uniform, shares of samples estimate shares of area.
-/// - Self-intersections: every pair of faces whose boxes overlap (same hierarchy) is tested with
-///   an exact-in-spirit, tolerance-guarded triangle-triangle test (each edge of one triangle
-///   against the other triangle, coplanar cases in 2D). Faces sharing an edge count only when they
+/// - Self-intersections: every pair of faces whose boxes overlap (same hierarchy,
+///   edgefront::TriangleBvh) is tested with edgefront::triangles_intersect, the kernel's
+///   tolerance-guarded triangle-triangle test (each edge of one triangle against the other
+///   triangle, coplanar cases in 2D) that the twist detector uses too. Faces sharing an edge count only when they
 ///   are coplanar and folded onto each other; faces sharing a vertex count only when they meet
 ///   beyond it. "Sharing" is by vertex index: faces that merely touch (also at distinct but
 ///   coincident vertices, as along an unwelded seam) count. The counts agree with CGAL's
@@ -210,7 +211,9 @@ Evaluation evaluate(const edgefront::Mesh& result, const GroundTruth& gt,
 /// Orientation consistency of `mesh` against an oriented point set (for instance analytic
 /// samples from edgefront::shapes::sample): area-uniform samples of the mesh, each compared with
 /// the normal of its nearest ground-truth point. Same method and options (samples, seed) as
-/// `evaluate`, without the rest of the evaluation.
+/// `evaluate`, without the rest of the evaluation. The measure to judge a reconstruction with;
+/// twist::face_orientation_agreement (twist/reference_normals.h) is the cheaper, deterministic
+/// one-vote-per-face share that estimates `raw` without sampling (what ef-twist prints).
 /// \throw edgefront::InvalidInput as `evaluate`, and when `oriented_gt` has no normals.
 OrientationConsistency orientation_consistency(const edgefront::Mesh& mesh,
                                                const edgefront::PointCloud& oriented_gt,

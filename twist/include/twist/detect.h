@@ -20,7 +20,11 @@
 ///   `RegionOptions::require_orientation_evidence`) or lower `radius`.
 /// - **Folded edge**: an edge whose two faces fold onto each other
 ///   (n_f·n_g <= `experimental.fold_cos`, dihedral angle near 0).
-/// - **Self-intersection**: f intersects a face it shares no vertex with.
+/// - **Self-intersection**: f crosses a face it shares no vertex with: the kernel's
+///   edgefront::triangle_contact says `Crossing` (the test gcs::count_self_intersections uses;
+///   the evaluation also counts `Touching`, the detector does not: faces touching along an
+///   unwelded seam are no twist). Pairs sharing a vertex are not tested here (folded edges cover
+///   neighbours), while the evaluation counts them when they meet beyond what they share.
 ///
 /// Flagged faces are grown into regions with a Minimal Edge Front started at their vertices and
 /// run `regions.grow_levels` levels (this also closes small gaps between flagged patches); a
@@ -48,7 +52,7 @@ enum class EvidenceKind {
   Reference,         ///< disagrees with the nearest reference normal
   FacingLayer,       ///< points at a parallel layer that is far along the surface
   FoldedEdge,        ///< has an edge whose faces fold onto each other
-  SelfIntersection,  ///< intersects a face it shares no vertex with
+  SelfIntersection,  ///< crosses a face it shares no vertex with (edgefront::triangle_contact)
 };
 
 /// Short lowercase name of an evidence kind ("reference", "facing-layer", ...).

@@ -2,7 +2,7 @@
 /// \file reference_normals.h
 /// Oriented reference points (a point cloud with normals) that decide which side of a surface is
 /// right: the normal of the nearest reference point. Used by the twist detector and repair when
-/// the reconstructor's input cloud has normals, and to measure orientation consistency.
+/// the reconstructor's input cloud has normals, and to measure the faces' orientation agreement.
 
 #include <memory>
 
@@ -56,8 +56,16 @@ class ReferenceNormals {
 
 /// Area-weighted share (in [0, 1]) of the live, non-degenerate faces of `mesh` whose normal
 /// agrees (positive dot product) with the normal of the reference point nearest to the face's
-/// centroid. No per-component sign is forgiven: this is the absolute orientation consistency.
+/// centroid: one vote per face, deterministic, no sampling. No per-component sign is forgiven.
+///
+/// Not the same measure as `gcs::orientation_consistency` (gcs/evaluation.h), which compares
+/// area-uniform random samples of the mesh (count and seed in its options) with their nearest
+/// ground-truth normals and also reports the share per connected component and with each
+/// component's sign forgiven. Its `raw` field estimates the same share as this function, but
+/// the two differ by the sampling (a face's centroid against points spread over the face). Use
+/// this one to check a twist repair (cheap, exact for a given mesh, what ef-twist prints); use
+/// gcs::orientation_consistency (or gcs::evaluate) to judge a reconstruction.
 /// \throws edgefront::InvalidInput when the mesh has no face of positive area.
-double orientation_consistency(const edgefront::Mesh& mesh, const ReferenceNormals& reference);
+double face_orientation_agreement(const edgefront::Mesh& mesh, const ReferenceNormals& reference);
 
 }  // namespace twist

@@ -1,6 +1,7 @@
 #pragma once
-// Private helpers of the twist library: face geometry, triangle-triangle
-// intersection, and the face-set surgery (re-adding faces reversed, with cut vertices duplicated).
+// Private helpers of the twist library: face geometry and the face-set surgery (re-adding faces
+// reversed, with cut vertices duplicated). The triangle-triangle test is the kernel's
+// (edgefront/geometry.h).
 
 #include <array>
 #include <cstddef>
@@ -33,11 +34,6 @@ std::vector<std::vector<edgefront::HalfedgeHandle>> coincident_border_halfedges(
 /// Does the segment p-q cross the interior of triangle t (not merely touch it: its ends lie more
 /// than `eps` off t's plane on opposite sides, and the crossing more than `eps` inside every edge)?
 bool segment_crosses(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, double eps);
-
-/// True when the two triangles (sharing no vertex) intersect properly: an edge of one crosses
-/// the interior of the other (touching at a border point within a relative tolerance does not
-/// count; coplanar overlaps are not detected).
-bool triangles_intersect(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);
 
 /// How deeply the two triangles overlap when both are projected along `direction` (unit) onto a
 /// plane: the smallest overlap of their projections onto the six in-plane edge normals (the
