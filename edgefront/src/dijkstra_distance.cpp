@@ -204,7 +204,7 @@ DistanceField dijkstra_distance(const Mesh& mesh, const std::vector<SurfacePoint
   detail::check_points(mesh, points);
   DijkstraRun dij(mesh.n_vertices());
   for (const SurfacePoint& p : points) {
-    const Vec3 x = detail::point_of(mesh, p);
+    const Vec3 x = surface_point_position(mesh, p);
     for (VertexHandle v : mesh.fv_range(p.face)) dij.seed(v.idx(), v.idx(), (mesh.point(v) - x).norm());
   }
   return run_over_mesh(mesh, dij, options);

@@ -56,11 +56,4 @@ std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<Surfa
   return verts;
 }
 
-Vec3 point_of(const Mesh& mesh, const SurfacePoint& p) {
-  Vec3 x(0, 0, 0);
-  int k = 0;
-  for (VertexHandle v : mesh.fv_range(p.face)) x += mesh.point(v) * p.bary[k++];
-  return x;
-}
-
 }  // namespace edgefront::detail

@@ -20,7 +20,6 @@ using detail::check_distance_options;
 using detail::kFlatDefect;
 using detail::kTwoPi;
 using detail::check_points;
-using detail::point_of;
 
 namespace {
 
@@ -473,7 +472,7 @@ DistanceField from_points(const Mesh& mesh, const GeodesicRingTable* table, cons
   std::vector<Vec3> origins;
   std::vector<FastSeed> seeds;
   for (const SurfacePoint& p : points) {
-    const Vec3 x = point_of(mesh, p);
+    const Vec3 x = surface_point_position(mesh, p);
     for (HalfedgeHandle h : mesh.fh_range(p.face)) {
       // The face lies before h (v -> w) in the ring walk of v: the point is at a negative angle.
       const VertexHandle v = mesh.from_vertex_handle(h);

@@ -14,7 +14,6 @@ namespace edgefront {
 
 using detail::check_distance_options;
 using detail::check_points;
-using detail::point_of;
 using detail::mdf::DRec;
 using detail::mdf::Window;
 
@@ -91,7 +90,7 @@ void MinimalDistanceFront::Impl::reset(const std::vector<SurfacePoint>& points, 
   reset_structure(FrontSource::from_vertices(verts));
   windowed = o.method == DistanceMethod::Windows;
   for (const SurfacePoint& p : points) {
-    const Vec3 x = point_of(mesh, p);
+    const Vec3 x = surface_point_position(mesh, p);
     for (VertexHandle v : mesh.fv_range(p.face)) {
       offer(v.idx(), (mesh.point(v) - x).norm(), x, 0.0, p.face.idx());
       record(v.idx()).seed = true;

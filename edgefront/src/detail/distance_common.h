@@ -22,8 +22,6 @@ void check_distance_options(const Mesh& mesh, const DistanceOptions& o);
 void check_finite_vertex(const Vec3& position, int v);
 // Checks source points; returns the vertices of their faces (each once).
 std::vector<VertexHandle> check_points(const Mesh& mesh, const std::vector<SurfacePoint>& points);
-// The position of a surface point.
-Vec3 point_of(const Mesh& mesh, const SurfacePoint& p);
 
 // Lays out vertex x's ring (GeodesicRingTable's layout): appends its edges and corners to the
 // arrays and returns its Ring (begin: where it starts in them). \throws
