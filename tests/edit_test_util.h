@@ -14,6 +14,7 @@
 #include "edgefront/arrays.h"
 #include "edgefront/mesh.h"
 #include "edgefront/minimal_edge_front.h"
+#include "twist/repair_session.h"
 
 namespace edittest {
 
@@ -52,6 +53,30 @@ inline void expect_same_mesh(const std::vector<double>& V, const std::vector<int
   std::sort(mesh_faces.begin(), mesh_faces.end());
   ASSERT_EQ(host_faces.size(), mesh_faces.size());
   EXPECT_EQ(host_faces, mesh_faces);
+}
+
+/// Expects a host's replayed arrays to match the session's mirror: the same live faces with their
+/// orientation and positions (expect_same_mesh), and slot by slot: the host's face f is the mirror
+/// face the session maps it to, an empty slot maps to none.
+inline void expect_session_matches(const twist::RepairSession& s, const std::vector<double>& V,
+                                   const std::vector<int>& F) {
+  ASSERT_EQ(s.vertex_slots(), V.size() / 3);
+  ASSERT_EQ(s.face_slots(), F.size() / 3);
+  std::vector<int> host_of(s.mirror().n_vertices(), -1);
+  for (size_t i = 0; i < host_of.size(); ++i) host_of[i] = s.host_vertex(VertexHandle(static_cast<int>(i)));
+  expect_same_mesh(V, F, s.mirror(), host_of);
+  for (size_t f = 0; 3 * f < F.size(); ++f) {
+    const FaceHandle m = s.mirror_face(static_cast<int>(f));
+    if (F[3 * f] < 0) {
+      EXPECT_FALSE(m.is_valid()) << "empty slot " << f;
+      continue;
+    }
+    ASSERT_TRUE(m.is_valid() && is_live(s.mirror(), m)) << "slot " << f;
+    std::array<int, 3> t{};
+    size_t k = 0;
+    for (VertexHandle v : s.mirror().fv_range(m)) t[k++] = s.host_vertex(v);
+    EXPECT_EQ(canonical(t), canonical({F[3 * f], F[3 * f + 1], F[3 * f + 2]})) << "slot " << f;
+  }
 }
 
 /// The host numbering of a mirror after a one-shot record: input vertices keep their index, the

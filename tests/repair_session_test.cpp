@@ -30,24 +30,7 @@ struct Host {
 };
 
 void expect_host_matches(const RepairSession& s, const Host& host) {
-  ASSERT_EQ(s.vertex_slots(), host.V.size() / 3);
-  ASSERT_EQ(s.face_slots(), host.F.size() / 3);
-  std::vector<int> host_of(s.mirror().n_vertices(), -1);
-  for (size_t i = 0; i < host_of.size(); ++i) host_of[i] = s.host_vertex(VertexHandle(static_cast<int>(i)));
-  edittest::expect_same_mesh(host.V, host.F, s.mirror(), host_of);
-  // Slot by slot too: the host's face f is the mirror face the session maps it to.
-  for (size_t f = 0; 3 * f < host.F.size(); ++f) {
-    const FaceHandle m = s.mirror_face(static_cast<int>(f));
-    if (host.F[3 * f] < 0) {
-      EXPECT_FALSE(m.is_valid()) << "empty slot " << f;
-      continue;
-    }
-    ASSERT_TRUE(m.is_valid() && is_live(s.mirror(), m)) << "slot " << f;
-    std::array<int, 3> t{};
-    size_t k = 0;
-    for (VertexHandle v : s.mirror().fv_range(m)) t[k++] = s.host_vertex(v);
-    EXPECT_EQ(edittest::canonical(t), edittest::canonical(host.face(static_cast<int>(f)))) << "slot " << f;
-  }
+  edittest::expect_session_matches(s, host.V, host.F);
 }
 
 MeshArrays sphere_arrays(int subdivisions = 3) { return mesh_to_arrays(shapes::icosphere(subdivisions)); }
