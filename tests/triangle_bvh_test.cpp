@@ -1,11 +1,13 @@
 // Tests of edgefront/triangle_bvh.h: the nearest triangle and the overlapping boxes match a
-// brute-force search, and an empty list is refused.
+// brute-force search, and an empty list and a non-finite corner are refused.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -82,6 +84,15 @@ TEST(TriangleBvh, OverlappingPairsMatchBruteForceEachPairOnce) {
 
 TEST(TriangleBvh, NoTrianglesIsRefused) {
   EXPECT_THROW(TriangleBvh(std::vector<Triangle>{}), edgefront::InvalidInput);
+  // A non-finite corner is named, not sorted into the hierarchy.
+  std::vector<Triangle> bad(3, Triangle({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}));
+  bad[2].p[1][2] = std::numeric_limits<double>::quiet_NaN();
+  try {
+    TriangleBvh b(bad);
+    ADD_FAILURE() << "a NaN corner was accepted";
+  } catch (const edgefront::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 2"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <string>
 #include <utility>
 
 #include "detail/triangle_predicates.h"
@@ -11,6 +13,14 @@ namespace edgefront {
 
 TriangleBvh::TriangleBvh(std::vector<Triangle> triangles) : tris_(std::move(triangles)) {
   if (tris_.empty()) throw InvalidInput("TriangleBvh: no triangles to build a hierarchy over");
+  // A NaN corner would break the median splits' ordering (and every box test after them).
+  for (std::size_t i = 0; i < tris_.size(); ++i) {
+    for (const Vec3& c : tris_[i].p) {
+      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2])) {
+        throw InvalidInput("TriangleBvh: triangle " + std::to_string(i) + " has a non-finite corner");
+      }
+    }
+  }
   order_.resize(tris_.size());
   centroids_.resize(tris_.size());
   boxes_.resize(tris_.size());

@@ -23,7 +23,8 @@ namespace edgefront {
 class TriangleBvh {
  public:
   /// Builds the hierarchy over `triangles` (indices into this list are the answers).
-  /// \throws edgefront::InvalidInput when `triangles` is empty.
+  /// \throws edgefront::InvalidInput when `triangles` is empty or a corner is not finite (naming
+  ///         the triangle).
   explicit TriangleBvh(std::vector<Triangle> triangles);
 
   /// The triangles, as given.
