@@ -75,6 +75,11 @@ def test_out_of_range_indices(mesh):
         ef.geodesic_distance(V, F, ([len(F)], [[1.0, 0.0, 0.0]]))
     with pytest.raises(ValueError):
         ef.geodesic_distance(V, F, ([0], [[0.5, 0.6, 0.0]]))  # does not sum to 1
+    solver = ef.GeodesicSolver(V, F)
+    with pytest.raises(ValueError, match=str(len(V))):
+        solver.path_sources(0, len(V))
+    with pytest.raises(ValueError):
+        solver.path_sources(-1, 3)
 
 
 def test_bad_options(mesh):
