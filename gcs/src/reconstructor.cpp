@@ -63,12 +63,29 @@ ReconstructOptions ReconstructOptions::open_sheet() {
   return o;
 }
 
-std::vector<std::string> ReconstructOptions::preset_names() { return {"scan", "thin_shell", "open_sheet"}; }
+namespace {
+
+/// The presets by name, in the order preset_names() lists them (the one list of them).
+struct NamedPreset {
+  const char* name;
+  ReconstructOptions (*make)();
+};
+constexpr NamedPreset kPresets[] = {{"scan", &ReconstructOptions::scan},
+                                    {"thin_shell", &ReconstructOptions::thin_shell},
+                                    {"open_sheet", &ReconstructOptions::open_sheet}};
+
+}  // namespace
+
+std::vector<std::string> ReconstructOptions::preset_names() {
+  std::vector<std::string> names;
+  for (const NamedPreset& p : kPresets) names.emplace_back(p.name);
+  return names;
+}
 
 ReconstructOptions ReconstructOptions::preset(const std::string& name) {
-  if (name == "scan") return scan();
-  if (name == "thin_shell") return thin_shell();
-  if (name == "open_sheet") return open_sheet();
+  for (const NamedPreset& p : kPresets) {
+    if (name == p.name) return p.make();
+  }
   std::string names;
   for (const std::string& n : preset_names()) names += (names.empty() ? "" : ", ") + n;
   throw InvalidInput("gcs: unknown options preset '" + name + "' (presets: " + names + ")");
