@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
                  "with --points: straighten, collapse or (at a border) remove turned-over patches of up to this many faces that"
                  " lie over another layer (0 ... 64, default 0 = off)")
       ->check(edgefront::apps::integer_range(0, 64));
+  size_t mend = twist::RepairOptions{}.mend_patches;
+  app.add_option("--mend", mend,
+                 "with --points: mend the geometry of patches of up to this many faces the points still reject (edge swaps,"
+                 " unfolding vertex moves, cut out and re-grown from the rim; 0 ... 64, 0 = off)")
+      ->capture_default_str()
+      ->check(edgefront::apps::integer_range(0, 64));
   app.add_flag("--detector", detector, "with --points: repair the detector's regions instead of labelling every face by the points");
   unsigned threads = 0;
   edgefront::apps::add_threads_option(app, threads);
@@ -81,6 +87,7 @@ int main(int argc, char** argv) {
     options.max_repairs = max_repairs;
     options.cuts.cut_cost = cut_cost;
     options.experimental.drop_turned_patches = turned;
+    options.mend_patches = mend;
     options.label_by_reference = !detector;
     options.detect.threads = threads;
     const size_t faces_before = read.mesh.n_faces();
@@ -151,6 +158,12 @@ int main(int argc, char** argv) {
     std::cout << "faces removed:      " << r.faces_removed << " (" << (std::abs(removed_share) < 1e-9 ? 0.0 : 100.0 * removed_share)
               << "% of the area)\n";
     std::cout << "components:         " << pieces_before << " -> " << edgefront::compute_stats(read.mesh).components << "\n";
+    if (labelled) std::cout << "twist lines cut:    " << r.cut_lines << "\n";
+    if (r.mend_edges_flipped + r.mend_vertices_moved + r.mend_faces_cut_out > 0) {
+      std::cout << "mended:             " << r.mend_edges_flipped << " edges swapped, " << r.mend_vertices_moved
+                << " vertices moved, " << r.mend_faces_cut_out << " faces cut out and re-grown as " << r.mend_faces_added
+                << " (net area above)\n";
+    }
     if (r.seam_pieces_flipped > 0) {
       std::cout << "seams:              " << r.seam_pieces_flipped << " piece(s) (" << r.seam_faces_flipped
                 << " faces) flipped to meet their neighbours along reversed seams\n";

@@ -92,6 +92,16 @@ double ReferenceNormals::wall_thickness(const Vec3& p, size_t candidates) const 
   return std::numeric_limits<double>::infinity();
 }
 
+std::optional<size_t> ReferenceNormals::nearest_facing(const Vec3& p, const Vec3& normal, size_t candidates) const {
+  if (candidates == 0) throw InvalidInput("reference normals: nearest_facing needs at least one candidate");
+  thread_local std::vector<edgefront::PointIndex::Neighbor> near;
+  impl_->index.k_nearest(p, candidates, near);
+  for (const auto& nb : near) {  // nearest first
+    if (OpenMesh::dot(impl_->cloud.normals[nb.index], normal) > 0) return nb.index;
+  }
+  return std::nullopt;
+}
+
 double face_orientation_agreement(const edgefront::Mesh& mesh, const ReferenceNormals& reference) {
   double total = 0;
   double agree = 0;

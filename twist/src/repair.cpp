@@ -13,6 +13,7 @@
 #include "detail/geometry.h"
 #include "detail/repair_steps.h"
 #include "edgefront/error.h"
+#include "edgefront/union_find.h"
 
 namespace twist {
 
@@ -278,6 +279,7 @@ void validate_repair_options(const RepairOptions& o) {
   }
   if (o.experimental.peel_flaps < 0 || o.experimental.peel_flaps > 16)
     throw InvalidInput("twist::repair: option experimental.peel_flaps must lie in [0, 16]");
+  if (o.mend_patches > 64) throw InvalidInput("twist::repair: option mend_patches must lie in [0, 64]");
   if (o.experimental.drop_turned_patches > 64)
     throw InvalidInput("twist::repair: option experimental.drop_turned_patches must lie in [0, 64]");
   if (!(o.experimental.retest_move >= 0) || !std::isfinite(o.experimental.retest_move)) {
@@ -413,6 +415,27 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
 
 namespace {
 
+/// The twist lines a labelled repair cuts along: the groups of cut edges (between a face of `side`
+/// and a face outside it) that meet at vertices.
+size_t cut_lines(const Mesh& mesh, const std::vector<FaceHandle>& side) {
+  std::unordered_set<int> inside;
+  for (FaceHandle f : side) inside.insert(f.idx());
+  edgefront::UnionFind lines(mesh.n_vertices());
+  std::vector<size_t> ends;
+  for (FaceHandle f : side) {
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      const FaceHandle g = mesh.opposite_face_handle(h);
+      if (!g.is_valid() || inside.count(g.idx())) continue;
+      const size_t a = static_cast<size_t>(mesh.from_vertex_handle(h).idx()), b = static_cast<size_t>(mesh.to_vertex_handle(h).idx());
+      lines.unite(a, b);
+      ends.push_back(a);
+    }
+  }
+  std::unordered_set<size_t> roots;
+  for (size_t v : ends) roots.insert(lines.find(v));
+  return roots.size();
+}
+
 /// `repair` with reference normals by labelling (see `RepairOptions::label_by_reference`).
 RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
   detail::check_mesh(mesh, "twist::repair");
@@ -450,6 +473,7 @@ RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
     ++report.repairs;
     side.insert(side.end(), region.begin(), region.end());
   }
+  report.cut_lines = cut_lines(mesh, side);
   if (!side.empty()) report.vertices_duplicated = detail::cut_and_reverse(mesh, side, true, &dups);
   // Reversed seams left after the flips, except along our own cuts (a flipped side meets its old
   // neighbours with opposite orientation there: that is the repair): the surface meets itself
@@ -473,6 +497,7 @@ RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
   }
   if (o.global_orientation) orient_globally(mesh, o, dups, report);
   drop_turned_patches(mesh, o, report);
+  detail::mend_patches(mesh, o, report);
   if (o.garbage_collect) mesh.garbage_collection();
   return report;
 }

@@ -4,7 +4,9 @@
 /// right: the normal of the nearest reference point. Used by the twist detector and repair when
 /// the reconstructor's input cloud has normals, and to measure the faces' orientation agreement.
 
+#include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "edgefront/mesh.h"
 #include "edgefront/point_cloud.h"
@@ -46,6 +48,11 @@ class ReferenceNormals {
   /// that `p` lies on or between; infinity when no candidate opposes (a wall thicker than the
   /// candidates reach). \throws edgefront::InvalidInput when `candidates` is 0.
   double wall_thickness(const edgefront::Vec3& p, size_t candidates = 16) const;
+  /// Index of the reference point nearest to `p` among its `candidates` nearest whose normal
+  /// agrees with `normal` (n.normal > 0): the point of the wall that a surface facing `normal`
+  /// at `p` approximates, where two walls facing opposite ways are both near. None when no
+  /// candidate agrees. \throws edgefront::InvalidInput when `candidates` is 0.
+  std::optional<size_t> nearest_facing(const edgefront::Vec3& p, const edgefront::Vec3& normal, size_t candidates = 16) const;
   /// The reference points and their normals, as given.
   const edgefront::PointCloud& cloud() const;
 

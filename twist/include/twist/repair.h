@@ -162,6 +162,22 @@ struct RepairOptions {
   /// refinement loop) never labels. Default true; false = the detector's regions, as without a
   /// reference.
   bool label_by_reference = true;
+  /// `repair` by labelling only, at the end: the geometry of small patches the reference still
+  /// rejects is mended (edge-connected groups of at most this many faces whose `reference_vote`
+  /// is -1, thin-wall rule on; bigger groups were the labelling's to flip). Such patches are folds
+  /// and flaps turned over at a border, which a flip cannot fix without leaving a tiny piece. Per
+  /// rejected face, in this order, each change kept only when it lowers the area the reference
+  /// rejects, makes no degenerate face (area under 1e-4 mean edge^2) and no more folded edges
+  /// (n.n' < 0) around: (1) an edge of the face swapped for the other diagonal of its quad;
+  /// (2) a corner moved: turned about the opposite edge of a rejected face around it (a page
+  /// folded over its hinge, turned back flat; border corners too), or an interior corner to the
+  /// centroid of its neighbours, no farther from the reference than max(its distance, half a mean
+  /// edge); (3) a patch of 2 or more faces away from the border, all still rejected, whose rim is
+  /// one simple loop of 4 or more edges: cut out (counted in `RepairReport::faces_removed` and
+  /// `mend_faces_cut_out`) and re-grown as a fan around the rim's centroid (within a mean edge of
+  /// the reference), wound like the faces around. Up to 3 rounds. Nothing is removed without
+  /// being re-grown, and no piece is added. Faces; default 0; in [0, 64]; 0 = off.
+  size_t mend_patches = 0;
   /// At most this many detected regions are repaired per call. Regions; default 16; >= 1.
   size_t max_repairs = 16;
   /// Apply the global orientation convention at the end (see the file comment). Default true.
@@ -212,6 +228,9 @@ struct RepairReport {
   size_t turned_faces_straightened = 0; ///< turned-over faces straightened by moving vertices (`drop_turned_patches`)
   size_t vertices_duplicated = 0;      ///< vertex copies made by the cuts, all repairs together
   size_t cut_edges = 0;                ///< edges cut, all repairs together
+  /// Repair by labelling: the twist lines cut, groups of cut edges that meet at vertices (a
+  /// region flipped off the middle of a surface has one closed line, a band around a tube two).
+  size_t cut_lines = 0;
   size_t regions_cut_out = 0;          ///< regions removed because they re-twisted (TwistRepairer)
   size_t regions_scattered = 0;        ///< regions left alone: not compact (see max_border_ratio)
   size_t seam_pieces_flipped = 0;      ///< pieces flipped whole to make reversed seams compatible (`flip_seam_pieces`)
@@ -220,6 +239,10 @@ struct RepairReport {
   size_t faces_flipped_globally = 0;   ///< faces of the components the global orientation flipped
   bool non_orientable = false;         ///< the surface meets itself with opposite orientation
   size_t seam_edges = 0;               ///< border edges along such seams (left cut open)
+  size_t mend_edges_flipped = 0;       ///< edges swapped for the other diagonal (`mend_patches`)
+  size_t mend_vertices_moved = 0;      ///< vertices moved to unfold rejected faces (`mend_patches`)
+  size_t mend_faces_cut_out = 0;       ///< faces of rejected patches cut out and re-grown (`mend_patches`; also in faces_removed)
+  size_t mend_faces_added = 0;         ///< faces of the fans that re-grew them (`mend_patches`)
   DetectStats detect_stats;            ///< the detector's counts
   std::vector<RepairRecord> records;   ///< one per repair, in the order they were made
 };

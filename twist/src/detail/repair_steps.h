@@ -7,6 +7,8 @@
 //                       seams (flip_seam_pieces); twist::orient;
 //   repair_cleanup.cpp  cleanup: tiny pieces, small cut pieces, border flaps, turned patches, and
 //                       the smoothing moves they and the stacked layers use;
+//   repair_mend.cpp     small rejected patches mended after a repair by labelling (edge swaps,
+//                       vertex moves, cut-outs re-grown as fans);
 //   stacked_layers.cpp  twist::remove_stacked_layers;
 //   twist_repairer.cpp  TwistRepairer, the incremental repair.
 // Each step is documented where it is defined.
@@ -52,5 +54,8 @@ std::vector<edgefront::VertexHandle> interior_vertices_around(const edgefront::M
                                                               std::initializer_list<edgefront::FaceHandle> faces);
 bool straighten_face(edgefront::Mesh& mesh, edgefront::FaceHandle f, const MoveTest& test);
 void drop_turned_patches(edgefront::Mesh& mesh, const RepairOptions& o, RepairReport& report);
+
+// repair_mend.cpp
+void mend_patches(edgefront::Mesh& mesh, const RepairOptions& o, RepairReport& report);
 
 }  // namespace twist::detail
