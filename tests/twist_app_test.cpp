@@ -86,12 +86,20 @@ TEST_F(TwistApp, LabelsByThePointsOrUsesTheDetectorWhenAsked) {
   edgefront::write_mesh(s.mesh, path("tube.off"));
   edgefront::write_points(twist::truth_points(s), path("cloud.ply"));
   const std::string in = eftest::shell_quoted(path("tube.off")) + " --points " + eftest::shell_quoted(path("cloud.ply"));
-  const auto r = run(in + " -o " + eftest::shell_quoted(path("labelled.off")));
+  const auto r = run(in + " --mend 0 -o " + eftest::shell_quoted(path("labelled.off")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("faces flipped, cut along"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("faces removed:      0 (0% of the area)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("components:         1 -> 2"), std::string::npos) << r.out;
   EXPECT_GE(twist::truth_consistency(edgefront::load_mesh(path("labelled.off")), s), 0.99);
+  EXPECT_NE(r.out.find("twist lines cut:    1"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("mended:"), std::string::npos) << r.out;
+  // By default the folds left on the twist line are mended (the report says how).
+  const auto m = run(in + " -o " + eftest::shell_quoted(path("mended.off")));
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  EXPECT_NE(m.out.find("components:         1 -> 2"), std::string::npos) << m.out;
+  EXPECT_NE(m.out.find("mended:"), std::string::npos) << m.out;
+  EXPECT_GE(twist::truth_consistency(edgefront::load_mesh(path("mended.off")), s), 0.99);
   const auto d = run(in + " --detector -o " + eftest::shell_quoted(path("detected.off")));
   ASSERT_EQ(d.exit_code, 0) << d.err;
   EXPECT_NE(d.out.find("fronts visited"), std::string::npos) << d.out;

@@ -101,6 +101,8 @@ void expect_labelled_repair(twist::TwistedShape s, const std::string& what) {
   const twist::ReferenceNormals ref(cloud);
   twist::RepairOptions o;
   o.detect.reference = &ref;
+  o.mend_patches = 0;  // the labelling alone; mending the folds of the twist line: below
+  const twist::TwistedShape input = s;
   const size_t faces = s.mesh.n_faces();
   const double area = total_area(s.mesh);
   const size_t pieces = components(s.mesh);
@@ -122,8 +124,20 @@ void expect_labelled_repair(twist::TwistedShape s, const std::string& what) {
   const edgefront::MeshStats st = edgefront::compute_stats(s.mesh);
   EXPECT_EQ(st.nonmanifold_vertices, 0u) << what;
   EXPECT_FALSE(r.non_orientable) << what;
+  EXPECT_EQ(r.cut_lines, 1u) << what << ": one twist line";
   // Labelling again finds nothing more to flip.
   EXPECT_EQ(twist::label_by_reference(s.mesh, o).regions.size(), 0u) << what;
+  // With the defaults the folds left on the twist line are mended too: no piece more, nothing
+  // removed that is not re-grown, at least as consistent.
+  twist::TwistedShape m = input;
+  twist::RepairOptions d;
+  d.detect.reference = &ref;
+  const twist::RepairReport rd = twist::repair(m.mesh, d);
+  EXPECT_EQ(rd.cut_lines, 1u) << what;
+  EXPECT_GE(twist::truth_consistency(m.mesh, m), twist::truth_consistency(s.mesh, s) - 1e-12) << what;
+  EXPECT_LE(components(m.mesh), pieces + 1) << what;
+  EXPECT_EQ(rd.faces_removed, rd.mend_faces_cut_out) << what;
+  EXPECT_EQ(edgefront::compute_stats(m.mesh).nonmanifold_vertices, 0u) << what;
 }
 
 TEST(TwistLabel, TwistedTubeIsHealedByTheReference) {

@@ -30,21 +30,31 @@ namespace {
 using Tri = std::array<Vec3, 3>;
 
 /// The reference's verdicts and the local tests the mending moves share.
+constexpr bool kStanding = true;
+
 class Mender {
  public:
   Mender(Mesh& mesh, const RepairOptions& o, double edge)
       : mesh_(mesh), o_(o), ref_(*o.detect.reference), edge_(edge), min_area_(1e-4 * edge * edge) {}
 
-  /// -1 rejected, 0 undecided (or degenerate), +1 agrees (`reference_vote`, thin-wall rule on).
-  int vote(const Tri& p) const {
+  /// How badly the reference judges a triangle: 1 rejected (`reference_vote` -1, thin-wall rule
+  /// on), 0.5 standing across the surface (undecided because nearly perpendicular to its nearest
+  /// normal, and turned away from it), else 0 (agreeing, degenerate, or on a wall thinner than the
+  /// faces, where the verdict is noise).
+  double misfit(const Tri& p) const {
     const Vec3 n = unit_normal(p);
-    return n.sqrnorm() > 0 ? reference_vote(ref_, o_.detect, centroid(p), n, edge_) : 0;
+    if (n.sqrnorm() == 0) return 0;
+    const Vec3 c = centroid(p);
+    const int v = reference_vote(ref_, o_.detect, c, n, edge_);
+    if (v != 0) return v < 0 ? 1.0 : 0.0;
+    const double cos = OpenMesh::dot(n, ref_.nearest_normal(c));
+    return kStanding && cos < 0 && cos > o_.detect.vote.reference_cos ? 0.5 : 0.0;
   }
-  bool rejected(FaceHandle f) const { return vote(face_points(mesh_, f)) < 0; }
-  /// The area of the rejected triangles among `ts`.
-  double rejected_area(const std::vector<Tri>& ts) const {
+  bool misfits(FaceHandle f) const { return misfit(face_points(mesh_, f)) > 0; }
+  /// The triangles' areas weighted by their misfit.
+  double misfit_area(const std::vector<Tri>& ts) const {
     double a = 0;
-    for (const Tri& t : ts) a += vote(t) < 0 ? area(t) : 0.0;
+    for (const Tri& t : ts) a += misfit(t) * area(t);
     return a;
   }
   bool degenerate(const Tri& t) const { return area(t) < min_area_ || unit_normal(t).sqrnorm() == 0; }
@@ -54,7 +64,7 @@ class Mender {
   bool better(const std::vector<Tri>& before, const std::vector<Tri>& after, size_t folds_before, size_t folds_after) const {
     for (const Tri& t : after)
       if (degenerate(t)) return false;
-    const double b = rejected_area(before), a = rejected_area(after);
+    const double b = misfit_area(before), a = misfit_area(after);
     return a < b - 1e-9 * edge_ * edge_ && folds_after <= folds_before;
   }
 
@@ -106,7 +116,7 @@ class Mender {
     const std::optional<size_t> folds_before = folds_around(mesh_, vs);
     if (!folds_before) return false;
     const std::vector<Tri> before = around(v);
-    const double before_rejected = rejected_area(before);
+    const double before_rejected = misfit_area(before);
     const double reach = std::max(cloud_distance(old), 0.5 * edge_);
     std::optional<Vec3> best;
     double best_rejected = before_rejected;
@@ -116,7 +126,7 @@ class Mender {
       const std::vector<Tri> after = around(v);
       const std::optional<size_t> folds_after = folds_around(mesh_, vs);
       if (folds_after && better(before, after, *folds_before, *folds_after)) {
-        const double r = rejected_area(after);
+        const double r = misfit_area(after);
         if (r < best_rejected) {
           best_rejected = r;
           best = p;
@@ -138,7 +148,7 @@ class Mender {
     const Vec3 p = mesh_.point(v);
     for (HalfedgeHandle h : mesh_.voh_range(v)) {
       const FaceHandle f = mesh_.face_handle(h);
-      if (!f.is_valid() || !rejected(f)) continue;
+      if (!f.is_valid() || !misfits(f)) continue;
       const HalfedgeHandle hinge = mesh_.next_halfedge_handle(h);  // the edge of f opposite v
       const Vec3 a = mesh_.point(mesh_.from_vertex_handle(hinge)), b = mesh_.point(mesh_.to_vertex_handle(hinge));
       const Vec3 ab = b - a;
@@ -152,7 +162,8 @@ class Mender {
     Vec3 facing(0, 0, 0);
     for (FaceHandle f : mesh_.vf_range(v)) {
       const Tri t = face_points(mesh_, f);
-      if (vote(t) > 0) facing += area(t) * unit_normal(t);
+      const Vec3 n = unit_normal(t);
+      if (n.sqrnorm() > 0 && reference_vote(ref_, o_.detect, centroid(t), n, edge_) > 0) facing += area(t) * n;
     }
     if (facing.sqrnorm() > 0) {
       if (const std::optional<size_t> q = ref_.nearest_facing(p, facing.normalized())) out.push_back(ref_.cloud().points[*q]);
@@ -264,10 +275,26 @@ class Mender {
   double min_area_;
 };
 
-/// The edge-connected groups of rejected faces of at most `max_faces` faces, by lowest face.
+/// True when the geometry itself shows that `patch` is wrong, not only the reference: one of its
+/// faces is folded against a neighbour (n.n' < 0) or lies on the mesh border (a flap). A smooth
+/// patch inside the surface that the reference rejects is left: there the reference may be the
+/// one that is wrong (noise, a wall thinner than its sampling), and re-shaping the mesh to please
+/// it would distort a right surface.
+bool shows_a_defect(const Mesh& mesh, const std::vector<FaceHandle>& patch) {
+  for (FaceHandle f : patch) {
+    const Vec3 n = unit_normal(face_points(mesh, f));
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      const FaceHandle g = mesh.opposite_face_handle(h);
+      if (!g.is_valid() || OpenMesh::dot(n, unit_normal(face_points(mesh, g))) < 0) return true;
+    }
+  }
+  return false;
+}
+
+/// The edge-connected groups of misfit faces that show a defect (`shows_a_defect`) of at most `max_faces` faces, by lowest face.
 std::vector<std::vector<FaceHandle>> small_rejected_patches(const Mesh& mesh, const Mender& m, size_t max_faces) {
   std::vector<char> bad(mesh.n_faces(), 0), seen(mesh.n_faces(), 0);
-  for (FaceHandle f : mesh.faces()) bad[static_cast<size_t>(f.idx())] = m.rejected(f);
+  for (FaceHandle f : mesh.faces()) bad[static_cast<size_t>(f.idx())] = m.misfits(f);
   std::vector<std::vector<FaceHandle>> out;
   for (FaceHandle f : mesh.faces()) {
     if (!bad[static_cast<size_t>(f.idx())] || seen[static_cast<size_t>(f.idx())]) continue;
@@ -280,7 +307,7 @@ std::vector<std::vector<FaceHandle>> small_rejected_patches(const Mesh& mesh, co
         patch.push_back(g);
       }
     }
-    if (patch.size() <= max_faces) out.push_back(std::move(patch));
+    if (patch.size() <= max_faces && shows_a_defect(mesh, patch)) out.push_back(std::move(patch));
   }
   return out;
 }
@@ -297,7 +324,7 @@ void mend_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
       // 1. Re-triangulate: swap an edge of a rejected face for the other diagonal of its quad.
       std::vector<FaceHandle> live;
       for (FaceHandle f : patch) {
-        if (!edgefront::is_live(mesh, f) || !m.rejected(f)) continue;
+        if (!edgefront::is_live(mesh, f) || !m.misfits(f)) continue;
         bool flipped = false;
         for (HalfedgeHandle h : mesh.fh_range(f)) {
           if (m.flip_edge(h)) {
@@ -310,7 +337,7 @@ void mend_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
       }
       // 2. Move a vertex: turn a folded page back about its hinge, or smooth an interior one.
       for (FaceHandle f : live) {
-        if (!edgefront::is_live(mesh, f) || !m.rejected(f)) continue;
+        if (!edgefront::is_live(mesh, f) || !m.misfits(f)) continue;
         std::vector<VertexHandle> corners(mesh.fv_range(f).begin(), mesh.fv_range(f).end());
         for (VertexHandle v : corners) {
           if (m.move_vertex(v, m.unfold_targets(v))) {
@@ -323,7 +350,7 @@ void mend_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
       // 3. Cut what is still rejected out and re-grow it from its rim.
       std::vector<FaceHandle> rest;
       for (FaceHandle f : patch)
-        if (edgefront::is_live(mesh, f) && m.rejected(f)) rest.push_back(f);
+        if (edgefront::is_live(mesh, f) && m.misfits(f)) rest.push_back(f);
       if (rest.size() < 2 || rest.size() != patch.size()) continue;  // a single face is its own fan; a changed patch waits for the next round
       const size_t added = m.regrow(rest);
       if (added > 0) {

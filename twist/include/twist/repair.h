@@ -176,8 +176,9 @@ struct RepairOptions {
   /// one simple loop of 4 or more edges: cut out (counted in `RepairReport::faces_removed` and
   /// `mend_faces_cut_out`) and re-grown as a fan around the rim's centroid (within a mean edge of
   /// the reference), wound like the faces around. Up to 3 rounds. Nothing is removed without
-  /// being re-grown, and no piece is added. Faces; default 0; in [0, 64]; 0 = off.
-  size_t mend_patches = 0;
+  /// being re-grown, and no piece is added; the area shrinks where folds are undone (figures:
+  /// bench/results/twist-finished.md). Faces; default 8; in [0, 64]; 0 = off.
+  size_t mend_patches = 8;
   /// At most this many detected regions are repaired per call. Regions; default 16; >= 1.
   size_t max_repairs = 16;
   /// Apply the global orientation convention at the end (see the file comment). Default true.
