@@ -283,6 +283,35 @@ TEST(TwistLabel, AnOpenSurfaceFacingInwardNeedsTheReference) {
   EXPECT_DOUBLE_EQ(twist::face_orientation_agreement(inward, ref), 1.0);
 }
 
+TEST(TwistLabel, ATwistAcrossAWallThickerThanTheRadiusNeedsTheRadiusOrTheReference) {
+  // What the geometry shows only within the search radius: a disk turned over on a plate whose
+  // walls lie farther apart than the radius (2 mean edges by default) faces the other wall from
+  // too far; without a reference the disk stays inside out. A radius above
+  // the wall thickness finds and fixes it, and so does the reference at the default radius.
+  twist::FlippedDiskOptions fo;
+  fo.thickness = 0.5;
+  const twist::TwistedShape s = twist::flipped_disk_plate(fo);
+  const double edge = edgefront::compute_stats(s.mesh).mean_edge_length;
+  ASSERT_GT(fo.thickness, 2 * edge) << "the walls lie farther apart than the default radius";
+  const double before = twist::truth_consistency(s.mesh, s);
+  ASSERT_LT(before, 0.99);
+  twist::TwistedShape alone = s;
+  twist::repair(alone.mesh);
+  EXPECT_LT(twist::truth_consistency(alone.mesh, alone), 0.99) << "not fixed without a reference at the default radius";
+  twist::TwistedShape wide = s;
+  twist::RepairOptions o;
+  o.detect.radius = 1.5 * fo.thickness;
+  const twist::RepairReport rw = twist::repair(wide.mesh, o);
+  EXPECT_GE(rw.repairs, 1u);
+  EXPECT_GE(twist::truth_consistency(wide.mesh, wide), 0.99) << "found and fixed with a radius above the thickness";
+  twist::TwistedShape referenced = s;
+  const twist::ReferenceNormals ref(twist::truth_points(s));
+  twist::RepairOptions ro;
+  ro.detect.reference = &ref;
+  twist::repair(referenced.mesh, ro);
+  EXPECT_GE(twist::truth_consistency(referenced.mesh, referenced), 0.99) << "or with the reference";
+}
+
 TEST(TwistLabel, ScatteredRejectionsDoNotShredTheSurface) {
   // A correct sphere whose reference rejects every third face: no region is worth its cut, so
   // nothing is flipped and the sphere stays whole (the detector path needs its border-ratio guard

@@ -127,10 +127,11 @@ TEST(TwistMend, PatchesLargerThanTheLimitAreLeft) {
 
 TEST(TwistMend, ATwistedVaultReconstructionIsMendedWithoutNewPieces) {
   // A real finished twisted mesh: plain GCS (nearest-vertex winners, no twist repair) on a vault
-  // shell t/R 0.2, as scripts/bench-twist-heal.sh makes them (coarser here: at 400 vertices the
-  // labelling finds no region worth its cut, 0.64 of the area agrees before and after it). What
-  // the reference rejects in small folds and flaps is mended (0.74): the consistency rises, no
-  // piece is added and no face removed but those re-grown.
+  // shell t/R 0.2, as scripts/bench-twist-heal.sh makes them (coarser here; with gcc 12 on x86-64:
+  // 0.64 of the area agrees, 0.76 after the labelling, 0.92 mended, 2 -> 9 pieces along 9 twist
+  // lines). The labelling flips the large wrong regions; what the reference still rejects lies in
+  // small folds and flaps, which mending fixes: the consistency rises, no piece is added and no
+  // face removed but those re-grown.
   edgefront::shapes::SampleOptions so;
   so.points = 5000;
   so.seed = 3;
@@ -151,6 +152,7 @@ TEST(TwistMend, ATwistedVaultReconstructionIsMendedWithoutNewPieces) {
   const double c_plain = twist::face_orientation_agreement(labelled, ref);
   const double c_mended = twist::face_orientation_agreement(mended, ref);
   EXPECT_GT(r.mend_edges_flipped + r.mend_vertices_moved, 0u);
+  EXPECT_GT(c_plain, twist::face_orientation_agreement(raw, ref));
   EXPECT_GT(c_mended, c_plain);
   EXPECT_EQ(components(mended), components(labelled)) << "mending adds no piece";
   EXPECT_EQ(r.faces_removed, r.mend_faces_cut_out) << "only what is re-grown is removed";

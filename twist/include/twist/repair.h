@@ -35,8 +35,12 @@ struct CutOptions {
   /// the area of the faces the reference rejects): a region is flipped only when the area it puts
   /// right exceeds the area it puts wrong plus cut_cost x mean edge x the length of the cut around
   /// it. A disk of wrongly oriented faces is flipped from a radius of about 2 x cut_cost mean
-  /// edges on. Mean edge lengths; default 1; in [0, 100].
-  double cut_cost = 1.0;
+  /// edges on (and never below `min_component_faces`). The default 0.5 flips more of the wrong
+  /// flaps of a finished torn reconstruction than 1 did, at about one extra piece per twist line
+  /// cut as before (each flipped region is its own piece); 0.25 flips more still but cuts up a
+  /// surface whose reference rejects scattered faces (bench/results/twist-finished.md). Mean edge
+  /// lengths; default 0.5; in [0, 100].
+  double cut_cost = 0.5;
   /// Detector path only: regions whose cut border has more than max_border_ratio * sqrt(faces) +
   /// 16 edges are not repaired (counted in `RepairReport::regions_scattered`): a twist is a
   /// compact region behind a short twist line, while scattered evidence (noise, a wall thinner
