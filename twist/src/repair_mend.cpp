@@ -159,11 +159,19 @@ class Mender {
     }
     // The nearest reference point of the wall the accepted faces around v face: a corner that
     // reached across to the other wall of a thin shell goes back onto its own.
+    // (A corner all of whose faces are wrong, the tip of a flap, takes the faces around its
+    // neighbours.)
     Vec3 facing(0, 0, 0);
-    for (FaceHandle f : mesh_.vf_range(v)) {
-      const Tri t = face_points(mesh_, f);
-      const Vec3 n = unit_normal(t);
-      if (n.sqrnorm() > 0 && reference_vote(ref_, o_.detect, centroid(t), n, edge_) > 0) facing += area(t) * n;
+    auto add_agreeing = [&](VertexHandle w) {
+      for (FaceHandle f : mesh_.vf_range(w)) {
+        const Tri t = face_points(mesh_, f);
+        const Vec3 n = unit_normal(t);
+        if (n.sqrnorm() > 0 && reference_vote(ref_, o_.detect, centroid(t), n, edge_) > 0) facing += area(t) * n;
+      }
+    };
+    add_agreeing(v);
+    if (facing.sqrnorm() == 0) {
+      for (VertexHandle w : mesh_.vv_range(v)) add_agreeing(w);
     }
     if (facing.sqrnorm() > 0) {
       if (const std::optional<size_t> q = ref_.nearest_facing(p, facing.normalized())) out.push_back(ref_.cloud().points[*q]);
