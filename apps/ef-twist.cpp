@@ -1,6 +1,6 @@
 /// ef-twist: find and repair twisted (inconsistently oriented) regions of a mesh.
 ///
-///   ef-twist MESH [--points CLOUD [--cut-cost C] [--detector]] [--radius R] [--max-repairs N] [--threads N]
+///   ef-twist MESH [--points CLOUD [--cut-cost C] [--mend N] [--detector]] [--radius R] [--max-repairs N] [--threads N]
 ///            -o FIXED [--png FILE.png ...]
 ///
 /// --png writes FILE.png (the repaired mesh) and FILE-before.png (the input). Without --points
@@ -11,7 +11,8 @@
 /// they approximate (facing layers of a thin structure), cuts each off along its border, flips
 /// the smaller side. With --points: labels every face keep or flip by the cloud's normals (a
 /// minimum cut: regions flipped whole by their area-weighted vote, cut only where regions that
-/// disagree meet; --detector: the detector's regions instead). Then orients the result globally,
+/// disagree meet; then small folds and flaps the cloud still rejects are mended, --mend; --detector:
+/// the detector's regions instead). Then orients the result globally,
 /// prints the report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
 
 #include <cmath>
