@@ -74,7 +74,8 @@ TEST(TwistMend, AFlapFoldedOverItsHingeAtTheBorderIsTurnedBack) {
   const Vec3 p = sheet.point(corner) - a;
   const Vec3 along = axis * OpenMesh::dot(p, axis), across = p - along;
   const double angle = 150.0 * M_PI / 180.0;
-  sheet.set_point(corner, a + along + across * std::cos(angle) + OpenMesh::cross(axis, across) * std::sin(angle));
+  sheet.set_point(corner,
+                  a + along + across * std::cos(angle) + OpenMesh::cross(axis, across) * std::sin(angle));
   const twist::ReferenceNormals ref = plane_reference(n);
   ASSERT_LT(twist::face_orientation_agreement(sheet, ref), 1.0);
 
@@ -157,7 +158,8 @@ TEST(TwistMend, ATwistedVaultReconstructionIsMendedWithoutNewPieces) {
   EXPECT_EQ(components(mended), components(labelled)) << "mending adds no piece";
   EXPECT_EQ(r.faces_removed, r.mend_faces_cut_out) << "only what is re-grown is removed";
   EXPECT_EQ(plain.cut_lines, r.cut_lines);
-  EXPECT_LE(components(mended), components(raw) + r.cut_lines) << "at most one extra piece per twist line cut";
+  EXPECT_LE(components(mended), components(raw) + r.cut_lines)
+      << "at most one extra piece per twist line cut";
   EXPECT_EQ(edgefront::compute_stats(mended).nonmanifold_vertices, 0u);
   // Mending again finds less to mend: what it changed stays mended.
   Mesh again = mended;

@@ -61,7 +61,8 @@ class Mender {
   double cloud_distance(const Vec3& p) const { return (p - ref_.cloud().points[ref_.nearest(p)]).norm(); }
   /// Accepts a change of `before` into `after` (triangles; `folds_*` the folded edges around):
   /// no degenerate triangle, less rejected area (by more than rounding), no more folds.
-  bool better(const std::vector<Tri>& before, const std::vector<Tri>& after, size_t folds_before, size_t folds_after) const {
+  bool better(const std::vector<Tri>& before, const std::vector<Tri>& after, size_t folds_before,
+              size_t folds_after) const {
     for (const Tri& t : after)
       if (degenerate(t)) return false;
     const double b = misfit_area(before), a = misfit_area(after);
@@ -121,7 +122,8 @@ class Mender {
     std::optional<Vec3> best;
     double best_rejected = before_rejected;
     for (const Vec3& p : targets) {
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || cloud_distance(p) > reach) continue;
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || cloud_distance(p) > reach)
+        continue;
       mesh_.set_point(v, p);
       const std::vector<Tri> after = around(v);
       const std::optional<size_t> folds_after = folds_around(mesh_, vs);
@@ -150,7 +152,8 @@ class Mender {
       const FaceHandle f = mesh_.face_handle(h);
       if (!f.is_valid() || !misfits(f)) continue;
       const HalfedgeHandle hinge = mesh_.next_halfedge_handle(h);  // the edge of f opposite v
-      const Vec3 a = mesh_.point(mesh_.from_vertex_handle(hinge)), b = mesh_.point(mesh_.to_vertex_handle(hinge));
+      const Vec3 a = mesh_.point(mesh_.from_vertex_handle(hinge)),
+                 b = mesh_.point(mesh_.to_vertex_handle(hinge));
       const Vec3 ab = b - a;
       const double len2 = ab.sqrnorm();
       if (len2 <= 0) continue;
@@ -166,7 +169,8 @@ class Mender {
       for (FaceHandle f : mesh_.vf_range(w)) {
         const Tri t = face_points(mesh_, f);
         const Vec3 n = unit_normal(t);
-        if (n.sqrnorm() > 0 && reference_vote(ref_, o_.detect, centroid(t), n, edge_) > 0) facing += area(t) * n;
+        if (n.sqrnorm() > 0 && reference_vote(ref_, o_.detect, centroid(t), n, edge_) > 0)
+          facing += area(t) * n;
       }
     };
     add_agreeing(v);
@@ -174,7 +178,8 @@ class Mender {
       for (VertexHandle w : mesh_.vv_range(v)) add_agreeing(w);
     }
     if (facing.sqrnorm() > 0) {
-      if (const std::optional<size_t> q = ref_.nearest_facing(p, facing.normalized())) out.push_back(ref_.cloud().points[*q]);
+      if (const std::optional<size_t> q = ref_.nearest_facing(p, facing.normalized()))
+        out.push_back(ref_.cloud().points[*q]);
     }
     if (!mesh_.is_boundary(v)) {
       Vec3 sum(0, 0, 0);
@@ -227,14 +232,17 @@ class Mender {
     size_t folds_before = 0, folds_after = 0;
     for (FaceHandle f : patch) {
       before.push_back(face_points(mesh_, f));
-      for (FaceHandle g : mesh_.ff_range(f)) folds_before += folded(before.back(), face_points(mesh_, g)) * (in_patch.count(g.idx()) ? 1 : 2);
+      for (FaceHandle g : mesh_.ff_range(f))
+        folds_before += folded(before.back(), face_points(mesh_, g)) * (in_patch.count(g.idx()) ? 1 : 2);
     }
     for (size_t k = 0; k < rim.size(); ++k) {
       const HalfedgeHandle h = rim[k];
-      after.push_back({mesh_.point(mesh_.from_vertex_handle(h)), mesh_.point(mesh_.to_vertex_handle(h)), centre});
+      after.push_back(
+          {mesh_.point(mesh_.from_vertex_handle(h)), mesh_.point(mesh_.to_vertex_handle(h)), centre});
       folds_after += 2 * folded(after.back(), face_points(mesh_, mesh_.opposite_face_handle(h)));
     }
-    for (size_t k = 0; k < after.size(); ++k) folds_after += 2 * folded(after[k], after[(k + 1) % after.size()]);
+    for (size_t k = 0; k < after.size(); ++k)
+      folds_after += 2 * folded(after[k], after[(k + 1) % after.size()]);
     if (!better(before, after, folds_before, folds_after)) return 0;
     std::vector<std::array<VertexHandle, 3>> old_faces;
     for (FaceHandle f : patch) {
@@ -263,7 +271,9 @@ class Mender {
   static size_t folded(const Tri& x, const Tri& y) {
     return OpenMesh::dot(unit_normal(x), unit_normal(y)) < 0 ? 1 : 0;
   }
-  Tri points(const std::array<VertexHandle, 3>& t) const { return {mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2])}; }
+  Tri points(const std::array<VertexHandle, 3>& t) const {
+    return {mesh_.point(t[0]), mesh_.point(t[1]), mesh_.point(t[2])};
+  }
   std::vector<Tri> around(VertexHandle v) const {
     std::vector<Tri> ts;
     for (FaceHandle f : mesh_.vf_range(v)) ts.push_back(face_points(mesh_, f));
@@ -299,8 +309,10 @@ bool shows_a_defect(const Mesh& mesh, const std::vector<FaceHandle>& patch) {
   return false;
 }
 
-/// The edge-connected groups of misfit faces that show a defect (`shows_a_defect`) of at most `max_faces` faces, by lowest face.
-std::vector<std::vector<FaceHandle>> small_rejected_patches(const Mesh& mesh, const Mender& m, size_t max_faces) {
+/// The edge-connected groups of misfit faces that show a defect (`shows_a_defect`) of at most `max_faces`
+/// faces, by lowest face.
+std::vector<std::vector<FaceHandle>> small_rejected_patches(const Mesh& mesh, const Mender& m,
+                                                            size_t max_faces) {
   std::vector<char> bad(mesh.n_faces(), 0), seen(mesh.n_faces(), 0);
   for (FaceHandle f : mesh.faces()) bad[static_cast<size_t>(f.idx())] = m.misfits(f);
   std::vector<std::vector<FaceHandle>> out;
@@ -359,7 +371,8 @@ void mend_patches(Mesh& mesh, const RepairOptions& o, RepairReport& report) {
       std::vector<FaceHandle> rest;
       for (FaceHandle f : patch)
         if (edgefront::is_live(mesh, f) && m.misfits(f)) rest.push_back(f);
-      if (rest.size() < 2 || rest.size() != patch.size()) continue;  // a single face is its own fan; a changed patch waits for the next round
+      if (rest.size() < 2 || rest.size() != patch.size())
+        continue;  // a single face is its own fan; a changed patch waits for the next round
       const size_t added = m.regrow(rest);
       if (added > 0) {
         report.mend_faces_cut_out += rest.size();
