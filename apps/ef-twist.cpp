@@ -11,9 +11,9 @@
 /// they approximate (facing layers of a thin structure), cuts each off along its border, flips
 /// the smaller side. With --points: labels every face keep or flip by the cloud's normals (a
 /// minimum cut: regions flipped whole by their area-weighted vote, cut only where regions that
-/// disagree meet; then small folds and flaps the cloud still rejects are mended, --mend; --detector:
-/// the detector's regions instead). Then orients the result globally,
-/// prints the report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
+/// disagree meet; --detector: the detector's regions instead). Then orients the result globally
+/// (with --points: then mends small folds and flaps the cloud still rejects, --mend), prints the
+/// report and writes FIXED atomically. Exit codes: 0 ok, 1 error, 2 usage error.
 
 #include <cmath>
 #include <iostream>

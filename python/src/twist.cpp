@@ -121,9 +121,10 @@ void register_twist(py::module_& m) {
       py::arg("max_repairs") = 16, py::arg("radius") = 0.0,
       "repair_twists(V, F, points=None, normals=None, max_repairs=16, radius=0) -> (V2, F2, record)\n\n"
       "With points and normals (an oriented scan): every face is labelled keep or flip by a minimum cut\n"
-      "(each face votes with its area by the nearest scan normal; a cut costs about one mean edge per unit\n"
+      "(each face votes with its area by the nearest scan normal; a cut costs half a mean edge per unit\n"
       "length), so consistently oriented regions are flipped whole and the mesh is cut only where regions\n"
-      "that disagree meet (the twist line); nothing is removed. Without them: detects twisted regions (as\n"
+      "that disagree meet (the twist line); then small folds and flaps the scan still rejects are mended\n"
+      "(edges swapped, vertices moved, a patch re-grown as a fan from its rim). Without them: detects twisted regions (as\n"
       "detect_twists), cuts each off along its border, flips the smaller side and orients the surface\n"
       "globally (closed components outward); at most max_repairs regions.\n"
       "Returns the repaired mesh, V2 float64 (n2, 3) (the input's vertices, then the copies a cut appended;\n"
