@@ -19,6 +19,11 @@ HealCounts heal_borders(Mesh& mesh, const ReferenceNormals& reference, double me
   const std::vector<Vec3>& points = reference.cloud().points;
   const CloudDistance cloud = [&](const Vec3& p) { return (p - points[reference.nearest(p)]).norm(); };
   const double support = options.max_support_edges * mean_edge_length;
+  for (size_t row = 0; row < options.grow_rows; ++row) {
+    const size_t grown = grow_borders(mesh, reference, mean_edge_length, options.grow_min_support);
+    counts.grown += grown;
+    if (grown == 0) break;
+  }
   if (options.max_gap_edges > 0 && options.max_zips > 0) {
     ZipParams zp;
     zp.mean_edge_length = mean_edge_length;

@@ -109,6 +109,8 @@ struct RepairSession::Impl {
       if (!(x >= 0) || !std::isfinite(x)) refuse("heal distances must be finite and >= 0");
     }
     if (!std::isfinite(h.min_normal_agreement)) refuse("heal min_normal_agreement must be finite");
+    if (h.grow_rows > 8) refuse("heal grow_rows must be at most 8 (rows grown per answer), got " + std::to_string(h.grow_rows));
+    if (h.grow_min_support < 1) refuse("heal grow_min_support must be at least 1");
     return o;
   }
 
@@ -392,7 +394,7 @@ struct RepairSession::Impl {
     if (!options.heal.enabled) return false;
     const detail::HealCounts c =
         detail::heal_borders(mirror(), *options.repair.detect.reference, mean_edge_length, options.heal, healed);
-    stats.heal = {c.strips, c.holes, healed.size()};
+    stats.heal = {c.strips, c.holes, c.grown, healed.size()};
     return !healed.empty();
   }
 
