@@ -31,10 +31,14 @@ constexpr double kReach = 0.866;         // a new vertex this far beyond its edg
 constexpr double kSupportRadius = 0.6;   // reference points this close to that spot support it
 constexpr double kMinBeyond = 0.5;       // ... and their mean must lie at least this far beyond
 constexpr double kCoverRadius = 0.45;    // a face facing the same way this close covers the spot
+constexpr double kBlockRadius = 0.3;     // any face this close blocks it (a new face would cross it)
 constexpr double kReuseRadius = 0.6;     // the neighbouring edge's new vertex this close is shared
 // Cosines.
-constexpr double kSupportCos = 0.5;      // a supporting point's normal against the edge's face
-constexpr double kAgreeCos = 0.3;        // a new face against the face it borders and its points
+// A supporting point's normal against the edge's face: sideways ones count, so that a row turns
+// round a crease (a shell's rim between its two walls); the other wall's (opposite) do not.
+constexpr double kSupportCos = -0.3;
+constexpr double kFoldCos = 0.0;         // a new face against the face it borders: not folded back
+constexpr double kAgreeCos = 0.3;        // a new face against its supporting points' mean normal
 constexpr double kEarCos = 0.26;         // a wedge narrower than about 75 degrees is closed
 
 Vec3 unit(const Vec3& v) {
@@ -60,8 +64,9 @@ class Coverage {
     }
     if (!tris.empty()) bvh_ = std::make_unique<edgefront::TriangleBvh>(std::move(tris));
   }
-  /// True when a face whose normal agrees with `normal` lies within `radius` of `p`.
-  bool covered(const Vec3& p, const Vec3& normal, double radius) const {
+  /// True when a face whose normal agrees with `normal` lies within `radius` of `p`, or any face
+  /// within `block`.
+  bool covered(const Vec3& p, const Vec3& normal, double radius, double block) const {
     if (!bvh_) return false;
     edgefront::AlignedBox box;
     box.add(p - Vec3(radius));
@@ -70,8 +75,8 @@ class Coverage {
     bvh_->for_each_overlapping(box, 0, [&](int i) {
       if (hit) return;
       const edgefront::Triangle& t = bvh_->triangles()[static_cast<size_t>(i)];
-      if ((t.n | normal) <= 0) return;
-      hit = (edgefront::closest_point_on_triangle(p, t.p[0], t.p[1], t.p[2]) - p).sqrnorm() < radius * radius;
+      const double r = (t.n | normal) > 0 ? radius : block;
+      hit = (edgefront::closest_point_on_triangle(p, t.p[0], t.p[1], t.p[2]) - p).sqrnorm() < r * r;
     });
     return hit;
   }
@@ -138,6 +143,8 @@ struct Grower {
     Vec3 out = unit(n % (pb - pa));
     if ((out | (mesh.point(c) - mid)) > 0) out = -out;
     if (out.sqrnorm() == 0 || n.sqrnorm() == 0) return false;
+    // Only a side the reference agrees with grows: a wrong one would grow on along the other wall.
+    if (reference.judge((pa + pb + mesh.point(c)) / 3.0, n) <= 0) return false;
     Vec3 q, nq;
     if (!support(mid + kReach * unit_length * out, n, q, nq)) return false;
     if (((q - mid) | out) < kMinBeyond * unit_length) return false;
@@ -145,11 +152,12 @@ struct Grower {
     if (previous.is_valid() && (mesh.point(previous) - q).sqrnorm() < kReuseRadius * kReuseRadius * unit_length * unit_length) {
       r = previous;
       q = mesh.point(r);
-    } else if (coverage.covered(q, nq, kCoverRadius * unit_length) || near_fresh(q, kReuseRadius * unit_length)) {
+    } else if (coverage.covered(q, nq, kCoverRadius * unit_length, kBlockRadius * unit_length) ||
+               near_fresh(q, kReuseRadius * unit_length)) {
       return false;
     }
     const Vec3 t = unit((pb - pa) % (q - pa));
-    if ((t | n) < kAgreeCos || (t | nq) < kAgreeCos) return false;
+    if ((t | n) < kFoldCos || (t | nq) < kAgreeCos) return false;
     const bool made = !r.is_valid();
     if (made) r = mesh.add_vertex(q);
     if (!add(a, b, r)) {
