@@ -218,6 +218,7 @@ class Loop {
     so.heal.max_gap_edges = o_.heal_gap_edges;
     so.heal.max_hole_vertices = o_.heal_hole_vertices;
     so.heal.grow_rows = o_.heal_grow_rows;
+    so.heal.min_piece_share = o_.heal_min_piece_share;
     session_ = std::make_unique<twist::RepairSession>(V, F, so);
     replay(session_->initial_record());  // empty for the octahedron
     m_.dirty.clear();

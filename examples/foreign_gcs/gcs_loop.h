@@ -33,6 +33,7 @@ struct LoopOptions {
   double heal_gap_edges = 1.0;    ///< twist::HealOptions::max_gap_edges
   size_t heal_hole_vertices = 8;  ///< twist::HealOptions::max_hole_vertices
   size_t heal_grow_rows = 0;      ///< twist::HealOptions::grow_rows (border growth on the points)
+  double heal_min_piece_share = 0;  ///< twist::HealOptions::min_piece_share (small pieces removed by the finish)
   size_t probes_per_batch = 16;   ///< "far along the surface?" queries per batch (0: none)
   bool verbose = false;           ///< one line per batch on stderr
 };

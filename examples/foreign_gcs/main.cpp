@@ -28,7 +28,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--grow R] [--verbose]\n"
+    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--grow R] [--min-piece S] [--verbose]\n"
     "  POINTS         text file, one point per line: x y z [nx ny nz]\n"
     "  -o MESH        output mesh, .off or .ply (ASCII)\n"
     "  --vertices N   stop at N live vertices (6 to 10000000, default 2000)\n"
@@ -42,6 +42,7 @@ constexpr const char* kUsage =
     "  --heal-gap E   with --heal: zip border chains closer than E mean edges (0 to 10, default 1)\n"
     "  --heal-holes N with --heal: close holes of at most N border vertices by a fan (0 to 1000, default 8)\n"
     "  --grow R       the heal (implies --heal) also grows up to R rows of faces beyond the borders per repair, on the points (0 to 8, default 0)\n"
+"  --min-piece S  with --heal: the finish removes pieces with fewer than S x the largest piece's faces (0 to 0.5, default 0)\n"
     "  --verbose      one line per batch on stderr\n";
 
 struct UsageError : std::runtime_error {
@@ -183,6 +184,8 @@ int main(int argc, char** argv) {
       } else if (a == "--grow") {
         o.heal_grow_rows = parse_count(a, value(), 0, 8);
         if (o.heal_grow_rows > 0) o.heal = true;
+      } else if (a == "--min-piece") {
+        o.heal_min_piece_share = parse_real(a, value(), 0, 0.5);
       } else if (a == "--verbose") {
         o.verbose = true;
       } else if (!a.empty() && a[0] == '-') {

@@ -81,6 +81,10 @@ struct HealOptions {
   /// until borders that run opposite meet and the zips join them.
   size_t grow_rows = 0;
   size_t grow_min_support = 3;       ///< reference points a grown vertex needs (>= 1)
+  /// At the end of `finish` (after its full repair), components with fewer than this share of the
+  /// largest component's faces are removed: debris the joins could not attach (a sliver on a
+  /// rim, a scrap of film). A share of faces in [0, 1); 0 (the default): nothing is removed.
+  double min_piece_share = 0;
 };
 
 /// What the heal did in the last answer.
@@ -88,6 +92,7 @@ struct HealReport {
   size_t strips = 0;       ///< strips zipped between border chains
   size_t holes = 0;        ///< small holes closed
   size_t grown = 0;        ///< faces the border growth added
+  size_t piece_faces_removed = 0;  ///< faces of small pieces `finish` removed (`HealOptions::min_piece_share`)
   size_t faces_added = 0;  ///< faces the strips, fans and growth added
 };
 

@@ -19,6 +19,10 @@ struct HealCounts {
   std::size_t grown = 0;   ///< faces grown beyond borders (grow_borders)
 };
 
+/// Removes the components with fewer than `share` x the largest component's faces (the largest
+/// stays); returns the faces removed. Deleted elements are not collected.
+std::size_t remove_small_pieces(edgefront::Mesh& mesh, double share);
+
 /// One row of border growth (HealOptions::grow_rows, see its comment) with `mean_edge_length` > 0
 /// as the unit and `min_support` reference points per new vertex. Returns the faces added (new
 /// vertices and faces appended to the mesh; deleted elements are not collected).
