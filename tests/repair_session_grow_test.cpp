@@ -108,7 +108,7 @@ TEST(RepairSessionGrow, ACapGrowsBackClosedOnThePointsAndReplays) {
     for (const twist::VertexAdded& a : r.vertices_added) {
       EXPECT_EQ(a.original, -1);
       const Vec3 p(a.position[0], a.position[1], a.position[2]);
-      EXPECT_NEAR(p.norm(), 1.0, 0.05 * sphere.mean_edge);
+      EXPECT_NEAR(p.norm(), 1.0, 0.1 * sphere.mean_edge);  // a mean of points on the sphere: slightly inside
       EXPECT_GT(p[2], 0.4 - sphere.mean_edge);
     }
     for (size_t f = 0; 3 * f < F.size(); ++f) {

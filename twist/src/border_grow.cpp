@@ -33,6 +33,7 @@ constexpr double kMinBeyond = 0.5;       // ... and their mean must lie at least
 constexpr double kCoverRadius = 0.45;    // a face facing the same way this close covers the spot
 constexpr double kBlockRadius = 0.3;     // any face this close blocks it (a new face would cross it)
 constexpr double kReuseRadius = 0.6;     // the neighbouring edge's new vertex this close is shared
+constexpr double kSnapRadius = 0.6;      // another border's vertex this close is used instead of a new one
 // Cosines.
 // A supporting point's normal against the edge's face: sideways ones count, so that a row turns
 // round a crease (a shell's rim between its two walls); the other wall's (opposite) do not.
@@ -92,6 +93,7 @@ struct Grower {
   size_t min_support;
   Coverage coverage;
   std::vector<VertexHandle> fresh;  // vertices added in this row
+  std::vector<VertexHandle> border; // the border vertices at the start of the row, then the fresh ones
   std::vector<char> is_fresh;       // by vertex index
   std::vector<size_t> near;
 
@@ -131,6 +133,24 @@ struct Grower {
     return mesh.add_face(a, b, c).is_valid();
   }
 
+  /// The border vertex (not a or b) nearest to q within kSnapRadius whose faces face like
+  /// `normal` (mean cosine >= kAgreeCos); invalid for none.
+  VertexHandle nearest_border_vertex(const Vec3& q, VertexHandle a, VertexHandle b, const Vec3& normal) const {
+    VertexHandle best;
+    double best_d2 = kSnapRadius * kSnapRadius * unit_length * unit_length;
+    for (VertexHandle w : border) {
+      if (w == a || w == b || mesh.status(w).deleted() || !mesh.is_boundary(w)) continue;
+      const double d2 = (mesh.point(w) - q).sqrnorm();
+      if (d2 >= best_d2) continue;
+      Vec3 m(0, 0, 0);
+      for (auto fit = mesh.cvf_iter(w); fit.is_valid(); ++fit) m += face_unit_normal(mesh, *fit);
+      if ((unit(m) | normal) < kAgreeCos) continue;
+      best = w;
+      best_d2 = d2;
+    }
+    return best;
+  }
+
   /// One triangle beyond the boundary halfedge h; `previous` is the vertex the previous edge of
   /// the loop grew to (invalid for none), updated.
   bool grow_edge(HalfedgeHandle h, VertexHandle& previous) {
@@ -151,11 +171,14 @@ struct Grower {
     VertexHandle r;
     if (previous.is_valid() && (mesh.point(previous) - q).sqrnorm() < kReuseRadius * kReuseRadius * unit_length * unit_length) {
       r = previous;
-      q = mesh.point(r);
+    } else if ((r = nearest_border_vertex(q, a, b, nq)).is_valid()) {
+      // Another border runs there (the other side of a slit, a front grown from elsewhere): the
+      // triangle closes on its vertex instead of a new one next to it.
     } else if (coverage.covered(q, nq, kCoverRadius * unit_length, kBlockRadius * unit_length) ||
                near_fresh(q, kReuseRadius * unit_length)) {
       return false;
     }
+    if (r.is_valid()) q = mesh.point(r);
     const Vec3 t = unit((pb - pa) % (q - pa));
     if ((t | n) < kFoldCos || (t | nq) < kAgreeCos) return false;
     const bool made = !r.is_valid();
@@ -166,6 +189,7 @@ struct Grower {
     }
     if (made) {
       fresh.push_back(r);
+      border.push_back(r);
       if (is_fresh.size() <= static_cast<size_t>(r.idx())) is_fresh.resize(static_cast<size_t>(r.idx()) + 1, 0);
       is_fresh[static_cast<size_t>(r.idx())] = 1;
     }
@@ -195,8 +219,10 @@ struct Grower {
 size_t grow_borders(Mesh& mesh, const ReferenceNormals& reference, double mean_edge_length, size_t min_support) {
   if (!(mean_edge_length > 0)) return 0;
   Grower g(mesh, reference, mean_edge_length, std::max<size_t>(min_support, 1));
+  const std::vector<BorderLoop> loops = border_loops(mesh);
+  for (const BorderLoop& loop : loops) g.border.insert(g.border.end(), loop.vertices.begin(), loop.vertices.end());
   size_t faces = 0;
-  for (const BorderLoop& loop : border_loops(mesh)) {
+  for (const BorderLoop& loop : loops) {
     VertexHandle previous;
     for (HalfedgeHandle h : loop.halfedges) {
       if (!mesh.is_boundary(h) || !mesh.face_handle(mesh.opposite_halfedge_handle(h)).is_valid()) {
