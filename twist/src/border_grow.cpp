@@ -127,10 +127,22 @@ struct Grower {
     return true;
   }
 
-  /// Adds face (a, b, c) (OpenMesh refusing it: nothing added); true when added.
+  /// True when at most one border gap meets at v (one fan, not pinched).
+  bool one_fan(VertexHandle v) const {
+    size_t gaps = 0;
+    for (auto h = mesh.cvoh_iter(v); h.is_valid(); ++h) gaps += mesh.is_boundary(*h) ? 1 : 0;
+    return gaps <= 1;
+  }
+
+  /// Adds face (a, b, c) unless OpenMesh refuses it or it would pinch a corner (two fans meeting
+  /// at one vertex: then it is removed again); true when added.
   bool add(VertexHandle a, VertexHandle b, VertexHandle c) {
     const MuteOpenMeshErrors mute;
-    return mesh.add_face(a, b, c).is_valid();
+    const FaceHandle f = mesh.add_face(a, b, c);
+    if (!f.is_valid()) return false;
+    if (one_fan(a) && one_fan(b) && one_fan(c)) return true;
+    mesh.delete_face(f, false);
+    return false;
   }
 
   /// The border vertex (not a or b) nearest to q within kSnapRadius whose faces face like

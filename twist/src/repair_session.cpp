@@ -495,6 +495,17 @@ EditRecord RepairSession::finish() {
   if (s.options.heal.enabled) s.heal(s.estimated_mean_edge());
   s.healed.clear();  // the full repair looks at every face
   s.stats.report = s.repairer.finish(s.mirror());
+  if (s.options.heal.enabled && s.options.heal.grow_rows > 0) {
+    // With growth: the holes and slits the full repair opened (flaps peeled, turned patches
+    // dropped) are healed once more, without growth (nothing is repaired after it).
+    HealOptions again = s.options.heal;
+    again.grow_rows = 0;
+    std::vector<FaceHandle> added;
+    const detail::HealCounts c = detail::heal_borders(s.mirror(), *s.options.repair.detect.reference, s.estimated_mean_edge(), again, added);
+    s.stats.heal.strips += c.strips;
+    s.stats.heal.holes += c.holes;
+    s.stats.heal.faces_added += added.size();
+  }
   if (s.options.heal.enabled) s.stats.heal.piece_faces_removed = detail::remove_small_pieces(s.mirror(), s.options.heal.min_piece_share);
   return s.record(true);
 }
