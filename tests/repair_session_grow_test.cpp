@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -13,6 +14,7 @@
 #include <utility>
 
 #include "edgefront/error.h"
+#include "gcs/twist_operation.h"
 #include "edit_test_util.h"
 #include "shapes/shapes.h"
 #include "twist/repair_session.h"
@@ -160,7 +162,64 @@ TEST(RepairSessionGrow, BadGrowthOptionsAreRefused) {
   so.heal.grow_min_support = 0;
   EXPECT_THROW(RepairSession(sphere.arrays.vertices, sphere.arrays.faces, so), InvalidInput);
   so.heal.grow_min_support = 3;
+  for (double share : {-0.1, 1.0, std::nan("")}) {
+    so.heal.min_piece_share = share;
+    EXPECT_THROW(RepairSession(sphere.arrays.vertices, sphere.arrays.faces, so), InvalidInput) << share;
+  }
+  so.heal.min_piece_share = 0.01;
   EXPECT_NO_THROW(RepairSession(sphere.arrays.vertices, sphere.arrays.faces, so));
+  // The same growth in EdgeFront's own loop (gcs::TwistOperationOptions::grow_rows).
+  gcs::TwistOperationOptions to;
+  to.grow_rows = 9;
+  EXPECT_THROW(gcs::TwistOperation{to}, InvalidInput);
+  to.grow_rows = 2;
+  EXPECT_NO_THROW(gcs::TwistOperation{to});
+}
+
+/// Small pieces go at the finish (HealOptions::min_piece_share): a sphere and a far smaller
+/// separate sphere, the small one removed with a share above its size, kept below; replayed.
+TEST(RepairSessionGrow, TheFinishDropsPiecesUnderTheShare) {
+  const CappedSphere sphere;
+  // The big sphere (1280 faces) and a small one (icosphere(1), 80 faces) beside it, both with
+  // their own points (outward normals).
+  Mesh both = sphere.mesh;
+  const Mesh small = shapes::icosphere(1, 0.2);
+  PointCloud cloud = sphere.cloud(2.0);
+  const Mesh small_dense = shapes::icosphere(3, 0.2);
+  for (VertexHandle v : small_dense.vertices()) {
+    cloud.points.push_back(small_dense.point(v) + Vec3(3, 0, 0));
+    cloud.normals.push_back(small_dense.point(v).normalized());
+  }
+  const twist::ReferenceNormals ref(cloud);
+  std::vector<VertexHandle> map;
+  for (VertexHandle v : small.vertices()) map.push_back(both.add_vertex(small.point(v) + Vec3(3, 0, 0)));
+  for (FaceHandle f : small.faces()) {
+    std::vector<VertexHandle> t;
+    for (VertexHandle v : small.fv_range(f)) t.push_back(map[static_cast<size_t>(v.idx())]);
+    both.add_face(t);
+  }
+  const MeshArrays arrays = mesh_to_arrays(both);
+  for (double share : {0.05, 0.1}) {
+    SCOPED_TRACE(share);
+    twist::SessionOptions so;
+    so.repair.detect.reference = &ref;
+    so.heal.enabled = true;
+    so.heal.min_piece_share = share;
+    RepairSession s(arrays.vertices, arrays.faces, so);
+    std::vector<double> V = arrays.vertices;
+    std::vector<int> F = arrays.faces;
+    const EditRecord r = s.finish();
+    twist::apply(r, V, F);
+    edittest::expect_session_matches(s, V, F);
+    const size_t live = static_cast<size_t>(std::count_if(F.begin(), F.end(), [](int v) { return v >= 0; })) / 3;
+    if (share < 80.0 / 1280.0) {
+      EXPECT_EQ(s.stats().heal.piece_faces_removed, 0u);
+      EXPECT_EQ(live, 1360u);
+    } else {
+      EXPECT_EQ(s.stats().heal.piece_faces_removed, 80u);
+      EXPECT_EQ(live, 1280u);
+    }
+  }
 }
 
 }  // namespace
