@@ -95,7 +95,9 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
   if (!context.final_call && (r.repairs > 0 || r.faces_removed > 0)) rejoin();
   size_t grown = 0;
-  if (options_.grow_rows > 0 && reference_ && !context.final_call) {
+  // Growth from half the target on: earlier it spends the vertex budget before the loop has
+  // spread over the shape (bench/results/foreign-gcs.md).
+  if (options_.grow_rows > 0 && reference_ && !context.final_call && 2 * context.live_vertices >= context.target_vertices) {
     for (size_t row = 0; row < options_.grow_rows; ++row) {
       const size_t g = twist::detail::grow_borders(mesh, *reference_, context.mean_edge_length, 3);
       grown += g;

@@ -66,7 +66,10 @@ struct TwistOperationOptions {
   /// the session heal's growth): up to this many rows of faces beyond the borders, where points
   /// facing like a border's face continue the surface and no face covers them, then the re-join
   /// (with `rejoin_borders`). Each side of a cut grows on along its own wall across the fold the
-  /// cut left. Needs the input normals (ignored without). 0 (the default): none; at most 8.
+  /// cut left. From half the target vertex count on (earlier it spends the vertex budget before
+  /// the loop has spread over the shape). Needs the input normals (ignored without). 0 (the
+  /// default): none; at most 8. Measured mixed on the plain-winner shells (fewer pieces and more
+  /// coverage on t/R 0.1, not on every t/R 0.2 run: bench/results/foreign-gcs.md), hence off.
   /// `gcs-reconstruct --grow-borders R`.
   std::size_t grow_rows = 0;
 };
