@@ -1,7 +1,7 @@
 /// gcs-reconstruct: reconstruct a triangle mesh from a point cloud with growing cell structures.
 ///
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--preset NAME] [--no-twist] [--no-borders] [--no-orient-winners] [--quadric-normals]
-///                   [--rejoin-borders] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
+///                   [--rejoin-borders] [--grow-borders R] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
 ///                   [--no-delaunay-flips] [--keep-crossings]
 ///                   [--quiet] [--threads N]
@@ -84,6 +84,12 @@ int main(int argc, char** argv) {
                "after a twist repair, zip border chains that run close and orientation-compatible back together "
                "(fewer pieces on thin shells; off by default: on the thinnest shells it lowers the consistently "
                "oriented share a little)");
+  std::size_t grow_rows = 0;
+  app.add_option("--grow-borders", grow_rows,
+                 "with the twist repair and input normals: grow up to R rows of faces beyond the borders after every "
+                 "batch where the points continue the surface on the border face's side (the twist session heal's "
+                 "growth: each side of a cut grows on along its own wall); 0 ... 8, default 0")
+      ->check(CLI::Range(0, 8));
   bool no_orient = false;
   app.add_flag("--no-orient-winners", no_orient,
                "do not use the points' normals (or oriented fitted normals) to pick winners facing the sample's "
@@ -207,6 +213,7 @@ int main(int argc, char** argv) {
     if (!no_twist && !no_borders) {
       gcs::TwistOperationOptions twist_options;
       twist_options.rejoin_borders = rejoin;
+      twist_options.grow_rows = grow_rows;
       twist_op = std::make_shared<gcs::TwistOperation>(twist_options);
       reconstructor.add_operation(twist_op);
     }

@@ -3,8 +3,10 @@
 # dropped when read (every face wound consistently with its neighbours), is edge- and vertex-
 # manifold, closed in one piece where expected; the orientation consistency against the points'
 # normals is printed and must reach MIN_RAW when given. With RERUN the run is repeated and must give
-# the same bytes. With HEAL the session heals the borders (--heal) and must have added faces.
-# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED VERTICES [MIN_RAW] [MIN_FACES (default VERTICES)] [RERUN] [HEAL]
+# the same bytes. With HEAL the session heals the borders (--heal) and must have added faces. With
+# GROW the heal also grows the borders (--grow 2 --min-piece 0.01, repairs from REPAIR_FROM
+# vertices on) and must have grown faces.
+# -D: FOREIGN_GCS GCS_EVAL EF_SHAPES WORK NAME SHAPE TWIST EXPECT_CLOSED VERTICES [MIN_RAW] [MIN_FACES (default VERTICES)] [RERUN] [HEAL] [GROW REPAIR_FROM]
 cmake_minimum_required(VERSION 3.20)
 set(cloud ${WORK}/${NAME}.xyz)
 set(mesh ${WORK}/${NAME}.off)
@@ -20,6 +22,9 @@ if(NOT TWIST)
 endif()
 if(HEAL)
   list(APPEND args --heal)
+endif()
+if(GROW)
+  list(APPEND args --grow 2 --min-piece 0.01 --repair-from ${REPAIR_FROM})
 endif()
 execute_process(COMMAND ${FOREIGN_GCS} ${args} RESULT_VARIABLE rc ERROR_VARIABLE err)
 message(STATUS "${err}")
@@ -40,6 +45,9 @@ message(STATUS "${NAME}: ${vertices} vertices, ${faces} faces, ${components} com
 set(problems "")
 if(HEAL AND NOT run_log MATCHES "\\+[1-9][0-9]* faces \\(heal: ")
   list(APPEND problems "the heal added no face")
+endif()
+if(GROW AND NOT run_log MATCHES " [1-9][0-9]* grown\\)")
+  list(APPEND problems "the heal grew no face")
 endif()
 if(NOT DEFINED MIN_FACES)
   set(MIN_FACES ${VERTICES})

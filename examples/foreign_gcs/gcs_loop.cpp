@@ -217,6 +217,8 @@ class Loop {
     so.heal.enabled = o_.heal;
     so.heal.max_gap_edges = o_.heal_gap_edges;
     so.heal.max_hole_vertices = o_.heal_hole_vertices;
+    so.heal.grow_rows = o_.heal_grow_rows;
+    so.heal.min_piece_share = o_.heal_min_piece_share;
     session_ = std::make_unique<twist::RepairSession>(V, F, so);
     replay(session_->initial_record());  // empty for the octahedron
     m_.dirty.clear();
@@ -491,6 +493,7 @@ class Loop {
     stats_.record_faces_added += r.faces_added.size();
     stats_.heal_strips += session_->stats().heal.strips;
     stats_.heal_holes += session_->stats().heal.holes;
+    stats_.heal_grown += session_->stats().heal.grown;
     for (size_t v = before; v < m_.vertex_slots(); ++v) grid_.insert(static_cast<int>(v), m_.pos[v]);
     for (const twist::VertexMoved& mv : r.vertices_moved) grid_.move(mv.vertex, m_.pos[static_cast<size_t>(mv.vertex)]);
     // Vertices left without faces (deleted by the repair, or isolated by its removals) leave the

@@ -32,6 +32,8 @@ struct LoopOptions {
   bool heal = false;              ///< twist::SessionOptions::heal: the session re-joins borders after each repair (needs normals)
   double heal_gap_edges = 1.0;    ///< twist::HealOptions::max_gap_edges
   size_t heal_hole_vertices = 8;  ///< twist::HealOptions::max_hole_vertices
+  size_t heal_grow_rows = 0;      ///< twist::HealOptions::grow_rows (border growth on the points)
+  double heal_min_piece_share = 0;  ///< twist::HealOptions::min_piece_share (small pieces removed by the finish)
   size_t probes_per_batch = 16;   ///< "far along the surface?" queries per batch (0: none)
   bool verbose = false;           ///< one line per batch on stderr
 };
@@ -40,7 +42,7 @@ struct LoopStats {
   size_t basic_steps = 0, batches = 0, splits = 0, edge_splits = 0, collapses = 0;
   size_t repair_calls = 0, record_vertices_added = 0, record_faces_flipped = 0, record_faces_removed = 0,
          record_corners_replaced = 0, record_faces_added = 0;
-  size_t heal_strips = 0, heal_holes = 0;  ///< what the session's heal added over all calls
+  size_t heal_strips = 0, heal_holes = 0, heal_grown = 0;  ///< what the session's heal added over all calls
   size_t probes = 0, probes_far = 0;  ///< nearest-two-vertex pairs probed, and those far along the surface
   bool step_limit = false;            ///< stopped by the step cap before reaching the target
   double seconds_loop = 0, seconds_session = 0;

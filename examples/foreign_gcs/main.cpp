@@ -28,7 +28,7 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--verbose]\n"
+    "usage: foreign-gcs POINTS -o MESH [--vertices N] [--seed S] [--no-twist] [--batch SPLITS] [--repair-from N] [--probes K] [--heal] [--heal-gap E] [--heal-holes N] [--grow R] [--min-piece S] [--verbose]\n"
     "  POINTS         text file, one point per line: x y z [nx ny nz]\n"
     "  -o MESH        output mesh, .off or .ply (ASCII)\n"
     "  --vertices N   stop at N live vertices (6 to 10000000, default 2000)\n"
@@ -41,6 +41,8 @@ constexpr const char* kUsage =
     "  --heal         the session re-joins borders after each repair (zips, small holes; needs normals)\n"
     "  --heal-gap E   with --heal: zip border chains closer than E mean edges (0 to 10, default 1)\n"
     "  --heal-holes N with --heal: close holes of at most N border vertices by a fan (0 to 1000, default 8)\n"
+    "  --grow R       the heal (implies --heal) also grows up to R rows of faces beyond the borders per repair, on the points (0 to 8, default 0)\n"
+"  --min-piece S  with --heal: the finish removes pieces with fewer than S x the largest piece's faces (0 to 0.5, default 0)\n"
     "  --verbose      one line per batch on stderr\n";
 
 struct UsageError : std::runtime_error {
@@ -179,6 +181,11 @@ int main(int argc, char** argv) {
         o.heal_gap_edges = parse_real(a, value(), 0, 10);
       } else if (a == "--heal-holes") {
         o.heal_hole_vertices = parse_count(a, value(), 0, 1000);
+      } else if (a == "--grow") {
+        o.heal_grow_rows = parse_count(a, value(), 0, 8);
+        if (o.heal_grow_rows > 0) o.heal = true;
+      } else if (a == "--min-piece") {
+        o.heal_min_piece_share = parse_real(a, value(), 0, 0.5);
       } else if (a == "--verbose") {
         o.verbose = true;
       } else if (!a.empty() && a[0] == '-') {
@@ -209,11 +216,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "foreign-gcs: %zu vertices, %zu faces; %zu basic steps, %zu batches, %zu vertex splits, %zu edge splits, "
                  "%zu collapses%s; twist repair: %zu calls, records: +%zu vertices, %zu faces flipped, %zu removed, %zu "
-                 "corners replaced, +%zu faces (heal: %zu strips, %zu holes); far probes %zu of %zu; %.2f s (session %.2f s)\n",
+                 "corners replaced, +%zu faces (heal: %zu strips, %zu holes, %zu grown); far probes %zu of %zu; %.2f s (session %.2f s)\n",
                  V.size(), F.size(), s.basic_steps, s.batches, s.splits, s.edge_splits, s.collapses,
                  s.step_limit ? " (stopped by the step limit)" : "", s.repair_calls, s.record_vertices_added,
                  s.record_faces_flipped, s.record_faces_removed, s.record_corners_replaced, s.record_faces_added,
-                 s.heal_strips, s.heal_holes, s.probes_far, s.probes,
+                 s.heal_strips, s.heal_holes, s.heal_grown, s.probes_far, s.probes,
                  s.seconds_loop, s.seconds_session);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "foreign-gcs: error: %s\n", e.what());

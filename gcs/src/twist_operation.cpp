@@ -1,6 +1,7 @@
 #include "gcs/twist_operation.h"
 
 #include "detail/border_rejoin.h"
+#include "../../twist/src/detail/heal.h"  // the session heal's border growth
 
 #include <cmath>
 #include <ctime>
@@ -16,6 +17,9 @@ TwistOperation::TwistOperation(TwistOperationOptions options) : options_(std::mo
   if (!(options_.max_border_ratio_without_normals >= 0) || !std::isfinite(options_.max_border_ratio_without_normals)) {
     throw edgefront::InvalidInput("twist operation: max_border_ratio_without_normals must be finite and >= 0, got " +
                                   std::to_string(options_.max_border_ratio_without_normals));
+  }
+  if (options_.grow_rows > 8) {
+    throw edgefront::InvalidInput("twist operation: grow_rows must be at most 8, got " + std::to_string(options_.grow_rows));
   }
 }
 
@@ -90,7 +94,19 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
   if (!context.final_call && (r.repairs > 0 || r.faces_removed > 0)) rejoin();
-  result.mesh_changed = joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0 ||
+  size_t grown = 0;
+  // Growth from half the target on: earlier it spends the vertex budget before the loop has
+  // spread over the shape (bench/results/foreign-gcs.md).
+  if (options_.grow_rows > 0 && reference_ && !context.final_call && 2 * context.live_vertices >= context.target_vertices) {
+    for (size_t row = 0; row < options_.grow_rows; ++row) {
+      const size_t g = twist::detail::grow_borders(mesh, *reference_, context.mean_edge_length, 3);
+      grown += g;
+      if (g == 0) break;
+    }
+    stats_.faces_grown += grown;
+    if (grown > 0) rejoin();
+  }
+  result.mesh_changed = grown > 0 || joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0 ||
                         r.turned_faces_collapsed > 0 || r.turned_faces_straightened > 0;
   if (result.mesh_changed) {
     result.summary = std::to_string(r.repairs) + " twist(s) repaired (" + std::to_string(r.faces_flipped) + " faces flipped, " +

@@ -2,6 +2,8 @@
 
 #include "detail/heal.h"
 
+#include <algorithm>
+
 #include "detail/border_join.h"
 #include "edgefront/mesh_stats.h"
 
@@ -19,6 +21,11 @@ HealCounts heal_borders(Mesh& mesh, const ReferenceNormals& reference, double me
   const std::vector<Vec3>& points = reference.cloud().points;
   const CloudDistance cloud = [&](const Vec3& p) { return (p - points[reference.nearest(p)]).norm(); };
   const double support = options.max_support_edges * mean_edge_length;
+  for (size_t row = 0; row < options.grow_rows; ++row) {
+    const size_t grown = grow_borders(mesh, reference, mean_edge_length, options.grow_min_support);
+    counts.grown += grown;
+    if (grown == 0) break;
+  }
   if (options.max_gap_edges > 0 && options.max_zips > 0) {
     ZipParams zp;
     zp.mean_edge_length = mean_edge_length;
@@ -42,6 +49,27 @@ HealCounts heal_borders(Mesh& mesh, const ReferenceNormals& reference, double me
     added.push_back(f);
   }
   return counts;
+}
+
+size_t remove_small_pieces(Mesh& mesh, double share) {
+  if (!(share > 0)) return 0;
+  const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
+  if (labels.count < 2) return 0;
+  auto label_of = [&](FaceHandle f) { return static_cast<size_t>(labels.vertex_component[(*mesh.fv_begin(f)).idx()]); };
+  std::vector<size_t> faces(labels.count, 0);
+  for (FaceHandle f : mesh.faces())
+    if (edgefront::is_live(mesh, f)) ++faces[label_of(f)];
+  const size_t largest = static_cast<size_t>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+  const double limit = share * static_cast<double>(faces[largest]);
+  size_t removed = 0;
+  for (FaceHandle f : mesh.faces()) {
+    if (!edgefront::is_live(mesh, f)) continue;
+    const size_t c = label_of(f);
+    if (c == largest || static_cast<double>(faces[c]) >= limit) continue;
+    mesh.delete_face(f, true);
+    ++removed;
+  }
+  return removed;
 }
 
 }  // namespace twist::detail

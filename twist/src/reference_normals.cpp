@@ -50,6 +50,9 @@ ReferenceNormals& ReferenceNormals::operator=(ReferenceNormals&&) noexcept = def
 
 size_t ReferenceNormals::nearest(const Vec3& p) const { return impl_->index.nearest(p).index; }
 Vec3 ReferenceNormals::nearest_normal(const Vec3& p) const { return impl_->cloud.normals[nearest(p)]; }
+void ReferenceNormals::within(const Vec3& p, double radius, std::vector<size_t>& out) const {
+  impl_->index.radius_search(p, radius, out);
+}
 const edgefront::PointCloud& ReferenceNormals::cloud() const { return impl_->cloud; }
 
 int ReferenceNormals::judge(const Vec3& centre, const Vec3& normal, size_t candidates, double normal_weight,

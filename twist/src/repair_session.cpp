@@ -109,6 +109,9 @@ struct RepairSession::Impl {
       if (!(x >= 0) || !std::isfinite(x)) refuse("heal distances must be finite and >= 0");
     }
     if (!std::isfinite(h.min_normal_agreement)) refuse("heal min_normal_agreement must be finite");
+    if (h.grow_rows > 8) refuse("heal grow_rows must be at most 8 (rows grown per answer), got " + std::to_string(h.grow_rows));
+    if (h.grow_min_support < 1) refuse("heal grow_min_support must be at least 1");
+    if (!(h.min_piece_share >= 0 && h.min_piece_share < 1)) refuse("heal min_piece_share must be in [0, 1)");
     return o;
   }
 
@@ -392,7 +395,7 @@ struct RepairSession::Impl {
     if (!options.heal.enabled) return false;
     const detail::HealCounts c =
         detail::heal_borders(mirror(), *options.repair.detect.reference, mean_edge_length, options.heal, healed);
-    stats.heal = {c.strips, c.holes, healed.size()};
+    stats.heal = {.strips = c.strips, .holes = c.holes, .grown = c.grown, .faces_added = healed.size()};
     return !healed.empty();
   }
 
@@ -492,6 +495,18 @@ EditRecord RepairSession::finish() {
   if (s.options.heal.enabled) s.heal(s.estimated_mean_edge());
   s.healed.clear();  // the full repair looks at every face
   s.stats.report = s.repairer.finish(s.mirror());
+  if (s.options.heal.enabled && s.options.heal.grow_rows > 0) {
+    // With growth: the holes and slits the full repair opened (flaps peeled, turned patches
+    // dropped) are healed once more, without growth (nothing is repaired after it).
+    HealOptions again = s.options.heal;
+    again.grow_rows = 0;
+    std::vector<FaceHandle> added;
+    const detail::HealCounts c = detail::heal_borders(s.mirror(), *s.options.repair.detect.reference, s.estimated_mean_edge(), again, added);
+    s.stats.heal.strips += c.strips;
+    s.stats.heal.holes += c.holes;
+    s.stats.heal.faces_added += added.size();
+  }
+  if (s.options.heal.enabled) s.stats.heal.piece_faces_removed = detail::remove_small_pieces(s.mirror(), s.options.heal.min_piece_share);
   return s.record(true);
 }
 

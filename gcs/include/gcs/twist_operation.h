@@ -62,6 +62,16 @@ struct TwistOperationOptions {
   /// regions there only in a few runs (figures: bench/results/twist-vaults.md).
   /// `gcs-reconstruct --rejoin-borders` turns it on.
   bool rejoin_borders = false;
+  /// Border growth on the input's oriented points after every call (`twist::HealOptions::grow_rows`,
+  /// the session heal's growth): up to this many rows of faces beyond the borders, where points
+  /// facing like a border's face continue the surface and no face covers them, then the re-join
+  /// (with `rejoin_borders`). Each side of a cut grows on along its own wall across the fold the
+  /// cut left. From half the target vertex count on (earlier it spends the vertex budget before
+  /// the loop has spread over the shape). Needs the input normals (ignored without). 0 (the
+  /// default): none; at most 8. Measured mixed on the plain-winner shells (fewer pieces and more
+  /// coverage on t/R 0.1, not on every t/R 0.2 run: bench/results/foreign-gcs.md), hence off.
+  /// `gcs-reconstruct --grow-borders R`.
+  std::size_t grow_rows = 0;
 };
 
 /// Totals over all calls.
@@ -78,6 +88,7 @@ struct TwistOperationStats {
   double cpu_seconds = 0;              ///< process CPU time spent in `apply` (std::clock; the loop is single-threaded)
   std::size_t faces_tested = 0;        ///< faces whose evidence the detector evaluated, all calls
   std::size_t borders_rejoined = 0;    ///< border strips and loop merges added after repairs
+  std::size_t faces_grown = 0;         ///< faces the border growth added (`TwistOperationOptions::grow_rows`)
   std::size_t turned_faces_dropped = 0;  ///< turned-over patch faces removed, collapsed or straightened by the final call
 };
 

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "edgefront/mesh.h"
 #include "edgefront/point_cloud.h"
@@ -30,6 +31,9 @@ class ReferenceNormals {
   size_t nearest(const edgefront::Vec3& p) const;
   /// Unit normal of the reference point nearest to `p`.
   edgefront::Vec3 nearest_normal(const edgefront::Vec3& p) const;
+  /// Indices of the reference points closer than `radius` to `p`, in increasing index order
+  /// (deterministic), written to `out` (cleared first); nothing for a negative or NaN radius.
+  void within(const edgefront::Vec3& p, double radius, std::vector<size_t>& out) const;
   /// How the reference judges the orientation of a face at `centre` with unit normal `normal`:
   /// +1 agrees, -1 disagrees, 0 ambiguous. Among the `candidates` nearest points, distances
   /// count offsets along `normal` `normal_weight` times (tangential^2 + (normal_weight *

@@ -72,13 +72,28 @@ struct HealOptions {
   double min_normal_agreement = 0.2; ///< mean cosine between new faces and the faces they border
   size_t max_zips = 32;              ///< strips per answer
   size_t max_hole_vertices = 8;      ///< holes of at most this many border vertices are closed (< 3: none)
+  /// Border growth, before the zips: rows of faces grown beyond the borders per answer (0: none,
+  /// the default; at most 8). A border edge gets a triangle with a new vertex (`VertexAdded::original`
+  /// -1) about one mean edge beyond it where reference points facing like the edge's face lie there
+  /// (at least `grow_min_support` within 0.6 mean edges; the new vertex is their mean) and no face
+  /// facing that way does (within 0.45 mean edges); the wedges between two new triangles are
+  /// closed. So each side of a cut grows on along its own wall, across the fold the cut left,
+  /// until borders that run opposite meet and the zips join them.
+  size_t grow_rows = 0;
+  size_t grow_min_support = 3;       ///< reference points a grown vertex needs (>= 1)
+  /// At the end of `finish` (after its full repair), components with fewer than this share of the
+  /// largest component's faces are removed: debris the joins could not attach (a sliver on a
+  /// rim, a scrap of film). A share of faces in [0, 1); 0 (the default): nothing is removed.
+  double min_piece_share = 0;
 };
 
 /// What the heal did in the last answer.
 struct HealReport {
   size_t strips = 0;       ///< strips zipped between border chains
   size_t holes = 0;        ///< small holes closed
-  size_t faces_added = 0;  ///< faces the strips and fans added
+  size_t grown = 0;        ///< faces the border growth added
+  size_t piece_faces_removed = 0;  ///< faces of small pieces `finish` removed (`HealOptions::min_piece_share`)
+  size_t faces_added = 0;  ///< faces the strips, fans and growth added
 };
 
 /// Options of a `RepairSession`.
