@@ -430,18 +430,12 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
   return filled;
 }
 
-namespace {
-
-// Closes the simple loop `loop` by the triangulation of least total area over its vertices (see
-// fill_small_holes_checked): an O(n^3) dynamic programme over the sub-polygons v_i ... v_j, where
-// a diagonal that is an edge of the mesh already cannot be used. Leaves the mesh unchanged and
-// returns false when no triangulation passes the checks or OpenMesh refuses a face.
-bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance) {
-  const size_t n = loop.vertices.size();
-  if (n < 3 || !is_simple(loop)) return false;
-  const auto p = [&](size_t k) { return mesh.point(loop.vertices[k]); };
-  const auto usable = [&](size_t i, size_t j) {  // the chord v_i v_j, i < j
-    return j == i + 1 || (i == 0 && j == n - 1) || !mesh.find_halfedge(loop.vertices[i], loop.vertices[j]).is_valid();
+std::vector<std::array<size_t, 3>> least_area_triangulation(const std::vector<Vec3>& points,
+                                                           const std::function<bool(size_t, size_t)>& usable) {
+  const size_t n = points.size();
+  if (n < 3) return {};
+  const auto chord_ok = [&](size_t i, size_t j) {  // the chord v_i v_j, i < j
+    return j == i + 1 || (i == 0 && j == n - 1) || usable(i, j);
   };
   constexpr double kNone = std::numeric_limits<double>::infinity();
   std::vector<double> cost(n * n, kNone);
@@ -450,11 +444,11 @@ bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop,
   for (size_t len = 2; len < n; ++len) {
     for (size_t i = 0; i + len < n; ++i) {
       const size_t j = i + len;
-      if (!usable(i, j)) continue;
+      if (!chord_ok(i, j)) continue;
       for (size_t k = i + 1; k < j; ++k) {
         const double c = cost[i * n + k] + cost[k * n + j];
         if (!(c < kNone)) continue;
-        const double area = tri_normal(p(i), p(k), p(j)).norm();
+        const double area = tri_normal(points[i], points[k], points[j]).norm();
         if (!(area > 0)) continue;
         if (c + area < cost[i * n + j]) {
           cost[i * n + j] = c + area;
@@ -463,7 +457,7 @@ bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop,
       }
     }
   }
-  if (!(cost[n - 1] < kNone)) return false;
+  if (!(cost[n - 1] < kNone)) return {};
   std::vector<std::array<size_t, 3>> tris;
   std::vector<std::pair<size_t, size_t>> todo{{0, n - 1}};
   while (!todo.empty()) {
@@ -475,6 +469,25 @@ bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop,
     todo.push_back({i, k});
     todo.push_back({k, j});
   }
+  return tris;
+}
+
+namespace {
+
+// Closes the simple loop `loop` by the triangulation of least total area over its vertices (see
+// fill_small_holes_checked; least_area_triangulation), where a diagonal that is an edge of the
+// mesh already cannot be used. Leaves the mesh unchanged and returns false when no triangulation
+// passes the checks or OpenMesh refuses a face.
+bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance) {
+  const size_t n = loop.vertices.size();
+  if (n < 3 || !is_simple(loop)) return false;
+  const auto p = [&](size_t k) { return mesh.point(loop.vertices[k]); };
+  std::vector<Vec3> points;
+  for (size_t k = 0; k < n; ++k) points.push_back(p(k));
+  const std::vector<std::array<size_t, 3>> tris = least_area_triangulation(points, [&](size_t i, size_t j) {
+    return !mesh.find_halfedge(loop.vertices[i], loop.vertices[j]).is_valid();
+  });
+  if (tris.empty()) return false;
   // Checks: on the cloud; along the loop, not folded back on the mean.
   double agreement = 0;
   for (const auto& t : tris) {

@@ -4,6 +4,7 @@
 // vertices, tiny components), and joining two border loops by a strip of triangles (handles).
 // Every function leaves a valid manifold oriented triangle mesh (deleted elements not collected).
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -148,6 +149,13 @@ struct TrimParams {
 /// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
                              double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
+
+/// The triangulation of least total area of the polygon `points` (a closed loop, in order): an
+/// O(n^3) dynamic programme over the sub-polygons p_i ... p_j, using the chord p_i p_j (i < j, not
+/// a side of the polygon) only where `usable(i, j)` says so, and no zero-area triangle. Triangles
+/// as (i, k, j) with i < k < j (the loop's winding); empty when there is none (or n < 3).
+std::vector<std::array<std::size_t, 3>> least_area_triangulation(
+    const std::vector<edgefront::Vec3>& points, const std::function<bool(std::size_t, std::size_t)>& usable);
 
 /// Closes small holes one at a time, each on a copy of the mesh that is kept only when `accept`
 /// (called with the copy, which it may change) returns true, e.g. when the fill crosses nothing.
