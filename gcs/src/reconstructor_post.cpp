@@ -105,10 +105,11 @@ ReconstructResult Reconstructor::Impl::make_result(double seconds, const std::fu
     detail::CloseBordersParams cp;
     cp.mean_edge_length = ell;
     cp.max_loop_vertices = opt.post.close_borders_max_vertices;
+    // The oriented normals (input, or fitted and oriented); else the fitted ones, unoriented.
     std::vector<Vec3> normals;
-    if (oriented) {
-      for (size_t k = 0; k < query_points->size(); ++k) normals.push_back(query_oriented_normal(k));
-    }
+    cp.normals_oriented = oriented;
+    for (size_t k = 0; k < query_points->size(); ++k)
+      normals.push_back(oriented ? query_oriented_normal(k) : query_point_normal(k));
     const detail::CloseBordersReport c = detail::close_false_borders(r.mesh, *query_points, normals, cp);
     r.false_borders_found = c.false_loops;
     r.false_borders_closed = c.closed;
