@@ -346,6 +346,8 @@ void unfold_rim(Mesh& mesh, const Patch& patch, const Loop& loop) {
   }
 }
 
+double square(double x) { return x * x; }
+
 // The checks a patch must pass (see CloseBordersParams). A vertex's distance to the samples is
 // its distance to the tangent plane of its nearest sample (with a normal; else to that sample).
 bool patch_fits(const Mesh& mesh, const Patch& patch, const Loop& loop, const PointIndex& all,
@@ -356,8 +358,12 @@ bool patch_fits(const Mesh& mesh, const Patch& patch, const Loop& loop, const Po
   if (static_cast<double>(rim_folds(mesh, loop, params.min_rim_cos)) >
       params.max_fold_fraction * static_cast<double>(loop.halfedges.size()))
     return false;
-  for (auto f : mesh.faces())
-    if (patch.is_patch_face(f) && !(face_normal(mesh, f).norm() > 1e-12 * ell * ell)) return false;
+  // No degenerate face, and no face spanning a gap between samples (its vertices on two parts).
+  for (auto f : mesh.faces()) {
+    if (!patch.is_patch_face(f)) continue;
+    if (!(face_normal(mesh, f).norm() > 1e-12 * ell * ell)) return false;
+    if (!(all.nearest(centroid(mesh, f)).distance2 <= square(params.max_sample_edges * ell))) return false;
+  }
   double sum = 0;
   std::size_t count = 0;
   for (auto v : mesh.vertices()) {
