@@ -47,7 +47,8 @@ constexpr double kPullMinCos = 0.2;
 // The share of the way toward the pulling samples' centroid along their plane a pull goes.
 constexpr double kPullTangential = 0.25;
 
-// The samples no face covers, with their oriented normals (empty without normals).
+// The samples no face covers, with their normals (turned to face the mesh's way when oriented;
+// empty without normals) and their distances to the mesh.
 struct Uncovered {
   std::vector<Vec3> points, normals;
   std::vector<double> distance;  // to the mesh
