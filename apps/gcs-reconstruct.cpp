@@ -3,7 +3,7 @@
 ///   gcs-reconstruct POINTS -o MESH [--vertices N] [--seed S] [--preset NAME] [--no-twist] [--no-borders] [--no-orient-winners] [--quadric-normals]
 ///                   [--rejoin-borders] [--grow-borders R] [--skip-unfaced-samples] [--keep-noise] [--no-fit] [--fit-rounds R]
 ///                   [--fit-smoothness W]
-///                   [--no-delaunay-flips] [--keep-crossings]
+///                   [--no-delaunay-flips] [--keep-crossings] [--keep-false-borders]
 ///                   [--quiet] [--threads N]
 ///                   [--png FILE.png [--azimuth A] [--elevation E] [--size WxH]]
 ///                   [--snapshots DIR [--snapshot-every K]]
@@ -129,6 +129,11 @@ int main(int argc, char** argv) {
   app.add_flag("--keep-crossings", keep_crossings,
                "do not resolve self-intersecting face pairs of the result (by default the crossing faces' vertices "
                "are smoothed, and faces still crossing are cut out and their small holes filled; thin shells)");
+  bool keep_false_borders = false;
+  app.add_flag("--keep-false-borders", keep_false_borders,
+               "do not close false borders of the result (by default a border loop beyond which the cloud goes on, "
+               "e.g. a leg of a closed figure torn open, is closed by a patch pulled onto the samples, when it lies on "
+               "them and crosses nothing; off in the open_sheet preset)");
   app.add_flag("-q,--quiet", quiet, "no progress bar");
   edgefront::apps::add_threads_option(app, threads);
   edgefront::apps::PngOutput png(app);
@@ -174,6 +179,7 @@ int main(int argc, char** argv) {
     if (fit_smoothness_option->count() > 0) options.post.fit_smoothness = fit_smoothness;
     if (no_flips) options.post.delaunay_flips = false;
     if (keep_crossings) options.post.resolve_self_intersections = false;
+    if (keep_false_borders) options.post.close_false_borders = false;
     const bool bar = !quiet && isatty(fileno(stderr));
     if (!snapshots.empty() && !std::filesystem::is_directory(snapshots)) {
       throw edgefront::IoError("--snapshots: '" + snapshots + "' is not a directory");
@@ -237,6 +243,8 @@ int main(int argc, char** argv) {
       std::cout << "; " << r.crossing_pairs_found << " self-intersecting face pair(s) resolved ("
                 << r.crossing_vertices_moved << " vertices smoothed, " << r.crossing_faces_removed << " faces cut out, "
                 << r.crossing_holes_filled << " hole(s) filled), " << r.crossing_pairs_left << " left";
+    if (r.false_borders_found > 0)
+      std::cout << "; " << r.false_borders_closed << " of " << r.false_borders_found << " false border(s) closed";
     if (r.normals_filled > 0)
       std::cout << "; " << r.normals_filled << " missing normal(s) fitted from the neighbours";
     if (r.normals_unusable) std::cout << "; no usable normal: normals fitted to the points";

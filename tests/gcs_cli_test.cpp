@@ -257,4 +257,23 @@ TEST_F(GcsCli, KeepCrossingsLeavesTheShellsSelfIntersectionsAndTheDefaultResolve
   EXPECT_GT(gcs::count_self_intersections(edgefront::load_mesh(b)), 0u);
 }
 
+TEST_F(GcsCli, KeepFalseBordersLeavesALoopTheDefaultCloses) {
+  // The bundled thin closed shell at 300 vertices (seed 1): one of its border loops has samples
+  // beyond it that no face covers; the default closes it by a patch, --keep-false-borders does not.
+  const std::string shell = (fs::path(EDGEFRONT_DATA_DIR) / "vault-shell.xyz").string();
+  const fs::path a = dir_ / "a.off", b = dir_ / "b.off";
+  const std::string common = " --vertices 300 --seed 1 --quiet";
+  const eftest::CommandResult ra = run(q(shell) + " -o " + q(a) + common);
+  ASSERT_EQ(ra.exit_code, 0) << ra.err;
+  const eftest::CommandResult rb = run(q(shell) + " -o " + q(b) + common + " --keep-false-borders");
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  EXPECT_NE(ra.out.find("1 of 3 false border(s) closed"), std::string::npos) << ra.out;
+  EXPECT_EQ(rb.out.find("false border"), std::string::npos) << rb.out;
+  const edgefront::MeshStats sa = edgefront::compute_stats(edgefront::load_mesh(a));
+  const edgefront::MeshStats sb = edgefront::compute_stats(edgefront::load_mesh(b));
+  EXPECT_EQ(sa.border_loops + 1, sb.border_loops);
+  EXPECT_EQ(sa.nonmanifold_vertices, 0u);
+  EXPECT_EQ(sa.components, sb.components);
+}
+
 }  // namespace

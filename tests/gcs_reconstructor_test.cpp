@@ -399,7 +399,9 @@ TEST(GcsReconstructor, PresetsChangeOnlyTheirDocumentedFields) {
   EXPECT_EQ(shell, ReconstructOptions{});
   ReconstructOptions sheet = ReconstructOptions::open_sheet();
   EXPECT_TRUE(sheet.input.quadric_normals);
+  EXPECT_FALSE(sheet.post.close_false_borders);
   sheet.input.quadric_normals = false;
+  sheet.post.close_false_borders = true;
   EXPECT_EQ(sheet, ReconstructOptions{});
   EXPECT_NE(ReconstructOptions::thin_shell(), ReconstructOptions::open_sheet());
 

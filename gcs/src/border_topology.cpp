@@ -392,11 +392,6 @@ size_t merge_border_loops(Mesh& mesh, const CloudQuery& cloud, const MergeParams
   return merged;
 }
 
-namespace {
-
-// A hole whose closing was refused (its rim curls): on a copy, removes 1 ... `rings` rings of
-// faces along the loop and tries `close` on the wider loop; keeps the copy when that succeeds and
-// the mesh keeps its number of components.
 bool trim_and_close(Mesh& mesh, const Loop& loop, size_t rings, const std::function<bool(Mesh&, const Loop&)>& close) {
   const size_t components = edgefront::connected_components(mesh).count;
   for (size_t r = 1; r <= rings; ++r) {
@@ -409,8 +404,6 @@ bool trim_and_close(Mesh& mesh, const Loop& loop, size_t rings, const std::funct
   }
   return false;
 }
-
-}  // namespace
 
 size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices, double max_support_distance,
                         double min_normal_agreement, const TrimParams& trim) {
@@ -430,40 +423,60 @@ size_t fill_small_holes(Mesh& mesh, const CloudQuery& cloud, size_t max_vertices
   return filled;
 }
 
-namespace {
-
-// Closes the simple loop `loop` by the triangulation of least total area over its vertices (see
-// fill_small_holes_checked): an O(n^3) dynamic programme over the sub-polygons v_i ... v_j, where
-// a diagonal that is an edge of the mesh already cannot be used. Leaves the mesh unchanged and
-// returns false when no triangulation passes the checks or OpenMesh refuses a face.
-bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance) {
-  const size_t n = loop.vertices.size();
-  if (n < 3 || !is_simple(loop)) return false;
-  const auto p = [&](size_t k) { return mesh.point(loop.vertices[k]); };
-  const auto usable = [&](size_t i, size_t j) {  // the chord v_i v_j, i < j
-    return j == i + 1 || (i == 0 && j == n - 1) || !mesh.find_halfedge(loop.vertices[i], loop.vertices[j]).is_valid();
+std::vector<std::array<size_t, 3>> least_area_triangulation(const std::vector<Vec3>& points,
+                                                           const std::function<bool(size_t, size_t)>& usable,
+                                                           const std::vector<Vec3>& rim_normals) {
+  const size_t n = points.size();
+  if (n < 3) return {};
+  const bool dihedral = rim_normals.size() == n;
+  const auto chord_ok = [&](size_t i, size_t j) {  // the chord v_i v_j, i < j
+    return j == i + 1 || (i == 0 && j == n - 1) || usable(i, j);
   };
+  // The cost of a sub-polygon: (largest fold, area), compared in that order; without rim normals
+  // the fold is 0 throughout and the area alone decides.
+  using Cost = std::pair<double, double>;
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  std::vector<double> cost(n * n, kNone);
+  std::vector<Cost> cost(n * n, {kNone, kNone});
   std::vector<size_t> split(n * n, 0);
-  for (size_t i = 0; i + 1 < n; ++i) cost[i * n + i + 1] = 0;
+  for (size_t i = 0; i + 1 < n; ++i) cost[i * n + i + 1] = {0, 0};
+  // The fold between triangle normal `nt` and the face across its side (i, j): the rim face for a
+  // loop side, else the sub-polygon's triangle on that side; 1 - cosine, in [0, 2].
+  const auto fold = [&](const Vec3& nt, size_t i, size_t j) {
+    Vec3 other;
+    if (j == i + 1) {
+      other = rim_normals[i];
+    } else {
+      const size_t k = split[i * n + j];
+      other = tri_normal(points[i], points[k], points[j]);
+    }
+    const double l = nt.norm() * other.norm();
+    return l > 0 ? 1.0 - (nt | other) / l : 2.0;
+  };
   for (size_t len = 2; len < n; ++len) {
     for (size_t i = 0; i + len < n; ++i) {
       const size_t j = i + len;
-      if (!usable(i, j)) continue;
+      if (!chord_ok(i, j)) continue;
       for (size_t k = i + 1; k < j; ++k) {
-        const double c = cost[i * n + k] + cost[k * n + j];
-        if (!(c < kNone)) continue;
-        const double area = tri_normal(p(i), p(k), p(j)).norm();
+        const Cost& a = cost[i * n + k];
+        const Cost& b = cost[k * n + j];
+        if (!(a.second < kNone) || !(b.second < kNone)) continue;
+        const Vec3 nt = tri_normal(points[i], points[k], points[j]);
+        const double area = nt.norm();
         if (!(area > 0)) continue;
-        if (c + area < cost[i * n + j]) {
-          cost[i * n + j] = c + area;
+        double worst = std::max(a.first, b.first);
+        if (dihedral) {
+          worst = std::max({worst, fold(nt, i, k), fold(nt, k, j)});
+          if (i == 0 && j == n - 1) worst = std::max(worst, fold(nt, n - 1, n));  // the loop side v_n-1 v_0
+        }
+        const Cost c{worst, a.second + b.second + area};
+        if (c < cost[i * n + j]) {
+          cost[i * n + j] = c;
           split[i * n + j] = k;
         }
       }
     }
   }
-  if (!(cost[n - 1] < kNone)) return false;
+  if (!(cost[n - 1].second < kNone)) return {};
   std::vector<std::array<size_t, 3>> tris;
   std::vector<std::pair<size_t, size_t>> todo{{0, n - 1}};
   while (!todo.empty()) {
@@ -475,6 +488,25 @@ bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop,
     todo.push_back({i, k});
     todo.push_back({k, j});
   }
+  return tris;
+}
+
+namespace {
+
+// Closes the simple loop `loop` by the triangulation of least total area over its vertices (see
+// fill_small_holes_checked; least_area_triangulation), where a diagonal that is an edge of the
+// mesh already cannot be used. Leaves the mesh unchanged and returns false when no triangulation
+// passes the checks or OpenMesh refuses a face.
+bool fill_loop_least_area(Mesh& mesh, const CloudQuery& cloud, const Loop& loop, double max_support_distance) {
+  const size_t n = loop.vertices.size();
+  if (n < 3 || !is_simple(loop)) return false;
+  const auto p = [&](size_t k) { return mesh.point(loop.vertices[k]); };
+  std::vector<Vec3> points;
+  for (size_t k = 0; k < n; ++k) points.push_back(p(k));
+  const std::vector<std::array<size_t, 3>> tris = least_area_triangulation(points, [&](size_t i, size_t j) {
+    return !mesh.find_halfedge(loop.vertices[i], loop.vertices[j]).is_valid();
+  });
+  if (tris.empty()) return false;
   // Checks: on the cloud; along the loop, not folded back on the mean.
   double agreement = 0;
   for (const auto& t : tris) {

@@ -60,6 +60,8 @@ ReconstructOptions ReconstructOptions::open_sheet() {
   // Without normals: the quadric fits orient an open sheet consistently where the plane fits leave
   // it in patches (bench/results/gcs.md, "fitted normals": the groin vault).
   o.input.quadric_normals = true;
+  // An open sheet has true borders only: none is closed.
+  o.post.close_false_borders = false;
   return o;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "detail/close_borders.h"
 #include "detail/reconstructor_impl.h"
 #include "detail/sample_projection.h"
 #include "detail/surface_fit.h"
@@ -98,6 +99,22 @@ ReconstructResult Reconstructor::Impl::make_result(double seconds, const std::fu
     if (u.faces_removed > 0) r.mesh.garbage_collection();
     r.seconds_crossings = seconds_since(t_untangle);
     r.seconds_fit += r.seconds_crossings;
+  }
+  if (opt.post.close_false_borders && r.mesh.n_faces() > 0) {
+    const auto t_close = Clock::now();
+    detail::CloseBordersParams cp;
+    cp.mean_edge_length = ell;
+    cp.max_loop_vertices = opt.post.close_borders_max_vertices;
+    // The oriented normals (input, or fitted and oriented); else the fitted ones, unoriented.
+    std::vector<Vec3> normals;
+    cp.normals_oriented = oriented;
+    for (size_t k = 0; k < query_points->size(); ++k)
+      normals.push_back(oriented ? query_oriented_normal(k) : query_point_normal(k));
+    const detail::CloseBordersReport c = detail::close_false_borders(r.mesh, *query_points, normals, cp);
+    r.false_borders_found = c.false_loops;
+    r.false_borders_closed = c.closed;
+    if (c.closed > 0) r.mesh.garbage_collection();
+    r.seconds_fit += seconds_since(t_close);
   }
   for (auto v : r.mesh.vertices()) r.mesh.point(v) += offset;
   r.mesh.update_face_normals();

@@ -197,6 +197,8 @@ void check_options(const ReconstructOptions& o) {
   if (!(o.input.smooth_noise_ratio >= 0)) fail("input.smooth_noise_ratio must be >= 0 (infinity turns the smoothing off)");
   if (o.post.stacked_layer_rounds < 0 || o.post.stacked_layer_rounds > 16)
     fail("post.stacked_layer_rounds must be in [0, 16] (got " + std::to_string(o.post.stacked_layer_rounds) + ")");
+  if (o.post.close_borders_max_vertices < 3 || o.post.close_borders_max_vertices > 4000)
+    fail("post.close_borders_max_vertices must be in [3, 4000] (got " + std::to_string(o.post.close_borders_max_vertices) + ")");
 }
 
 }  // namespace

@@ -210,6 +210,18 @@ struct PostProcessOptions {
   /// (at most 8 vertices) are filled when their fans lie on the samples and cross nothing. A mesh
   /// without crossings keeps its bytes. Default true; false leaves the crossings.
   bool resolve_self_intersections = true;
+  /// Last, false borders are closed: a border loop beyond which the cloud goes on (samples near
+  /// it that no face covers, some of them more than an edge from the mesh: a tube of a closed
+  /// figure torn open where it lies close to another part) is closed by a patch, the triangulation
+  /// of the loop with the least fold (then area), refined to the mesh's edge length and pulled
+  /// onto those samples; the patch is kept when its vertices lie on the samples, it hardly folds
+  /// against the faces at its rim and crosses nothing (docs/reconstruction.md, "False borders").
+  /// The rim of an open sheet or a real hole (no samples beyond it) stays open; a mesh without
+  /// borders keeps its bytes. Default true; off in the open_sheet preset.
+  bool close_false_borders = true;
+  /// Loops with more vertices are not closed (the triangulation's cost grows with the cube of the
+  /// loop's length). Default 800; in [3, 4000].
+  std::size_t close_borders_max_vertices = 800;
   /// Field by field.
   bool operator==(const PostProcessOptions&) const = default;
 };
@@ -279,7 +291,8 @@ struct ReconstructOptions {
   /// loops (figures: docs/reconstruction.md, "Options and presets").
   static ReconstructOptions thin_shell();
   /// Open sheets without normals (a vault's single surface, a terrain patch scanned without
-  /// normals): quadric normals (InputOptions::quadric_normals); with input normals the same as scan().
+  /// normals): quadric normals (InputOptions::quadric_normals) and no closing of false borders
+  /// (PostProcessOptions::close_false_borders: every border of an open sheet is true).
   static ReconstructOptions open_sheet();
   /// The preset named `name` ("scan", "thin_shell", "open_sheet"; see preset_names()).
   /// \throw edgefront::InvalidInput for another name, listing the valid ones.
@@ -369,6 +382,8 @@ struct ReconstructResult {
   std::size_t crossing_vertices_moved = 0;  ///< by its smoothing
   std::size_t crossing_faces_removed = 0;   ///< cut out by it
   std::size_t crossing_holes_filled = 0;    ///< holes it filled after the cut
+  std::size_t false_borders_found = 0;      ///< border loops judged false (PostProcessOptions::close_false_borders)
+  std::size_t false_borders_closed = 0;     ///< of them closed by a patch
   double seconds_crossings = 0;             ///< of seconds_fit: in it (the crossing count included)
   std::vector<OperationReport> operations;  ///< one per registered operation, in order
   double noise_ratio = 0;          ///< the cloud's estimated noise / point spacing (InputOptions::smooth_noise_ratio)

@@ -4,6 +4,7 @@
 // vertices, tiny components), and joining two border loops by a strip of triangles (handles).
 // Every function leaves a valid manifold oriented triangle mesh (deleted elements not collected).
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -137,6 +138,12 @@ struct TrimParams {
   double max_loop_length = 0;    ///< only for loops at most this long
 };
 
+/// A hole whose closing was refused (its rim curls): on a copy, removes 1 ... `rings` rings of
+/// faces along the loop and tries `close` on the wider loop; keeps the copy when that succeeds and
+/// the mesh keeps its number of components. Returns whether the mesh was changed.
+bool trim_and_close(edgefront::Mesh& mesh, const twist::detail::BorderLoop& loop, std::size_t rings,
+                    const std::function<bool(edgefront::Mesh&, const twist::detail::BorderLoop&)>& close);
+
 /// Closes small holes: a border loop of at most `max_vertices` vertices whose fan of triangles
 /// around the loop's centroid lies within `max_support_distance` of the cloud and agrees with the
 /// neighbouring faces (mean cosine >= min_normal_agreement) is filled by that fan (one new vertex;
@@ -148,6 +155,17 @@ struct TrimParams {
 /// Returns the number of loops filled.
 std::size_t fill_small_holes(edgefront::Mesh& mesh, const CloudQuery& cloud, std::size_t max_vertices,
                              double max_support_distance, double min_normal_agreement, const TrimParams& trim = {});
+
+/// The triangulation of least total area of the polygon `points` (a closed loop, in order): an
+/// O(n^3) dynamic programme over the sub-polygons p_i ... p_j, using the chord p_i p_j (i < j, not
+/// a side of the polygon) only where `usable(i, j)` says so, and no zero-area triangle. Triangles
+/// as (i, k, j) with i < k < j (the loop's winding); empty when there is none (or n < 3).
+/// With `rim_normals` (one per side p_k p_k+1, k taken cyclically: the normal of the face beyond
+/// it), the triangulation whose largest fold between neighbouring triangles (and against those
+/// faces at the sides) is least is chosen first, the area deciding between equals (Liepa 2003).
+std::vector<std::array<std::size_t, 3>> least_area_triangulation(
+    const std::vector<edgefront::Vec3>& points, const std::function<bool(std::size_t, std::size_t)>& usable,
+    const std::vector<edgefront::Vec3>& rim_normals = {});
 
 /// Closes small holes one at a time, each on a copy of the mesh that is kept only when `accept`
 /// (called with the copy, which it may change) returns true, e.g. when the fill crosses nothing.
