@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <numeric>
 #include <queue>
@@ -112,14 +110,11 @@ std::size_t remove_opposed_faces(Mesh& mesh, const FaceNearest& nearest, const O
       const std::vector<char> separate = separate_surfaces(mesh, labels, faces, {&nearest, params.sample_part});
       for (size_t c = 0; c < labels.count; ++c) split[c] = split[c] && !separate[c];
     }
-    size_t split_removed = 0;  // TEMP
     for (auto f : mesh.faces()) {
       if (!split[static_cast<size_t>(labels.vertex_component[mesh.fv_begin(f)->idx()])]) continue;
       mesh.delete_face(f, true);
       ++removed;
-      ++split_removed;
     }
-    if (std::getenv("EF_TW_TRACE")) std::fprintf(stderr, "OPPOSED doomed %zu clean %zu split %zu\n", doomed.size(), removed - doomed.size() - split_removed, split_removed);
   }
   return removed;
 }

@@ -4,8 +4,6 @@
 // batches; validate() checks the state.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "detail/double_layer.h"
@@ -178,7 +176,6 @@ bool Reconstructor::Impl::topology_pass(bool force, double ell) {
     // The support test's nearest sample per face goes on to the opposed-face test (same
     // centroids: nothing moves in between), with the sample's oriented normal.
     detail::FaceNearest nearest;
-    const size_t trace_r0 = faces_removed;  // TEMP trace
     tally(faces_removed, detail::remove_unsupported_faces(
                              mesh, dist, bp,
                              [this](const Vec3& p, size_t k, std::vector<detail::CloudHit>& out) {
@@ -190,12 +187,8 @@ bool Reconstructor::Impl::topology_pass(bool force, double ell) {
         detail::CloudHit& hit = nearest[static_cast<size_t>(f.idx())];
         if (hit.index != detail::CloudHit::kNoSample) hit.normal = query_oriented_normal(hit.index);
       }
-      const size_t trace_r1 = faces_removed;
       tally(faces_removed,
             detail::remove_opposed_faces(mesh, nearest, {.max_distance = support, .sample_part = sample_part}));
-      if (std::getenv("EF_TW_TRACE"))
-        std::fprintf(stderr, "TOPO batch %zu final %d live %zu unsupported %zu opposed %zu\n", batches, int(force), live,
-                     trace_r1 - trace_r0, faces_removed - trace_r1);
     }
   }
   if (opt.topology.merge_borders) {

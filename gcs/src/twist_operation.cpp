@@ -3,28 +3,16 @@
 #include "detail/border_rejoin.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <map>
-#include <tuple>
 #include <ctime>
 #include <limits>
 #include <string>
 
 #include "edgefront/error.h"
-#include "edgefront/triangle_bvh.h"
 
 namespace gcs {
 
 TwistOperation::TwistOperation(TwistOperationOptions options) : options_(std::move(options)) {
   options_.repair.garbage_collect = false;  // the loop's handles are indices
-  // TEMP ablation (issue 26 goal 3 attribution)
-  if (const char* e = std::getenv("EF_TW_RETWISTS")) options_.max_retwists = std::stoul(e);
-  if (const char* e = std::getenv("EF_TW_SHARE")) options_.repair.cuts.min_cut_piece_share = std::stod(e);
-  if (const char* e = std::getenv("EF_TW_PEEL")) options_.repair.experimental.peel_flaps = std::stoi(e);
-  if (const char* e = std::getenv("EF_TW_TURNED")) options_.repair.experimental.drop_turned_patches = std::stoul(e);
-  if (const char* e = std::getenv("EF_TW_MINCOMP")) options_.repair.cuts.min_component_faces = std::stoul(e);
-  if (const char* e = std::getenv("EF_TW_REGROW")) options_.repair.experimental.regrow_cut_outs = std::stoi(e) != 0;
   if (!(options_.max_border_ratio_without_normals >= 0) || !std::isfinite(options_.max_border_ratio_without_normals)) {
     throw edgefront::InvalidInput("twist operation: max_border_ratio_without_normals must be finite and >= 0, got " +
                                   std::to_string(options_.max_border_ratio_without_normals));
@@ -86,57 +74,6 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
     stats_.borders_rejoined += j.strips + j.loops_merged;
     return j.strips + j.loops_merged;
   };
-  // TEMP trace: faces (by exact corner positions) removed by this call, and their area.
-  static const bool trace = std::getenv("EF_TW_TRACE") != nullptr;
-  using Key = std::tuple<double, double, double>;
-  std::map<Key, double> before_faces;
-  auto face_key = [&](edgefront::FaceHandle f, double& area) {
-    edgefront::Vec3 c(0, 0, 0), p[3];
-    int i = 0;
-    for (auto v : mesh.fv_range(f)) p[i++] = mesh.point(v);
-    c = (p[0] + p[1] + p[2]) / 3.0;
-    area = 0.5 * ((p[1] - p[0]) % (p[2] - p[0])).norm();
-    return Key{c[0], c[1], c[2]};
-  };
-  auto opposed_area = [&]() {
-    if (!reference_) return 0.0;
-    double a = 0;
-    for (auto f : mesh.faces()) {
-      edgefront::Vec3 p[3];
-      int i = 0;
-      for (auto v : mesh.fv_range(f)) p[i++] = mesh.point(v);
-      const edgefront::Vec3 n = (p[1] - p[0]) % (p[2] - p[0]);
-      const edgefront::Vec3 c = (p[0] + p[1] + p[2]) / 3.0;
-      const edgefront::Vec3 r = reference_->nearest_normal(c);
-      if (n.norm() > 0 && (n | r) < -0.3 * n.norm() * r.norm()) a += 0.5 * n.norm();
-    }
-    return a;
-  };
-  const double opposed_before = trace ? opposed_area() : 0.0;
-  // TEMP: which samples lie within one mean edge of the mesh
-  auto covered = [&]() {
-    std::vector<char> out(context.points.size(), 0);
-    std::vector<edgefront::Triangle> tris;
-    for (auto f : mesh.faces()) {
-      edgefront::Vec3 p[3];
-      int i = 0;
-      for (auto v : mesh.fv_range(f)) p[i++] = mesh.point(v);
-      tris.emplace_back(std::array<edgefront::Vec3, 3>{p[0], p[1], p[2]});
-    }
-    if (tris.empty()) return out;
-    const edgefront::TriangleBvh bvh(std::move(tris));
-    const double d2 = std::pow(0.01 * context.bbox_diagonal, 2);
-    for (size_t k = 0; k < context.points.size(); ++k) out[k] = bvh.nearest(context.points.points[k]).dist2 <= d2;
-    return out;
-  };
-  const std::vector<char> covered_before = trace ? covered() : std::vector<char>{};
-  if (trace) {
-    for (auto f : mesh.faces()) {
-      double a = 0;
-      const Key k = face_key(f, a);
-      before_faces[k] = a;
-    }
-  }
   // The final call re-joins first, so that its full repair (and its flap peeling) sees the joins.
   const size_t joined_first = context.final_call && !repairer_->cuts().empty() ? rejoin() : 0;
   const twist::RepairReport r =
@@ -153,38 +90,6 @@ OperationResult TwistOperation::apply(edgefront::Mesh& mesh, const ChangeSet& ch
   stats_.components_flipped += r.components_flipped;
   stats_.non_orientable = stats_.non_orientable || r.non_orientable;
   if (!context.final_call && (r.repairs > 0 || r.faces_removed > 0)) rejoin();
-  if (trace && (r.repairs > 0 || r.faces_removed > 0 || context.final_call)) {
-    double total = 0, removed = 0;
-    size_t n_removed = 0;
-    std::map<Key, double> after;
-    for (auto f : mesh.faces()) {
-      double a = 0;
-      after[face_key(f, a)] = a;
-      total += a;
-    }
-    const std::vector<char> covered_after = covered();
-    size_t lost = 0, gained = 0;
-    for (size_t k = 0; k < covered_after.size(); ++k) {
-      lost += covered_before[k] && !covered_after[k];
-      gained += !covered_before[k] && covered_after[k];
-    }
-    std::fprintf(stderr, "TWCOV batch %zu final %d lost %zu gained %zu of %zu samples cutouts %zu\n", context.batch,
-                 int(context.final_call), lost, gained, covered_after.size(), r.regions_cut_out);
-    for (const auto& [k, a] : before_faces) {
-      if (!after.count(k)) {
-        removed += a;
-        ++n_removed;
-        std::fprintf(stderr, "TWREM %zu %g %g %g %g\n", context.batch, std::get<0>(k), std::get<1>(k), std::get<2>(k), a);
-      }
-    }
-    std::fprintf(stderr, "TWCALL batch %zu final %d live %zu repairs %zu cutout %zu flipped %zu removed_faces %zu (traced %zu, area %g of %g) opposed %g -> %g scattered %zu flaps %zu turned %zu\n",
-                 context.batch, int(context.final_call), context.live_vertices, r.repairs, r.regions_cut_out, r.faces_flipped,
-                 r.faces_removed, n_removed, removed, total, opposed_before, opposed_area(), r.regions_scattered, r.flap_faces_removed, r.turned_faces_removed);
-    for (const auto& rec : r.records) {
-      std::fprintf(stderr, "TWREC batch %zu region %zu flipped %zu other %zu region_side %d removed %d tiny %zu joined %zu kept %zu\n", context.batch,
-                   rec.region_faces, rec.flipped_faces, rec.other_side_faces, int(rec.flipped_region), int(rec.removed), rec.tiny_faces_removed, rec.tiny_faces_joined, rec.small_pieces_kept);
-    }
-  }
   result.mesh_changed = joined_first > 0 || r.repairs > 0 || r.components_flipped > 0 || r.faces_removed > 0 ||
                         r.turned_faces_collapsed > 0 || r.turned_faces_straightened > 0;
   if (result.mesh_changed) {

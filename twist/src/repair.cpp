@@ -3,7 +3,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <cstddef>
 #include <deque>
 #include <unordered_map>
@@ -16,10 +15,6 @@
 #include "edgefront/error.h"
 
 namespace twist {
-namespace detail {
-extern std::vector<edgefront::Vec3>* g_trace_region;  // TEMP
-extern std::vector<edgefront::Vec3>* g_trace_flip;  // TEMP
-}
 
 using edgefront::FaceHandle;
 using edgefront::HalfedgeHandle;
@@ -151,66 +146,6 @@ size_t regrow_region(Mesh& mesh, const TwistRegion& region, size_t min_faces) {
   return added;
 }
 
-/// The pieces outside `region` that cutting along `cut_edge` would separate from the rest and
-/// that have fewer than `min_faces` faces (edge-connected across uncut edges, explored from the
-/// faces at the cut with a budget of `min_faces` each) are appended to `flip`: such a piece hangs
-/// on the region only (a strip between the region and the mesh border or between two lobes of the
-/// region), so it continues the region's surface and is flipped with it instead of being left
-/// as a tiny piece and removed. Returns the number of faces appended.
-size_t join_hanging_pieces(const Mesh& mesh, const std::unordered_set<int>& in_region, const std::unordered_set<int>& cut_edge,
-                           const std::vector<FaceHandle>& seeds_out, size_t min_faces, std::vector<FaceHandle>& flip) {
-  std::unordered_set<int> big;  // outside faces known to lie in a piece of at least min_faces
-  std::unordered_set<int> joined;
-  size_t added = 0;
-  for (FaceHandle start : seeds_out) {
-    if (big.count(start.idx()) || joined.count(start.idx())) continue;
-    std::vector<FaceHandle> piece{start};
-    std::unordered_set<int> seen{start.idx()};
-    bool is_big = false;
-    for (size_t q = 0; q < piece.size() && !is_big; ++q) {
-      for (HalfedgeHandle h : mesh.fh_range(piece[q])) {
-        if (cut_edge.count(mesh.edge_handle(h).idx())) continue;
-        const FaceHandle g = mesh.opposite_face_handle(h);
-        if (!g.is_valid() || in_region.count(g.idx())) continue;
-        if (big.count(g.idx())) is_big = true;
-        if (seen.insert(g.idx()).second) piece.push_back(g);
-      }
-      is_big = is_big || piece.size() >= min_faces;
-    }
-    if (is_big) {
-      for (FaceHandle f : piece) big.insert(f.idx());
-      continue;
-    }
-    for (FaceHandle f : piece) {
-      joined.insert(f.idx());
-      flip.push_back(f);
-    }
-    added += piece.size();
-  }
-  return added;
-}
-
-/// The edge-connected pieces of `side` (two faces of `side` sharing an edge are in one piece),
-/// each in breadth-first order from its first face in `side`'s order.
-std::vector<std::vector<FaceHandle>> side_pieces(const Mesh& mesh, const std::vector<FaceHandle>& side) {
-  std::unordered_set<int> in_side;
-  in_side.reserve(side.size() * 2);
-  for (FaceHandle f : side) in_side.insert(f.idx());
-  std::unordered_set<int> seen;
-  std::vector<std::vector<FaceHandle>> pieces;
-  for (FaceHandle start : side) {
-    if (!seen.insert(start.idx()).second) continue;
-    std::vector<FaceHandle> piece{start};
-    for (size_t q = 0; q < piece.size(); ++q) {
-      for (FaceHandle g : mesh.ff_range(piece[q])) {
-        if (in_side.count(g.idx()) && seen.insert(g.idx()).second) piece.push_back(g);
-      }
-    }
-    pieces.push_back(std::move(piece));
-  }
-  return pieces;
-}
-
 /// Cuts `region` off along its border, grows two fronts alternately from both sides of the cut,
 /// and flips (or removes, when tiny) the side exhausted first.
 RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOptions& o, DupList& dups) {
@@ -284,11 +219,6 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
   rec.flipped_region = exhausted == &a;
   rec.other_side_faces = other.order.size();
   rec.faces_visited = a.order.size() + b.order.size();
-  static const int pieces_mode = std::getenv("EF_TW_PIECES") ? std::atoi(std::getenv("EF_TW_PIECES")) : 0;  // TEMP
-  if (pieces_mode >= 2 && exhausted->order.size() < o.cuts.min_component_faces) {
-    rec.small_pieces_kept = exhausted->order.size();
-    return rec;
-  }
   if (exhausted->order.size() < o.cuts.min_component_faces) {
     if (exhausted == &a && o.experimental.regrow_cut_outs) {
       regrow_region(mesh, region, o.cuts.min_component_faces);
@@ -298,31 +228,10 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
     rec.removed = true;
     return rec;
   }
-  std::vector<FaceHandle> flip;
-  if (pieces_mode >= 1) {
-    for (auto& piece : side_pieces(mesh, exhausted->order)) {
-      if (piece.size() < o.cuts.min_component_faces) {
-        rec.small_pieces_kept += piece.size();
-      } else {
-        flip.insert(flip.end(), piece.begin(), piece.end());
-      }
-    }
-    if (flip.empty()) return rec;
-  } else {
-    flip = exhausted->order;
-  }
-  if (exhausted == &a && std::getenv("EF_TW_JOIN")) {  // TEMP experiment
-    rec.tiny_faces_joined = join_hanging_pieces(mesh, in_region, cut_edge, seeds_out, o.cuts.min_component_faces, flip);
-  }
-  std::vector<Vec3> trace_region, trace_flip;  // TEMP
-  for (FaceHandle f : region.faces) trace_region.push_back(detail::centroid(detail::face_points(mesh, f)));
-  for (FaceHandle f : flip) trace_flip.push_back(detail::centroid(detail::face_points(mesh, f)));
-  detail::g_trace_region = &trace_region;
-  detail::g_trace_flip = &trace_flip;
   const size_t before = dups.size();
-  detail::cut_and_reverse(mesh, flip, true, &dups);
+  detail::cut_and_reverse(mesh, exhausted->order, true, &dups);
   rec.vertices_duplicated = dups.size() - before;
-  rec.flipped_faces = flip.size();
+  rec.flipped_faces = exhausted->order.size();
   // The cut may also split the other side: pieces of it that hung on the region only by a few
   // edges are now on their own. Tiny ones go (never leave a tiny component); local: each piece
   // at the cut is explored with a budget of min_component_faces.
@@ -332,8 +241,6 @@ RepairRecord repair_region(Mesh& mesh, const TwistRegion& region, const RepairOp
     at_cut.push_back(dups[i].second);
   }
   rec.tiny_faces_removed = remove_tiny_pieces(mesh, at_cut, o.cuts.min_component_faces);
-  detail::g_trace_region = nullptr;
-  detail::g_trace_flip = nullptr;
   return rec;
 }
 
@@ -445,8 +352,6 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
         }
       }
       if (cut_out && !region_is_most_of_its_component(mesh, region) && cut_out(mesh, region)) {
-        static const bool skip = std::getenv("EF_TW_SKIP") != nullptr;  // TEMP
-        if (skip) continue;
         if (o.experimental.regrow_cut_outs) {
           regrow_region(mesh, region, o.cuts.min_component_faces);
         } else {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <initializer_list>
 #include <optional>
@@ -27,8 +25,6 @@ using edgefront::Vec3;
 using edgefront::VertexHandle;
 
 namespace detail {
-std::vector<Vec3>* g_trace_region = nullptr;  // TEMP
-std::vector<Vec3>* g_trace_flip = nullptr;  // TEMP
 
 /// Pieces (edge-connected face sets) touching these vertices that have fewer than `min_faces`
 /// faces are deleted: a cut must never leave a tiny component. Each piece is explored with a
@@ -54,21 +50,6 @@ size_t remove_tiny_pieces(Mesh& mesh, const std::vector<VertexHandle>& around, s
       if (is_big) {
         for (FaceHandle f : piece) big.insert(f.idx());
         continue;
-      }
-      if (std::getenv("EF_TW_TRACE")) {  // TEMP
-        double area = 0;
-        for (FaceHandle f : piece) area += mesh.calc_face_area(f);
-        size_t in_r = 0, in_f = 0;
-        for (FaceHandle f : piece) {
-          Vec3 c(0, 0, 0);
-          for (VertexHandle u : mesh.fv_range(f)) c += mesh.point(u);
-          c /= 3.0;
-          if (g_trace_region)
-            for (const Vec3& x : *g_trace_region) in_r += (x - c).sqrnorm() < 1e-20;
-          if (g_trace_flip)
-            for (const Vec3& x : *g_trace_flip) in_f += (x - c).sqrnorm() < 1e-20;
-        }
-        std::fprintf(stderr, "TINY piece %zu faces area %g in_region %zu in_flip %zu\n", piece.size(), area, in_r, in_f);
       }
       for (FaceHandle f : piece) mesh.delete_face(f, true);
       removed += piece.size();

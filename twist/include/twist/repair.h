@@ -195,8 +195,6 @@ struct RepairRecord {
   bool flipped_region = false;   ///< the region side was the one flipped (else the other side)
   bool removed = false;          ///< the exhausted side was smaller than min_component_faces, or cut out
   size_t tiny_faces_removed = 0; ///< faces of pieces under min_component_faces that the cut split off the other side
-  size_t small_pieces_kept = 0;  ///< TEMP faces of side pieces under min_component_faces left unflipped
-  size_t tiny_faces_joined = 0;  ///< faces of pieces under min_component_faces hanging on the region only, flipped with it
 };
 
 /// What a `repair`, `orient` or `TwistRepairer` call found and did, in total.
