@@ -68,13 +68,14 @@ std::vector<FaceHandle> without_sole_cover(const Mesh& mesh, const std::vector<F
   if (!o.detect.reference || o.cuts.support_radius <= 0 || faces.empty()) return faces;
   const double edge = mean_edge_length(mesh);
   const std::vector<FaceHandle> alone = sole_cover(mesh, faces, *o.detect.reference, o.cuts.support_radius * edge);
-  // Only faces the reference does not reject are spared: a face turned the wrong way that alone
-  // covers its points still goes (sparing it would trade orientation for coverage).
+  // Only faces the reference confirms are spared: a face turned the wrong way or undecided (on a
+  // wall thinner than the thin-wall rule, either way is possible) that alone covers its points
+  // still goes (sparing it could trade orientation for coverage).
   std::unordered_set<int> kept;
   for (FaceHandle f : alone) {
     const std::array<Vec3, 3> p = face_points(mesh, f);
     const Vec3 n = unit_normal(p);
-    if (n.sqrnorm() > 0 && reference_vote(*o.detect.reference, o.detect, centroid(p), n, edge) >= 0) kept.insert(f.idx());
+    if (n.sqrnorm() > 0 && reference_vote(*o.detect.reference, o.detect, centroid(p), n, edge) > 0) kept.insert(f.idx());
   }
   if (kept.empty()) return faces;
   std::vector<FaceHandle> out;

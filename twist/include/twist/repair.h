@@ -61,9 +61,9 @@ struct CutOptions {
   /// of `RepairExperimentalOptions::peel_flaps`, the turned border patches of
   /// `RepairExperimentalOptions::drop_turned_patches`) spare the faces that alone cover a
   /// reference point (a point within this distance of such a face and farther than it from every
-  /// face that stays) and that the reference does not reject (`reference_vote` >= 0). Removing
-  /// them would lose area the samples support (a hole where the surface was); a double layer
-  /// (another face over the same points) and a face turned the wrong way still go. A small cut
+  /// face that stays) and that the reference confirms (`reference_vote` > 0). Removing them
+  /// would lose area the samples support (a hole where the surface was); a double layer (another
+  /// face over the same points) and a face turned the wrong way or undecided still go. A small cut
   /// piece holding such a face is kept whole. Mean edge lengths; default 0 (off); finite, in
   /// [0, 4]. `in_loop()` sets 0.5 (bench/results/twist-coverage.md).
   double support_radius = 0.0;

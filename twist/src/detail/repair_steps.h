@@ -61,7 +61,7 @@ void drop_turned_patches(edgefront::Mesh& mesh, const RepairOptions& o, RepairRe
 std::vector<edgefront::FaceHandle> sole_cover(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces,
                                               const ReferenceNormals& reference, double radius);
 /// `faces` without those that `sole_cover` finds under `o.cuts.support_radius` and the reference
-/// does not reject (no reference or radius 0: `faces` as given); `spared` counts the faces kept.
+/// confirms (no reference or radius 0: `faces` as given); `spared` counts the faces kept.
 std::vector<edgefront::FaceHandle> without_sole_cover(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces,
                                                       const RepairOptions& o, size_t& spared);
 
