@@ -155,10 +155,8 @@ void expect_same_detection(const twist::DetectOptions& a, const twist::DetectOpt
 TEST(TwistOperation, DefaultRepairDiffersFromRepairDefaultsOnlyWhereDocumented) {
   const twist::RepairOptions plain;
   const twist::RepairOptions hook = gcs::TwistOperationOptions{}.repair;
-  // The five documented differences, each one a real difference.
+  // The four documented differences, each one a real difference.
   EXPECT_EQ(hook.cuts.max_border_ratio, 0.0);
-  EXPECT_EQ(hook.cuts.support_radius, 0.5);
-  EXPECT_NE(hook.cuts.support_radius, plain.cuts.support_radius);
   EXPECT_EQ(hook.experimental.peel_flaps, 3);
   EXPECT_TRUE(hook.experimental.peel_from_cuts);
   EXPECT_EQ(hook.experimental.drop_turned_patches, 4u);
@@ -169,7 +167,6 @@ TEST(TwistOperation, DefaultRepairDiffersFromRepairDefaultsOnlyWhereDocumented) 
   // Nothing else differs.
   twist::CutOptions cuts = plain.cuts;
   cuts.max_border_ratio = hook.cuts.max_border_ratio;
-  cuts.support_radius = hook.cuts.support_radius;
   EXPECT_TRUE(hook.cuts == cuts);
   twist::RepairExperimentalOptions experimental = plain.experimental;
   experimental.peel_flaps = hook.experimental.peel_flaps;

@@ -203,8 +203,8 @@ TEST(TwistRepair, CleanUpsSpareFacesThatAloneCoverTheSamples) {
       EXPECT_EQ(r.n_faces(), spared ? 208u : 200u) << flap_sampled << " " << radius;
     }
   }
-  // The in-loop preset spares; absurd radii are refused, naming the option.
-  EXPECT_EQ(twist::RepairOptions::in_loop().cuts.support_radius, 0.5);
+  // Off in both presets; absurd radii are refused, naming the option.
+  EXPECT_EQ(twist::RepairOptions::in_loop().cuts.support_radius, 0.0);
   EXPECT_EQ(twist::RepairOptions::finished_mesh().cuts.support_radius, 0.0);
   Mesh m;
   add_grid(m, 4, 0, 0, 0);

@@ -516,9 +516,6 @@ RepairOptions RepairOptions::in_loop() {
   o.experimental.peel_flaps = kLoopPeelRounds;
   o.experimental.peel_from_cuts = true;  // only flaps the cuts left (a run without a cut keeps its mesh)
   o.experimental.drop_turned_patches = kLoopTurnedPatchFaces;
-  // The clean-ups of the final call spare the faces that alone cover a sample within half a mean
-  // edge: the repair must not leave a hole where the samples are (bench/results/twist-coverage.md).
-  o.cuts.support_radius = 0.5;
   return o;
 }
 

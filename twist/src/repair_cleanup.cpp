@@ -115,8 +115,22 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
   if (go.size() != candidates.size()) {
     std::unordered_set<int> going;
     for (FaceHandle f : go) going.insert(f.idx());
+    std::vector<char> spare(labels.count, 0);
     for (FaceHandle f : candidates) {
-      if (!going.count(f.idx())) doomed[label_of(f)] = 0;
+      if (!going.count(f.idx())) spare[label_of(f)] = 1;
+    }
+    // ... unless the reference rejects a face of it: a piece is kept whole or not at all, and a
+    // piece turned the wrong way in part would trade orientation for coverage.
+    const double edge = detail::mean_edge_length(mesh);
+    for (FaceHandle f : candidates) {
+      const size_t c = label_of(f);
+      if (!spare[c]) continue;
+      const std::array<Vec3, 3> p = detail::face_points(mesh, f);
+      const Vec3 n = detail::unit_normal(p);
+      if (n.sqrnorm() > 0 && reference_vote(*o.detect.reference, o.detect, detail::centroid(p), n, edge) < 0) spare[c] = 0;
+    }
+    for (size_t c = 0; c < labels.count; ++c) {
+      if (spare[c]) doomed[c] = 0;
     }
   }
   size_t removed = 0;

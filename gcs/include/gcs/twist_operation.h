@@ -27,7 +27,7 @@ struct TwistOperationOptions {
   twist::RepairOptions repair = default_repair();
   /// The hook's default repair settings: `twist::RepairOptions::in_loop()`, which differs from
   /// `twist::repair`'s own defaults (`twist::RepairOptions::finished_mesh()`, for a one-shot repair
-  /// of a finished mesh) on purpose in five fields: no limit on the border of a region
+  /// of a finished mesh) on purpose in four fields: no limit on the border of a region
   /// (`cuts.max_border_ratio` = 0; for a cloud with normals, see
   /// `max_border_ratio_without_normals` for one without): in the loop, cutting scattered regions
   /// too gives higher orientation consistency on the vault shells, at the price of more components
@@ -35,9 +35,7 @@ struct TwistOperationOptions {
   /// (`experimental.peel_flaps` = 3 with `experimental.peel_from_cuts`: faces at a border lying
   /// over another layer with the same orientation), and, with reference normals, removes or
   /// collapses turned-over patches of up to 4 faces that lie over the other layer
-  /// (`experimental.drop_turned_patches` = 4); those clean-ups spare the faces that alone cover
-  /// a sample within half a mean edge (`cuts.support_radius` = 0.5: no hole where the samples
-  /// are; bench/results/twist-coverage.md).
+  /// (`experimental.drop_turned_patches` = 4).
   static twist::RepairOptions default_repair() { return twist::RepairOptions::in_loop(); }
   /// `repair.cuts.max_border_ratio` for a cloud without normals. Without normals the detector's
   /// evidence is geometric only (facing layers, folded edges, self-intersections), and on a noisy

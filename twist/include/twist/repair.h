@@ -64,8 +64,10 @@ struct CutOptions {
   /// face that stays) and that the reference confirms (`reference_vote` > 0). Removing them
   /// would lose area the samples support (a hole where the surface was); a double layer (another
   /// face over the same points) and a face turned the wrong way or undecided still go. A small cut
-  /// piece holding such a face is kept whole. Mean edge lengths; default 0 (off); finite, in
-  /// [0, 4]. `in_loop()` sets 0.5 (bench/results/twist-coverage.md).
+  /// piece holding such a face is kept whole, unless the reference rejects one of its faces.
+  /// Mean edge lengths; default 0 (off, also in `in_loop()`: in the GCS loop at 0.5 it changed
+  /// coverage by -2.4 to +1.3 points, mean -0.02 over 60 runs, and lowered the consistency of some
+  /// runs, bench/results/twist-coverage.md); finite, in [0, 4].
   double support_radius = 0.0;
   /// Field by field.
   bool operator==(const CutOptions&) const = default;
@@ -189,9 +191,7 @@ struct RepairOptions {
   /// orientation consistency on the vault shells, at the price of more components), and at the
   /// final call `experimental.peel_flaps` 3 with `experimental.peel_from_cuts` (border flaps the
   /// cuts left) and `experimental.drop_turned_patches` 4 (turned-over slivers and rim flaps of 1-4
-  /// faces over the other layer, with a reference), and `cuts.support_radius` 0.5 (those
-  /// clean-ups spare the faces that alone cover a reference point). Figures:
-  /// bench/results/twist-vaults.md, bench/results/twist-coverage.md.
+  /// faces over the other layer, with a reference). Figures: bench/results/twist-vaults.md.
   static RepairOptions in_loop();
 };
 
