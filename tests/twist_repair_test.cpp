@@ -168,6 +168,58 @@ TEST(TwistRepair, BorderFlapsOverAnotherLayerArePeeledWhenAsked) {
   }
 }
 
+TEST(TwistRepair, CleanUpsSpareFacesThatAloneCoverTheSamples) {
+  // The same 10 x 10 plate with a 2 x 2 flap 1.5 above its middle, both facing +z. Sampled only
+  // on the plate, the flap is a double layer and peeling removes it, with or without
+  // cuts.support_radius. Sampled on the flap too (a shelf over the plate), the flap is the only
+  // surface within half a mean edge of those samples: peeling it would lose area the samples
+  // support, so with cuts.support_radius it stays.
+  for (bool flap_sampled : {false, true}) {
+    Mesh m;
+    add_grid(m, 10, 0, 0, 0);
+    add_grid(m, 2, 4, 4, 1.5);
+    edgefront::PointCloud cloud;
+    for (double x = 0; x <= 10; x += 0.25) {
+      for (double y = 0; y <= 10; y += 0.25) {
+        cloud.points.emplace_back(x, y, 0);
+        cloud.normals.emplace_back(0, 0, 1);
+        if (flap_sampled && x >= 4 && x <= 6 && y >= 4 && y <= 6) {
+          cloud.points.emplace_back(x, y, 1.5);
+          cloud.normals.emplace_back(0, 0, 1);
+        }
+      }
+    }
+    const twist::ReferenceNormals ref(cloud);
+    twist::RepairOptions o;
+    o.detect.reference = &ref;
+    o.experimental.peel_flaps = 1;
+    for (double radius : {0.0, 0.5}) {
+      o.cuts.support_radius = radius;
+      Mesh r = m;
+      const twist::RepairReport report = twist::repair(r, o);
+      const bool spared = flap_sampled && radius > 0;
+      EXPECT_EQ(report.flap_faces_removed, spared ? 0u : 8u) << flap_sampled << " " << radius;
+      EXPECT_EQ(report.supported_faces_spared, spared ? 8u : 0u) << flap_sampled << " " << radius;
+      EXPECT_EQ(r.n_faces(), spared ? 208u : 200u) << flap_sampled << " " << radius;
+    }
+  }
+  // Off in both presets; absurd radii are refused, naming the option.
+  EXPECT_EQ(twist::RepairOptions::in_loop().cuts.support_radius, 0.0);
+  EXPECT_EQ(twist::RepairOptions::finished_mesh().cuts.support_radius, 0.0);
+  Mesh m;
+  add_grid(m, 4, 0, 0, 0);
+  twist::RepairOptions o;
+  for (double radius : {-0.5, 4.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    o.cuts.support_radius = radius;
+    try {
+      twist::repair(m, o);
+      ADD_FAILURE() << "accepted support_radius " << radius;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("support_radius"), std::string::npos) << e.what();
+    }
+  }
+}
+
 /// Two parallel 6 x 6 plates 0.5 apart, the two walls of a slab facing out (z = 0 down, z = 0.5
 /// up), and reference points with those normals on both.
 struct Slab {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <deque>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -287,6 +288,9 @@ void validate_repair_options(const RepairOptions& o) {
   }
   if (!(o.cuts.cut_cost >= 0 && o.cuts.cut_cost <= 100))
     throw InvalidInput("twist::repair: option cuts.cut_cost must lie in [0, 100]");
+  if (!(o.cuts.support_radius >= 0 && o.cuts.support_radius <= 4))
+    throw InvalidInput("twist::repair: option cuts.support_radius must lie in [0, 4] (mean edge lengths), got " +
+                       std::to_string(o.cuts.support_radius));
 }
 
 }  // namespace
@@ -395,9 +399,9 @@ RepairReport repair_impl(Mesh& mesh, const RepairOptions& o, const CutOutRule& c
   }
   if (grid) grid->update_new(mesh);
   if (!incremental && o.cuts.min_cut_piece_share > 0)
-    report.faces_removed += remove_small_cut_pieces(mesh, o, dups);
+    report.faces_removed += remove_small_cut_pieces(mesh, o, dups, report.supported_faces_spared);
   if (!incremental && o.experimental.peel_flaps > 0) {
-    const size_t peeled = peel_flaps(mesh, o, dups);
+    const size_t peeled = peel_flaps(mesh, o, dups, report.supported_faces_spared);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
   }
@@ -491,7 +495,7 @@ RepairReport label_repair(Mesh& mesh, const RepairOptions& o, DupList& dups) {
   // No piece the cuts separated is removed (min_cut_piece_share does not apply: the labelling
   // never makes a piece under min_component_faces); border flaps only when asked.
   if (o.experimental.peel_flaps > 0) {
-    const size_t peeled = peel_flaps(mesh, o, dups);
+    const size_t peeled = peel_flaps(mesh, o, dups, report.supported_faces_spared);
     report.flap_faces_removed += peeled;
     report.faces_removed += peeled;
   }

@@ -88,7 +88,7 @@ size_t remove_faces(Mesh& mesh, const std::vector<FaceHandle>& faces, size_t min
 /// removed: pieces the cuts separated that are too small to stand as a part of the surface (a
 /// sliver of one wall, a fragment lying over another piece). Components without a cut vertex are
 /// the input's and stay. Returns the number of faces removed. O(F).
-size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
+size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList& dups, size_t& spared) {
   if (dups.empty()) return 0;
   const edgefront::ComponentLabels labels = edgefront::connected_components(mesh);
   auto label_of = [&](FaceHandle f) { return static_cast<size_t>(labels.vertex_component[(*mesh.fv_begin(f)).idx()]); };
@@ -105,11 +105,42 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
       doomed[c] = static_cast<double>(face_count[c]) < limit && face_count[c] != largest;
     }
   }
-  size_t removed = 0;
+  // A piece holding a face that alone covers a reference point stays whole (support_radius).
+  std::vector<FaceHandle> candidates;
   for (FaceHandle f : mesh.faces()) {
-    if (!doomed[label_of(f)]) continue;
-    mesh.delete_face(f, true);
-    ++removed;
+    if (doomed[label_of(f)]) candidates.push_back(f);
+  }
+  size_t kept_faces = 0;
+  const std::vector<FaceHandle> go = without_sole_cover(mesh, candidates, o, kept_faces);
+  if (go.size() != candidates.size()) {
+    std::unordered_set<int> going;
+    for (FaceHandle f : go) going.insert(f.idx());
+    std::vector<char> spare(labels.count, 0);
+    for (FaceHandle f : candidates) {
+      if (!going.count(f.idx())) spare[label_of(f)] = 1;
+    }
+    // ... unless the reference rejects a face of it: a piece is kept whole or not at all, and a
+    // piece turned the wrong way in part would trade orientation for coverage.
+    const double edge = detail::mean_edge_length(mesh);
+    for (FaceHandle f : candidates) {
+      const size_t c = label_of(f);
+      if (!spare[c]) continue;
+      const std::array<Vec3, 3> p = detail::face_points(mesh, f);
+      const Vec3 n = detail::unit_normal(p);
+      if (n.sqrnorm() > 0 && reference_vote(*o.detect.reference, o.detect, detail::centroid(p), n, edge) < 0) spare[c] = 0;
+    }
+    for (size_t c = 0; c < labels.count; ++c) {
+      if (spare[c]) doomed[c] = 0;
+    }
+  }
+  size_t removed = 0;
+  for (FaceHandle f : candidates) {
+    if (doomed[label_of(f)]) {
+      mesh.delete_face(f, true);
+      ++removed;
+    } else {
+      ++spared;
+    }
   }
   return removed;
 }
@@ -118,7 +149,7 @@ size_t remove_small_cut_pieces(Mesh& mesh, const RepairOptions& o, const DupList
 /// that have a same-orientation partner (`same_orientation_pairs`), in up to `peel_flaps`
 /// rounds, and the tiny pieces that leaves. Returns the number of faces removed. Pairs are looked
 /// for only around the faces that could be flaps (`same_orientation_pairs` with `restrict_to`).
-size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
+size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups, size_t& spared) {
   size_t removed = 0;
   // With `peel_from_cuts`, only flaps the cuts left: the first round peels faces at a vertex of a cut, each further
   // round faces at a vertex of a face peeled before (a flap of the loop's own border operations
@@ -166,6 +197,7 @@ size_t peel_flaps(Mesh& mesh, const RepairOptions& o, const DupList& dups) {
     }
     std::sort(flaps.begin(), flaps.end(), [](FaceHandle a, FaceHandle b) { return a.idx() < b.idx(); });
     flaps.erase(std::unique(flaps.begin(), flaps.end()), flaps.end());
+    flaps = without_sole_cover(mesh, flaps, o, spared);
     if (flaps.empty()) break;
     for (FaceHandle f : flaps) {
       for (VertexHandle v : mesh.fv_range(f)) reach.insert(v.idx());
@@ -375,7 +407,8 @@ void drop_turned_patches(Mesh& mesh, const RepairOptions& o, RepairReport& repor
       if (border) flaps.push_back(f);
     }
   }
-  const size_t removed = remove_faces(mesh, flaps, o.cuts.min_component_faces);
+  const size_t removed = remove_faces(mesh, without_sole_cover(mesh, flaps, o, report.supported_faces_spared),
+                                      o.cuts.min_component_faces);
   report.turned_faces_removed += removed;
   report.faces_removed += removed;
 }

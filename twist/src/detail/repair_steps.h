@@ -45,8 +45,8 @@ void flip_seam_pieces(edgefront::Mesh& mesh, DupList& dups, RepairReport& report
 size_t remove_tiny_pieces(edgefront::Mesh& mesh, const std::vector<edgefront::VertexHandle>& around,
                           size_t min_faces);
 size_t remove_faces(edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces, size_t min_faces);
-size_t remove_small_cut_pieces(edgefront::Mesh& mesh, const RepairOptions& o, const DupList& dups);
-size_t peel_flaps(edgefront::Mesh& mesh, const RepairOptions& o, const DupList& dups);
+size_t remove_small_cut_pieces(edgefront::Mesh& mesh, const RepairOptions& o, const DupList& dups, size_t& spared);
+size_t peel_flaps(edgefront::Mesh& mesh, const RepairOptions& o, const DupList& dups, size_t& spared);
 bool smooth_until(edgefront::Mesh& mesh, const std::vector<edgefront::VertexHandle>& vs, int rounds,
                   const std::function<bool()>& accept);
 std::optional<size_t> folds_around(const edgefront::Mesh& mesh, const std::vector<edgefront::VertexHandle>& vs);
@@ -57,5 +57,17 @@ void drop_turned_patches(edgefront::Mesh& mesh, const RepairOptions& o, RepairRe
 
 // repair_mend.cpp
 void mend_patches(edgefront::Mesh& mesh, const RepairOptions& o, RepairReport& report);
+
+// sole_cover.cpp
+/// The faces of `faces` that alone cover a point of `reference`: a point within `radius` of the
+/// face and farther than `radius` from every live face of `mesh` not in `faces` (see
+/// `CutOptions::support_radius`). In the order of `faces`; deleted handles are skipped. Empty for
+/// `radius` <= 0. Cost: a hierarchy over the staying faces and a k-d tree over the points.
+std::vector<edgefront::FaceHandle> sole_cover(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces,
+                                              const ReferenceNormals& reference, double radius);
+/// `faces` without those that `sole_cover` finds under `o.cuts.support_radius` and the reference
+/// confirms (no reference or radius 0: `faces` as given); `spared` counts the faces kept.
+std::vector<edgefront::FaceHandle> without_sole_cover(const edgefront::Mesh& mesh, const std::vector<edgefront::FaceHandle>& faces,
+                                                      const RepairOptions& o, size_t& spared);
 
 }  // namespace twist::detail
