@@ -20,6 +20,30 @@ namespace edittest {
 
 using namespace edgefront;
 
+/// Border edges of plain faces (a b c per face; a removed face starts with -1): directed edges
+/// whose opposite no face holds.
+inline size_t border_edges(const std::vector<int>& F) {
+  std::map<std::pair<int, int>, int> directed;
+  for (size_t f = 0; 3 * f < F.size(); ++f) {
+    if (F[3 * f] < 0) continue;
+    for (size_t k = 0; k < 3; ++k) ++directed[{F[3 * f + k], F[3 * f + (k + 1) % 3]}];
+  }
+  size_t n = 0;
+  for (const auto& e : directed) n += directed.count({e.first.second, e.first.first}) == 0;
+  return n;
+}
+
+/// The mean length of a mesh's edges.
+inline double mean_edge_length(const Mesh& mesh) {
+  double sum = 0;
+  size_t n = 0;
+  for (EdgeHandle e : mesh.edges()) {
+    sum += mesh.calc_edge_length(e);
+    ++n;
+  }
+  return sum / static_cast<double>(n);
+}
+
 /// A face as a rotation starting at its smallest index (orientation kept).
 inline std::array<int, 3> canonical(std::array<int, 3> t) {
   const auto it = std::min_element(t.begin(), t.end());

@@ -26,17 +26,6 @@ using twist::EditRecord;
 using twist::RepairSession;
 
 /// Border edges of plain arrays: directed edges whose opposite no face holds.
-size_t border_edges(const std::vector<int>& F) {
-  std::map<std::pair<int, int>, int> directed;
-  for (size_t f = 0; 3 * f < F.size(); ++f) {
-    if (F[3 * f] < 0) continue;
-    for (size_t k = 0; k < 3; ++k) ++directed[{F[3 * f + k], F[3 * f + (k + 1) % 3]}];
-  }
-  size_t n = 0;
-  for (const auto& e : directed) n += directed.count({e.first.second, e.first.first}) == 0;
-  return n;
-}
-
 Vec3 point_of(const std::vector<double>& V, int v) { return Vec3(V[3 * size_t(v)], V[3 * size_t(v) + 1], V[3 * size_t(v) + 2]); }
 
 /// The unit sphere as a mesh (icosphere, 3 subdivisions) and as a denser reference cloud (the
@@ -55,14 +44,7 @@ struct CappedSphere {
     }
     return c;
   }
-  CappedSphere() {
-    size_t n = 0;
-    for (EdgeHandle e : mesh.edges()) {
-      mean_edge += mesh.calc_edge_length(e);
-      ++n;
-    }
-    mean_edge /= static_cast<double>(n);
-  }
+  CappedSphere() { mean_edge = edittest::mean_edge_length(mesh); }
   /// Removes the faces with a corner above z = 0.4 from the host's arrays and the session, and
   /// the vertices left without faces. Returns the faces removed.
   size_t remove_cap(RepairSession& s, std::vector<double>& V, std::vector<int>& F) const {
@@ -96,10 +78,10 @@ TEST(RepairSessionGrow, ACapGrowsBackClosedOnThePointsAndReplays) {
   std::vector<double> V = sphere.arrays.vertices;
   std::vector<int> F = sphere.arrays.faces;
   ASSERT_GT(sphere.remove_cap(s, V, F), 100u);
-  const size_t border_before = border_edges(F);
+  const size_t border_before = edittest::border_edges(F);
   ASSERT_GT(border_before, 20u) << "a hole far larger than the heal's fans";
   size_t grown = 0, calls = 0;
-  for (; calls < 40 && border_edges(F) > 0; ++calls) {
+  for (; calls < 40 && edittest::border_edges(F) > 0; ++calls) {
     const size_t vertices_before = V.size() / 3;
     const EditRecord r = s.repair(sphere.mean_edge);
     twist::apply(r, V, F);
@@ -121,11 +103,11 @@ TEST(RepairSessionGrow, ACapGrowsBackClosedOnThePointsAndReplays) {
     EXPECT_GE(V.size() / 3, vertices_before);
   }
   EXPECT_GT(grown, 50u);
-  EXPECT_EQ(border_edges(F), 0u) << "closed after " << calls << " answers";
+  EXPECT_EQ(edittest::border_edges(F), 0u) << "closed after " << calls << " answers";
   // The finish keeps it closed and replays.
   twist::apply(s.finish(), V, F);
   edittest::expect_session_matches(s, V, F);
-  EXPECT_EQ(border_edges(F), 0u);
+  EXPECT_EQ(edittest::border_edges(F), 0u);
 }
 
 TEST(RepairSessionGrow, NothingGrowsWhereThePointsFaceTheOtherWay) {
@@ -140,14 +122,14 @@ TEST(RepairSessionGrow, NothingGrowsWhereThePointsFaceTheOtherWay) {
   std::vector<double> V = sphere.arrays.vertices;
   std::vector<int> F = sphere.arrays.faces;
   sphere.remove_cap(s, V, F);
-  const size_t border_before = border_edges(F);
+  const size_t border_before = edittest::border_edges(F);
   const EditRecord r = s.repair(sphere.mean_edge);
   twist::apply(r, V, F);
   edittest::expect_session_matches(s, V, F);
   EXPECT_EQ(s.stats().heal.grown, 0u);
   EXPECT_TRUE(r.faces_added.empty());
   EXPECT_TRUE(r.vertices_added.empty());
-  EXPECT_EQ(border_edges(F), border_before);
+  EXPECT_EQ(edittest::border_edges(F), border_before);
 }
 
 TEST(RepairSessionGrow, BadGrowthOptionsAreRefused) {

@@ -54,17 +54,7 @@ struct Host {
       }
     return removed;
   }
-  /// Border edges: directed edges whose opposite no face holds.
-  size_t border_edges() const {
-    std::map<std::pair<int, int>, int> directed;
-    for (size_t f = 0; 3 * f < F.size(); ++f) {
-      if (F[3 * f] < 0) continue;
-      for (size_t k = 0; k < 3; ++k) ++directed[{F[3 * f + k], F[3 * f + (k + 1) % 3]}];
-    }
-    size_t n = 0;
-    for (const auto& e : directed) n += directed.count({e.first.second, e.first.first}) == 0;
-    return n;
-  }
+  size_t border_edges() const { return edittest::border_edges(F); }
   void replay(const EditRecord& r) {
     twist::apply(r, V, F);
     orphan_.resize(V.size() / 3, 0);
@@ -96,14 +86,7 @@ struct Sphere {
     }
     return c;
   }
-  Sphere() {
-    size_t n = 0;
-    for (EdgeHandle e : mesh.edges()) {
-      mean_edge += mesh.calc_edge_length(e);
-      ++n;
-    }
-    mean_edge /= static_cast<double>(n);
-  }
+  Sphere() { mean_edge = edittest::mean_edge_length(mesh); }
 };
 
 TEST(RepairSessionHeal, ASmallHoleIsClosedByAFanAndReplays) {
