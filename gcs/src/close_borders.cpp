@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -388,17 +389,27 @@ struct Context {
   const CloseBordersParams& params;
 };
 
-// Closes `loop` on `mesh` by a patch (see the file comment) when the patch fits and makes no more
-// than `crossings` self-intersecting face pairs in all; false when a step or check fails (the mesh
-// is then a spoiled copy the caller drops).
-bool close_loop(Mesh& mesh, const Loop& loop, const Context& ctx, std::size_t crossings) {
+// The samples no face of `mesh` covers (uncovered_samples under the parameters), with their index.
+struct UncoveredSet {
+  Uncovered samples;
+  PointIndex index;
+  UncoveredSet(const Mesh& mesh, const Context& ctx)
+      : samples(uncovered_samples(mesh, ctx.samples, ctx.normals, ctx.params.normals_oriented,
+                                  ctx.params.covered_edges * ctx.params.mean_edge_length,
+                                  ctx.params.beyond_edges * ctx.params.mean_edge_length)),
+        index(samples.points) {}
+};
+
+// Closes `loop` on `mesh` by a patch (see the file comment) pulled onto `uncovered` (the samples
+// `mesh` leaves uncovered) when the patch fits and makes no more than `crossings` self-intersecting
+// face pairs in all; then `crossings` is the count after it. False when a step or check fails
+// (the mesh is then a spoiled copy the caller drops).
+bool close_loop(Mesh& mesh, const Loop& loop, const Context& ctx, const UncoveredSet& uncovered, std::size_t& crossings) {
   const CloseBordersParams& params = ctx.params;
   const double ell = params.mean_edge_length;
-  const Uncovered unc =
-      uncovered_samples(mesh, ctx.samples, ctx.normals, params.normals_oriented, params.covered_edges * ell,
-                        params.beyond_edges * ell);
+  const Uncovered& unc = uncovered.samples;
+  const PointIndex& unc_index = uncovered.index;
   if (unc.points.empty()) return false;
-  const PointIndex unc_index(unc.points);
   std::vector<Vec3> points, rim_normals;
   for (auto v : loop.vertices) points.push_back(mesh.point(v));
   for (auto h : loop.halfedges) {
@@ -428,7 +439,9 @@ bool close_loop(Mesh& mesh, const Loop& loop, const Context& ctx, std::size_t cr
   }
   if (!patch_fits(mesh, patch, loop, ctx.all, ctx.normals, params)) return false;
   const std::size_t after = self_intersecting_face_pairs(mesh).size();
-  return after <= crossings;
+  if (after > crossings) return false;
+  crossings = after;
+  return true;
 }
 
 // Whether the loop's halfedges are all still live border halfedges (a trim for another loop may
@@ -468,35 +481,37 @@ CloseBordersReport close_false_borders(Mesh& mesh, const std::vector<Vec3>& samp
   report.loops = loops.size();
   if (loops.empty() || samples.empty()) return report;
   const double ell = params.mean_edge_length;
-  const Uncovered unc = uncovered_samples(mesh, samples, normals, params.normals_oriented, params.covered_edges * ell,
-                                         params.beyond_edges * ell);
-  if (unc.points.empty()) return report;
-  const PointIndex unc_index(unc.points);
   const PointIndex all(samples);
   const Context ctx{samples, normals, all, params};
+  // The samples the mesh leaves uncovered: computed again only when a loop was closed.
+  std::optional<UncoveredSet> uncovered(std::in_place, mesh, ctx);
+  if (uncovered->samples.points.empty()) return report;
   std::size_t crossings = self_intersecting_face_pairs(mesh).size();
   for (const Loop& loop : loops) {
     const std::size_t n = loop.vertices.size();
     if (n < 3 || n > params.max_loop_vertices || !twist::detail::is_simple(loop) || !still_border(mesh, loop)) continue;
     // False: uncovered samples near it, and some of them farther than an edge or so from the
     // mesh (the cloud goes on past the border; an open sheet's cloud ends within about an edge).
-    const std::size_t near = uncovered_near(mesh, loop, unc_index, params.near_edges * ell).size();
+    if (!uncovered) uncovered.emplace(mesh, ctx);
+    const std::size_t near = uncovered_near(mesh, loop, uncovered->index, params.near_edges * ell).size();
     std::size_t deep = 0;
-    for (std::size_t i : uncovered_near(mesh, loop, unc_index, params.wide_edges * ell))
-      deep += unc.distance[i] > params.deep_edges * ell;
+    for (std::size_t i : uncovered_near(mesh, loop, uncovered->index, params.wide_edges * ell))
+      deep += uncovered->samples.distance[i] > params.deep_edges * ell;
     if (static_cast<double>(near) < params.min_uncovered_per_vertex * static_cast<double>(n) ||
         static_cast<double>(deep) < params.min_deep_per_vertex * static_cast<double>(n))
       continue;
     ++report.false_loops;
     const std::size_t before = mesh.n_vertices();
     Mesh trial = mesh;
-    const auto close = [&](Mesh& m, const Loop& l) { return close_loop(m, l, ctx, crossings); };
-    if (close(trial, loop)) {
+    if (close_loop(trial, loop, ctx, *uncovered, crossings)) {
       mesh = std::move(trial);
-    } else if (params.trim_rings == 0 || !trim_and_close(mesh, loop, params.trim_rings, close)) {
+    } else if (params.trim_rings == 0 ||
+               !trim_and_close(mesh, loop, params.trim_rings, [&](Mesh& m, const Loop& l) {
+                 return close_loop(m, l, ctx, UncoveredSet(m, ctx), crossings);  // the trim uncovered more
+               })) {
       continue;
     }
-    crossings = self_intersecting_face_pairs(mesh).size();
+    uncovered.reset();  // the patch covers samples now
     report.vertices_added += mesh.n_vertices() - before;
     ++report.closed;
   }
