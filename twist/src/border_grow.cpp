@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "detail/border_join.h"
+#include "detail/geometry.h"
 #include "detail/heal.h"
 #include "edgefront/geometry.h"
 #include "edgefront/mesh_stats.h"
@@ -47,11 +48,7 @@ Vec3 unit(const Vec3& v) {
   return n > 0 ? v / n : Vec3(0, 0, 0);
 }
 
-Vec3 face_unit_normal(const Mesh& mesh, FaceHandle f) {
-  auto it = mesh.cfv_iter(f);
-  const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
-  return unit((b - a) % (c - a));
-}
+Vec3 face_unit_normal(const Mesh& mesh, FaceHandle f) { return unit_normal(face_points(mesh, f)); }
 
 /// The live faces on entry, for the coverage test.
 class Coverage {

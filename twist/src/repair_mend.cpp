@@ -29,9 +29,6 @@ namespace {
 
 using Tri = std::array<Vec3, 3>;
 
-/// The reference's verdicts and the local tests the mending moves share.
-constexpr bool kStanding = true;
-
 class Mender {
  public:
   Mender(Mesh& mesh, const RepairOptions& o, double edge)
@@ -48,7 +45,7 @@ class Mender {
     const int v = reference_vote(ref_, o_.detect, c, n, edge_);
     if (v != 0) return v < 0 ? 1.0 : 0.0;
     const double cos = OpenMesh::dot(n, ref_.nearest_normal(c));
-    return kStanding && cos < 0 && cos > o_.detect.vote.reference_cos ? 0.5 : 0.0;
+    return cos < 0 && cos > o_.detect.vote.reference_cos ? 0.5 : 0.0;
   }
   bool misfits(FaceHandle f) const { return misfit(face_points(mesh_, f)) > 0; }
   /// The triangles' areas weighted by their misfit.
