@@ -10,7 +10,6 @@
 #include "detail/geometry.h"
 #include "detail/repair_steps.h"
 #include "edgefront/geometry.h"
-#include "edgefront/point_index.h"
 #include "edgefront/triangle_bvh.h"
 
 namespace twist::detail {
@@ -33,7 +32,6 @@ std::vector<FaceHandle> sole_cover(const Mesh& mesh, const std::vector<FaceHandl
     if (!doomed.count(f.idx())) staying.emplace_back(face_points(mesh, f));
   }
   const std::vector<Vec3>& samples = reference.cloud().points;
-  const edgefront::PointIndex index(samples);
   const double r2 = radius * radius;
   std::unordered_set<size_t> settled;  // samples known to be covered by a staying face
   const std::unique_ptr<const edgefront::TriangleBvh> bvh =
@@ -45,7 +43,7 @@ std::vector<FaceHandle> sole_cover(const Mesh& mesh, const std::vector<FaceHandl
     const Vec3 c = centroid(p);
     double reach = 0;
     for (const Vec3& q : p) reach = std::max(reach, (q - c).norm());
-    index.radius_search(c, reach + radius, near);
+    reference.within(c, reach + radius, near);
     bool alone = false;
     for (size_t k : near) {
       const Vec3& s = samples[k];
