@@ -128,6 +128,13 @@ TEST_F(GcsCli, RejoinBordersIsAcceptedAndAFlagWithoutAValue) {
   // A value that is not a boolean: a usage error, no file.
   const eftest::CommandResult bad = run(q(shell) + " -o " + q(dir_ / "c.off") + " --vertices 100 --rejoin-borders=maybe");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  // The border growth's rows: 0 ... 8, else a usage error naming the option, no file.
+  for (const char* rows : {"9", "-1", "two"}) {
+    const eftest::CommandResult g = run(q(shell) + " -o " + q(dir_ / "g.off") + " --vertices 100 --grow-borders " + rows);
+    EXPECT_EQ(g.exit_code, 2) << rows << ": " << g.err;
+    EXPECT_NE(g.err.find("--grow-borders"), std::string::npos) << g.err;
+    EXPECT_FALSE(fs::exists(dir_ / "g.off"));
+  }
   EXPECT_FALSE(fs::exists(dir_ / "c.off"));
   EXPECT_NE(run("--help").out.find("--rejoin-borders"), std::string::npos);
 }

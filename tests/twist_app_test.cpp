@@ -109,6 +109,12 @@ TEST_F(TwistApp, LabelsByThePointsOrUsesTheDetectorWhenAsked) {
   const auto bad = run(in + " --cut-cost 101 -o " + eftest::shell_quoted(path("bad.off")));
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
   EXPECT_NE(bad.err.find("--cut-cost"), std::string::npos) << bad.err;
+  for (const char* mend : {"-1", "65", "x"}) {
+    const auto refused = run(in + " --mend " + mend + " -o " + eftest::shell_quoted(path("mend.off")));
+    EXPECT_EQ(refused.exit_code, 2) << mend << ": " << refused.err;
+    EXPECT_NE(refused.err.find("--mend"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(path("mend.off")));
+  }
 }
 
 TEST_F(TwistApp, ErrorsAreOneLine) {
