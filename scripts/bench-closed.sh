@@ -16,6 +16,14 @@
 # gcs-reconstruct (e.g. "--no-orient-winners").
 # Writes the raw rows to $CLOSED_DIR/runs.tsv and prints a markdown summary
 # (bench/closed_summary.py) on stdout.
+# Peers (optional, default none): CLOSED_PEERS="cgal-poisson cgal-af open3d-poisson" runs each named
+# reconstructor on the same cloud (with its normals) per model and seed, writes its mesh to
+# $CLOSED_DIR/MODEL-SEED-PEER.off, judges it by the same gcs-eval against the model and adds a row to
+# $CLOSED_DIR/peers.tsv (column "method" for "normals"; time = the peer's own reconstruction time);
+# the summary then lists the peers per model and, per run, whether our Chamfer-L1 is <= Poisson's.
+# cgal-poisson / cgal-af: BUILD_DIR/bench/cgal_reconstruct_reference (configure with
+# -DEDGEFRONT_BUILD_BENCH=ON and CGAL installed), CGAL's defaults; open3d-poisson:
+# bench/open3d_poisson.py (Debian's python3-open3d; depth 8, untrimmed, one thread).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -47,6 +55,65 @@ field() {  # JSON_FILE EXPR: one value from gcs-eval --json
   "$PY" -c "import json,sys; e=json.load(open(sys.argv[1])); print($2)" "$1"
 }
 
+judged() {  # MESH JSON: gcs-eval of MESH against the model ($mesh) into JSON; prints the row's judged fields
+  "$BUILD/apps/gcs-eval" "$1" "$mesh" --json --samples 50000 --no-self-intersections > "$2" || return 1
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s' \
+    "$(field "$2" 'e["mesh"]["border_loops"]')" "$(field "$2" 'e["mesh"]["genus"]')" \
+    "$(field "$2" 'e["mesh"]["components"]')" "$mg" "$mc" \
+    "$(field "$2" 'e["chamfer_l1_percent"]')" "$(field "$2" 'e["hausdorff_p95_percent"]')" \
+    "$(field "$2" '[f["fscore"] for f in e["fscores"] if abs(f["threshold_fraction"] - 0.01) < 1e-9][0]')"
+}
+
+# ---- Peers (CLOSED_PEERS): the other reconstructors on the same clouds, rows in peers.tsv ----
+PEERS=${CLOSED_PEERS:-}
+PEERS_TSV=$WORK/peers.tsv
+peers_start() {  # checks the peers' names and programs, writes peers.tsv's header
+  local peer
+  for peer in $PEERS; do
+    case $peer in
+      cgal-poisson|cgal-af)
+        [[ -x $BUILD/bench/cgal_reconstruct_reference ]] || { echo "bench-closed: CLOSED_PEERS has $peer but" \
+          "$BUILD/bench/cgal_reconstruct_reference is not built (configure with -DEDGEFRONT_BUILD_BENCH=ON; needs CGAL)" >&2; exit 2; } ;;
+      open3d-poisson)
+        "$PY" -c "import open3d" 2>/dev/null || { echo "bench-closed: CLOSED_PEERS has open3d-poisson but" \
+          "$PY cannot import open3d (scripts/setup.sh --with-peers)" >&2; exit 2; } ;;
+      *) echo "bench-closed: CLOSED_PEERS: unknown peer '$peer' (cgal-poisson, cgal-af, open3d-poisson)" >&2; exit 2 ;;
+    esac
+  done
+  printf 'model\tmethod\tseed\tseconds\tborder_loops\tgenus\tcomponents\tmodel_genus\tmodel_components\tchamfer_pct\th95_pct\tf1\tfaces_dropped\n' \
+    > "$PEERS_TSV"
+}
+run_peers() {  # MODEL SEED CLOUD: every peer on the cloud, judged against the model like ours
+  local model=$1 seed=$2 cloud=$3 peer out took fields
+  for peer in $PEERS; do
+    out=$WORK/$model-$seed-$peer.off
+    took=
+    case $peer in
+      cgal-poisson|cgal-af)
+        local method=poisson label="CGAL Poisson"
+        [[ $peer == cgal-af ]] && method=advancing-front label="CGAL advancing front"
+        if "$BUILD/bench/cgal_reconstruct_reference" "$cloud" -o "$WORK/cgal-$peer" --only "$method" --no-eval \
+            > "$out.log" 2>&1 && mv "$WORK/cgal-$peer/$model-$seed-$method.off" "$out"; then
+          took=$(sed -n "s/^== $label: \([0-9.e+-]*\) s,.*/\1/p" "$out.log")
+        fi ;;
+      open3d-poisson)
+        if "$PY" "$ROOT/bench/open3d_poisson.py" "$cloud" "$out" > "$out.log" 2>&1; then
+          took=$(sed -n 's/^seconds: //p' "$out.log")
+        fi ;;
+    esac
+    if [[ -z $took ]]; then
+      echo "bench-closed: $model seed $seed $peer failed: $(tail -1 "$out.log")" >&2
+      printf '%s\t%s\t%s\tfailed\t\t\t\t%s\t%s\t\t\t\t\n' "$model" "$peer" "$seed" "$mg" "$mc" >> "$PEERS_TSV"
+      continue
+    fi
+    fields=$(judged "$out" "$out.json")
+    printf '%s\t%s\t%s\t%.1f\t%s\t%s\n' "$model" "$peer" "$seed" "$took" "$fields" \
+      "$(field "$out.json" 'e["mesh"]["faces_dropped_when_read"]')" >> "$PEERS_TSV"
+  done
+}
+[[ -n $PEERS ]] && peers_start
+# ---- end of the peers ----
+
 for model in "${MODELS[@]}"; do
   mesh=$MODELS_DIR/$model.off
   if [[ ! -f $mesh ]]; then
@@ -72,14 +139,14 @@ for model in "${MODELS[@]}"; do
         continue
       fi
       took=$(echo "$(date +%s.%N) - $start" | bc)
-      "$BUILD/apps/gcs-eval" "$out" "$mesh" --json --samples 50000 --no-self-intersections > "$out.json"
-      printf '%s\t%s\t%s\t%.1f\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$model" "$what" "$seed" "$took" \
-        "$(field "$out.json" 'e["mesh"]["border_loops"]')" "$(field "$out.json" 'e["mesh"]["genus"]')" \
-        "$(field "$out.json" 'e["mesh"]["components"]')" "$mg" "$mc" \
-        "$(field "$out.json" 'e["chamfer_l1_percent"]')" "$(field "$out.json" 'e["hausdorff_p95_percent"]')" \
-        "$(field "$out.json" '[f["fscore"] for f in e["fscores"] if abs(f["threshold_fraction"] - 0.01) < 1e-9][0]')" \
-        >> "$TSV"
+      fields=$(judged "$out" "$out.json")  # an assignment, so that a failed gcs-eval stops the script
+      printf '%s\t%s\t%s\t%.1f\t%s\n' "$model" "$what" "$seed" "$took" "$fields" >> "$TSV"
     done
+    [[ -z $PEERS ]] || run_peers "$model" "$seed" "$cloud"
   done
 done
-"$PY" "$ROOT/bench/closed_summary.py" "$TSV"
+if [[ -n $PEERS ]]; then
+  "$PY" "$ROOT/bench/closed_summary.py" "$TSV" --peers "$PEERS_TSV"
+else
+  "$PY" "$ROOT/bench/closed_summary.py" "$TSV"
+fi
