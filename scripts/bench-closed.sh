@@ -23,7 +23,8 @@
 # the summary then lists the peers per model and, per run, whether our Chamfer-L1 is <= Poisson's.
 # cgal-poisson / cgal-af: BUILD_DIR/bench/cgal_reconstruct_reference (configure with
 # -DEDGEFRONT_BUILD_BENCH=ON and CGAL installed), CGAL's defaults; open3d-poisson:
-# bench/open3d_poisson.py (Debian's python3-open3d; depth 8, untrimmed, one thread).
+# bench/open3d_poisson.py (Debian's python3-open3d; depth CLOSED_O3D_DEPTH, default 8, untrimmed,
+# one thread).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -67,6 +68,7 @@ judged() {  # MESH JSON: gcs-eval of MESH against the model ($mesh) into JSON; p
 # ---- Peers (CLOSED_PEERS): the other reconstructors on the same clouds, rows in peers.tsv ----
 PEERS=${CLOSED_PEERS:-}
 PEERS_TSV=$WORK/peers.tsv
+O3D_DEPTH=${CLOSED_O3D_DEPTH:-8}
 peers_start() {  # checks the peers' names and programs, writes peers.tsv's header
   local peer
   for peer in $PEERS; do
@@ -76,7 +78,9 @@ peers_start() {  # checks the peers' names and programs, writes peers.tsv's head
           "$BUILD/bench/cgal_reconstruct_reference is not built (configure with -DEDGEFRONT_BUILD_BENCH=ON; needs CGAL)" >&2; exit 2; } ;;
       open3d-poisson)
         "$PY" -c "import open3d" 2>/dev/null || { echo "bench-closed: CLOSED_PEERS has open3d-poisson but" \
-          "$PY cannot import open3d (scripts/setup.sh --with-peers)" >&2; exit 2; } ;;
+          "$PY cannot import open3d (scripts/setup.sh --with-peers)" >&2; exit 2; }
+        [[ $O3D_DEPTH =~ ^[1-9][0-9]?$ ]] && (( O3D_DEPTH <= 12 )) || {
+          echo "bench-closed: CLOSED_O3D_DEPTH must be 1-12, got '$O3D_DEPTH'" >&2; exit 2; } ;;
       *) echo "bench-closed: CLOSED_PEERS: unknown peer '$peer' (cgal-poisson, cgal-af, open3d-poisson)" >&2; exit 2 ;;
     esac
   done
@@ -97,7 +101,7 @@ run_peers() {  # MODEL SEED CLOUD: every peer on the cloud, judged against the m
           took=$(sed -n "s/^== $label: \([0-9.e+-]*\) s,.*/\1/p" "$out.log")
         fi ;;
       open3d-poisson)
-        if "$PY" "$ROOT/bench/open3d_poisson.py" "$cloud" "$out" > "$out.log" 2>&1; then
+        if "$PY" "$ROOT/bench/open3d_poisson.py" "$cloud" "$out" --depth "$O3D_DEPTH" > "$out.log" 2>&1; then
           took=$(sed -n 's/^seconds: //p' "$out.log")
         fi ;;
     esac
